@@ -1,0 +1,362 @@
+// Primal baseline for the FETI benchmarks: the same Q1 problems as the FETI solver, assembled
+// into one distributed Tpetra matrix and solved by MueLu-preconditioned CG and by a distributed
+// KLU2 direct solve, so that both can be timed against FETI in the same run. Prints one JSON
+// object per solver on rank 0.
+#include <mpi.h>
+#include <sys/resource.h>
+
+#include <Amesos2.hpp>
+#include <BelosLinearProblem.hpp>
+#include <BelosPseudoBlockCGSolMgr.hpp>
+#include <BelosTpetraAdapter.hpp>
+#include <MueLu_CreateTpetraPreconditioner.hpp>
+#include <Teuchos_CommandLineProcessor.hpp>
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_RCP.hpp>
+#include <Tpetra_Core.hpp>
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_Export.hpp>
+#include <Tpetra_Map.hpp>
+#include <Tpetra_MultiVector.hpp>
+#include <Tpetra_Vector.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <functional>
+#include <iostream>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "plasticity_Q1Assembly.hpp"
+#include "tfeti_CsrMatrix.hpp"
+
+namespace {
+
+using Teuchos::RCP;
+using Teuchos::rcp;
+using SC = double;
+using LO = int;
+using GO = long long;
+using Node = Tpetra::Map<LO, GO>::node_type;
+using Map = Tpetra::Map<LO, GO, Node>;
+using Matrix = Tpetra::CrsMatrix<SC, LO, GO, Node>;
+using MV = Tpetra::MultiVector<SC, LO, GO, Node>;
+using Vector = Tpetra::Vector<SC, LO, GO, Node>;
+using Operator = Tpetra::Operator<SC, LO, GO, Node>;
+using Comm = Teuchos::Comm<int>;
+
+struct Problem {
+  std::string name;
+  int nx = 0, ny = 0;
+  double lx = 0, ly = 0;
+  plasticity::Field field = plasticity::Field::Scalar;
+  plasticity::ElasticLaw law;
+  double source[2] = {0, 0};
+
+  int dofsPerNode() const { return plasticity::dofsPerNode(field); }
+  GO numDofs() const { return GO(dofsPerNode()) * (nx + 1) * (ny + 1); }
+  bool isDirichlet(GO dof) const { return (dof / dofsPerNode()) % (nx + 1) == 0; }
+};
+
+struct System {
+  RCP<Matrix> A;
+  RCP<Vector> b;
+};
+
+// Each rank assembles a strip of cell rows with the project's element kernels, so the matrix is
+// the one the FETI subdomains are built from; shared node rows are summed by the export.
+System assemble(const Problem& p, const RCP<const Comm>& comm) {
+  const int P = comm->getSize(), rank = comm->getRank();
+  const int j0 = static_cast<int>(GO(rank) * p.ny / P);
+  const int j1 = static_cast<int>(GO(rank + 1) * p.ny / P);
+  const int dpn = p.dofsPerNode();
+  const int rowNodes = p.nx + 1;
+
+  plasticity::QuadMesh mesh;
+  if (j1 > j0) {
+    for (int j = j0; j <= j1; ++j)
+      for (int i = 0; i <= p.nx; ++i) {
+        mesh.coords.push_back(i * p.lx / p.nx);
+        mesh.coords.push_back(j * p.ly / p.ny);
+      }
+    for (int j = 0; j < j1 - j0; ++j)
+      for (int i = 0; i < p.nx; ++i) {
+        const int n = j * rowNodes + i;
+        mesh.quads.insert(mesh.quads.end(), {n, n + 1, n + 1 + rowNodes, n + rowNodes});
+      }
+  }
+  tfeti::CsrMatrix K = plasticity::assembleStiffness(mesh, p.field, p.law);
+  std::vector<double> f = plasticity::assembleBodyLoad(mesh, p.field, p.source);
+
+  // Local node numbering is the global one shifted by the strip's first node row.
+  const GO offset = GO(dpn) * j0 * rowNodes;
+  std::vector<GO> gids(K.rows);
+  std::iota(gids.begin(), gids.end(), offset);
+
+  // Dirichlet rows and columns become the identity so that the matrix stays symmetric for CG.
+  // Node rows on a strip boundary belong to two strips; only the strip whose cell range starts
+  // at that row puts the 1 on the diagonal, so that the export sums to exactly 1.
+  auto putsDiagonal = [&](int l) {
+    const int j = j0 + l / (dpn * rowNodes);
+    return j < j1 || j == p.ny;
+  };
+  for (int l = 0; l < K.rows; ++l) {
+    const bool rowFixed = p.isDirichlet(gids[l]);
+    if (rowFixed) f[l] = 0.0;
+    for (int k = K.rowPtr[l]; k < K.rowPtr[l + 1]; ++k) {
+      const int c = K.colInd[k];
+      if (rowFixed || p.isDirichlet(gids[c]))
+        K.values[k] = (rowFixed && c == l && putsDiagonal(l)) ? 1.0 : 0.0;
+    }
+  }
+
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  auto overlapMap = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(gids), 0, comm));
+  // Balanced by nodes rather than dofs: MueLu needs a node's dofs on one rank.
+  const GO numNodes = p.numDofs() / dpn;
+  const GO ownedNodes = numNodes / P + (rank < numNodes % P ? 1 : 0);
+  auto ownedMap = rcp(new Map(static_cast<Tpetra::global_size_t>(p.numDofs()),
+                              static_cast<size_t>(dpn * ownedNodes), 0, comm));
+
+  Teuchos::ArrayRCP<size_t> rowPtr(K.rowPtr.size());
+  std::copy(K.rowPtr.begin(), K.rowPtr.end(), rowPtr.begin());
+  Teuchos::ArrayRCP<LO> colInd(K.colInd.size());
+  std::copy(K.colInd.begin(), K.colInd.end(), colInd.begin());
+  Teuchos::ArrayRCP<SC> values(K.values.size());
+  std::copy(K.values.begin(), K.values.end(), values.begin());
+  auto Aover = rcp(new Matrix(overlapMap, overlapMap, rowPtr, colInd, values));
+  Aover->fillComplete(ownedMap, ownedMap);
+
+  Vector bOver(overlapMap);
+  {
+    auto data = bOver.getDataNonConst();
+    std::copy(f.begin(), f.end(), data.begin());
+  }
+
+  Tpetra::Export<LO, GO, Node> exporter(overlapMap, ownedMap);
+  System s;
+  s.A = rcp(new Matrix(ownedMap, 9 * dpn));
+  s.A->doExport(*Aover, exporter, Tpetra::ADD);
+  s.A->fillComplete();
+  s.b = rcp(new Vector(ownedMap));
+  s.b->doExport(bOver, exporter, Tpetra::ADD);
+  return s;
+}
+
+// Translations and the in-plane rotation (about the domain's centre, for conditioning).
+RCP<MV> rigidBodyModes(const Problem& p, const RCP<const Map>& map) {
+  auto modes = rcp(new MV(map, 3));
+  for (size_t l = 0; l < map->getNodeNumElements(); ++l) {
+    const GO dof = map->getGlobalElement(static_cast<LO>(l));
+    const GO node = dof / 2;
+    const double x = (node % (p.nx + 1)) * p.lx / p.nx - 0.5 * p.lx;
+    const double y = (node / (p.nx + 1)) * p.ly / p.ny - 0.5 * p.ly;
+    const int c = static_cast<int>(dof % 2);
+    modes->replaceLocalValue(static_cast<LO>(l), 0, c == 0 ? 1.0 : 0.0);
+    modes->replaceLocalValue(static_cast<LO>(l), 1, c == 1 ? 1.0 : 0.0);
+    modes->replaceLocalValue(static_cast<LO>(l), 2, c == 0 ? -y : x);
+  }
+  return modes;
+}
+
+struct Result {
+  std::string solver;
+  double setup = 0, solve = 0;
+  int iterations = -1;  // -1: direct solver
+  double relativeResidual = 0, normU = 0, maxAbsU = 0, peakRssMb = 0;
+  bool converged = false;
+};
+
+// Wall time of f, maximum over ranks: the slowest rank is what the user waits for.
+double timed(const Comm& comm, const std::function<void()>& f) {
+  comm.barrier();
+  const auto start = std::chrono::steady_clock::now();
+  f();
+  const double local = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  double global = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, local, Teuchos::outArg(global));
+  return global;
+}
+
+double peakRssMb(const Comm& comm) {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double local = usage.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
+  double global = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, local, Teuchos::outArg(global));
+  return global;
+}
+
+// The residual is recomputed from scratch rather than trusted from the solver, which for CG only
+// knows its recursively updated residual and for KLU2 nothing at all.
+void finish(Result& r, const System& s, const Vector& x, double tolerance) {
+  Vector res(*s.b, Teuchos::Copy);
+  s.A->apply(x, res, Teuchos::NO_TRANS, -1.0, 1.0);
+  r.relativeResidual = res.norm2() / s.b->norm2();
+  r.normU = x.norm2();
+  r.maxAbsU = x.normInf();
+  r.peakRssMb = peakRssMb(*s.A->getComm());
+  r.converged = r.relativeResidual <= tolerance;
+}
+
+Result solveMueLuCg(const Problem& p, const System& s, double rtol) {
+  Teuchos::ParameterList params;
+  params.set("verbosity", "none");
+  params.set("multigrid algorithm", "sa");
+  params.set("smoother: type", "CHEBYSHEV");
+  params.sublist("smoother: params").set("chebyshev: degree", 2);
+  // MueLu's default coarse solver is a distributed KLU2 solve, which is miscompiled in this
+  // Trilinos (see the pitfalls notes); a small coarse level smoothed to convergence is exact
+  // enough and works on any number of ranks.
+  params.set("coarse: max size", 1000);
+  params.set("coarse: type", "RELAXATION");
+  Teuchos::ParameterList& coarse = params.sublist("coarse: params");
+  coarse.set("relaxation: type", "Symmetric Gauss-Seidel");
+  coarse.set("relaxation: sweeps", 20);
+  if (p.field == plasticity::Field::Elasticity) {
+    params.set("number of equations", 2);
+    params.sublist("user data").set("Nullspace", rigidBodyModes(p, s.A->getRowMap()));
+  }
+
+  Result r;
+  r.solver = "muelu_cg";
+  const Comm& comm = *s.A->getComm();
+  RCP<Operator> M;
+  r.setup = timed(comm, [&] {
+    M = MueLu::CreateTpetraPreconditioner(RCP<Operator>(s.A), params);
+  });
+
+  auto x = rcp(new Vector(s.A->getDomainMap()));
+  auto problem = rcp(new Belos::LinearProblem<SC, MV, Operator>(s.A, x, s.b));
+  problem->setLeftPrec(M);
+  problem->setProblem();
+  auto belosParams = rcp(new Teuchos::ParameterList);
+  belosParams->set("Convergence Tolerance", rtol);
+  belosParams->set("Maximum Iterations", 2000);
+  Belos::PseudoBlockCGSolMgr<SC, MV, Operator> cg(problem, belosParams);
+  r.solve = timed(comm, [&] { cg.solve(); });
+  r.iterations = cg.getNumIters();
+  finish(r, s, *x, 10 * rtol);
+  return r;
+}
+
+Result solveKlu2(const System& s) {
+  Result r;
+  r.solver = "klu2";
+  const Comm& comm = *s.A->getComm();
+  auto x = rcp(new Vector(s.A->getDomainMap()));
+  RCP<Amesos2::Solver<Matrix, MV>> solver;
+  r.setup = timed(comm, [&] {
+    solver = Amesos2::create<Matrix, MV>("KLU2", s.A, x, s.b);
+    // KLU2's non-transposed solve routine is miscompiled. On one rank Amesos2 already calls the
+    // transposed routine (it passes the CRS arrays as the CSC of the transpose); on more ranks
+    // it gathers the matrix and calls the broken one unless asked to transpose, which gives the
+    // same answer since the matrix is symmetric.
+    if (comm.getSize() > 1) {
+      auto params = rcp(new Teuchos::ParameterList("Amesos2"));
+      params->sublist("KLU2").set("Trans", "TRANS");
+      solver->setParameters(params);
+    }
+    solver->symbolicFactorization();
+    solver->numericFactorization();
+  });
+  r.solve = timed(comm, [&] { solver->solve(); });
+  finish(r, s, *x, 1e-8);
+  return r;
+}
+
+void printJson(const Result& r, const Problem& p, int ranks) {
+  std::string line = "{\"solver\":\"" + r.solver + "\",\"problem\":\"" + p.name +
+                     "\",\"nx\":" + std::to_string(p.nx) + ",\"ny\":" + std::to_string(p.ny) +
+                     ",\"dofs\":" + std::to_string(p.numDofs()) +
+                     ",\"ranks\":" + std::to_string(ranks);
+  char buf[512];
+  std::snprintf(buf, sizeof buf, ",\"setup_s\":%.4f,\"solve_s\":%.4f", r.setup, r.solve);
+  line += buf;
+  if (r.iterations >= 0) line += ",\"iterations\":" + std::to_string(r.iterations);
+  std::snprintf(buf, sizeof buf,
+                ",\"relative_residual\":%.3e,\"norm_u\":%.12e,\"max_abs_u\":%.12e,"
+                "\"peak_rss_mb\":%.1f,\"converged\":%s}",
+                r.relativeResidual, r.normU, r.maxAbsU, r.peakRssMb,
+                r.converged ? "true" : "false");
+  line += buf;
+  std::cout << line << std::endl;
+}
+
+int run(int argc, char* argv[], const RCP<const Comm>& comm) {
+  Teuchos::CommandLineProcessor clp(false, true);
+  std::string problemName = "poisson", solverName = "both";
+  int nx = 100, ny = 50;
+  double lx = 2, ly = 1, rtol = 1e-6, E = 1, nu = 0.3, bx = 0, by = -1;
+  clp.setDocString("Primal baseline (MueLu+CG, KLU2) for the TFETI benchmark problems.");
+  clp.setOption("problem", &problemName, "poisson | elasticity");
+  clp.setOption("solver", &solverName, "muelu | klu2 | both");
+  clp.setOption("nx", &nx, "cells in x");
+  clp.setOption("ny", &ny, "cells in y");
+  clp.setOption("lx", &lx, "domain length in x");
+  clp.setOption("ly", &ly, "domain length in y");
+  clp.setOption("rtol", &rtol, "CG relative residual tolerance");
+  clp.setOption("E", &E, "Young's modulus (elasticity)");
+  clp.setOption("nu", &nu, "Poisson's ratio (elasticity)");
+  clp.setOption("bx", &bx, "body force x (elasticity)");
+  clp.setOption("by", &by, "body force y (elasticity)");
+  switch (clp.parse(argc, argv)) {
+    case Teuchos::CommandLineProcessor::PARSE_SUCCESSFUL:
+      break;
+    case Teuchos::CommandLineProcessor::PARSE_HELP_PRINTED:
+      return 0;
+    default:
+      return 2;
+  }
+  if (problemName != "poisson" && problemName != "elasticity")
+    throw std::invalid_argument("--problem must be poisson or elasticity, got " + problemName);
+  if (solverName != "muelu" && solverName != "klu2" && solverName != "both")
+    throw std::invalid_argument("--solver must be muelu, klu2 or both, got " + solverName);
+  if (nx < 1 || ny < 1 || !(lx > 0) || !(ly > 0) || !(rtol > 0))
+    throw std::invalid_argument("--nx, --ny, --lx, --ly and --rtol must be positive");
+
+  Problem p;
+  p.name = problemName;
+  p.nx = nx;
+  p.ny = ny;
+  p.lx = lx;
+  p.ly = ly;
+  if (problemName == "poisson") {
+    p.source[0] = 1.0;
+  } else {
+    p.field = plasticity::Field::Elasticity;
+    p.law = plasticity::ElasticLaw(E, nu);
+    p.source[0] = bx;
+    p.source[1] = by;
+  }
+
+  const System s = assemble(p, comm);
+  std::vector<Result> results;
+  if (solverName != "klu2") results.push_back(solveMueLuCg(p, s, rtol));
+  if (solverName != "muelu") results.push_back(solveKlu2(s));
+
+  bool allConverged = true;
+  for (const Result& r : results) {
+    if (comm->getRank() == 0) printJson(r, p, comm->getSize());
+    allConverged = allConverged && r.converged;
+  }
+  return allConverged ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char* argv[]) {
+  Tpetra::ScopeGuard scope(&argc, &argv);
+  try {
+    return run(argc, argv, Tpetra::getDefaultComm());
+  } catch (const std::exception& e) {
+    std::cerr << "tfeti_baseline: " << e.what() << std::endl;
+    // A failure on one rank would leave the others waiting in a collective forever.
+    MPI_Abort(MPI_COMM_WORLD, 3);
+  }
+  return 3;
+}

@@ -1,0 +1,39 @@
+# tfeti_package(NAME <name> SOURCES ... DEPENDS ...): a namespaced, installable library
+# with an exported CMake config, so that an application outside the tree can call
+# find_package(<name>) and link <name>::<name>.
+include(CMakePackageConfigHelpers)
+include(GNUInstallDirs)
+
+function(tfeti_package)
+  cmake_parse_arguments(P "" "NAME" "SOURCES;DEPENDS;PACKAGE_DEPENDS" ${ARGN})
+  add_library(${P_NAME} ${P_SOURCES})
+  add_library(${P_NAME}::${P_NAME} ALIAS ${P_NAME})
+  target_include_directories(${P_NAME} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/src>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/${P_NAME}>)
+  target_link_libraries(${P_NAME} PUBLIC ${P_DEPENDS})
+  target_compile_options(${P_NAME} PRIVATE -Wall -Wextra -Wno-unused-parameter)
+  set_target_properties(${P_NAME} PROPERTIES EXPORT_NAME ${P_NAME} OUTPUT_NAME tfeti_${P_NAME})
+  if(P_NAME STREQUAL "tfeti")
+    set_target_properties(${P_NAME} PROPERTIES OUTPUT_NAME tfeti)
+  endif()
+
+  file(GLOB headers ${CMAKE_CURRENT_SOURCE_DIR}/src/*.hpp)
+  install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${P_NAME})
+  install(TARGETS ${P_NAME} EXPORT ${P_NAME}Targets
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  install(EXPORT ${P_NAME}Targets NAMESPACE ${P_NAME}::
+          DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/${P_NAME})
+
+  set(PACKAGE_DEPENDS "${P_PACKAGE_DEPENDS}")
+  configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/PackageConfig.cmake.in
+    ${CMAKE_CURRENT_BINARY_DIR}/${P_NAME}Config.cmake
+    INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/${P_NAME})
+  write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/${P_NAME}ConfigVersion.cmake
+    VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
+  install(FILES ${CMAKE_CURRENT_BINARY_DIR}/${P_NAME}Config.cmake
+                ${CMAKE_CURRENT_BINARY_DIR}/${P_NAME}ConfigVersion.cmake
+          DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/${P_NAME})
+endfunction()

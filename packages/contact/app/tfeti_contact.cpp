@@ -1,0 +1,60 @@
+// tfeti_contact --input=FILE.xml --output=DIR
+//
+// Reads a Teuchos ParameterList (XML), validates it (an unknown or mistyped parameter is an error
+// naming it and listing the valid ones), runs the study and writes summary.json and VTU files
+// into DIR. Exit codes: 0 success, 1 bad input or failure, 2 a solve did not converge (output is
+// still written).
+#include <Teuchos_CommandLineProcessor.hpp>
+#include <Teuchos_DefaultComm.hpp>
+#include <Teuchos_XMLParameterListHelpers.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <filesystem>
+#include <iostream>
+
+#include "contact_Driver.hpp"
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard tpetra(&argc, &argv);
+  auto comm = Tpetra::getDefaultComm();
+  const bool root = comm->getRank() == 0;
+
+  std::string input, output = "tfeti_output";
+  bool printParameters = false;
+  Teuchos::CommandLineProcessor clp(false, true);
+  clp.setDocString("Total FETI solver for the reference paper's problems.");
+  clp.setOption("input", &input, "ParameterList XML file");
+  clp.setOption("output", &output, "output directory (created if missing)");
+  clp.setOption("print-parameters", "no-print-parameters", &printParameters,
+                "print every valid parameter with its default and documentation, then exit");
+  clp.recogniseAllOptions(true);
+  clp.throwExceptions(false);
+  const auto parse = clp.parse(argc, argv);
+  if (parse == Teuchos::CommandLineProcessor::PARSE_HELP_PRINTED) return 0;
+  if (parse != Teuchos::CommandLineProcessor::PARSE_SUCCESSFUL) return 1;
+  if (printParameters) {
+    if (root) contact::validDriverParameters()->print(std::cout, Teuchos::ParameterList::PrintOptions().showDoc(true).indent(2).showTypes(true));
+    return 0;
+  }
+  if (input.empty()) {
+    if (root) std::cerr << "tfeti_contact: --input=FILE.xml is required\n";
+    return 1;
+  }
+
+  int code = 1;
+  try {
+    if (!std::filesystem::exists(input)) throw std::runtime_error(input + ": no such file");
+    Teuchos::RCP<Teuchos::ParameterList> params;
+    try {
+      params = Teuchos::getParametersFromXmlFile(input);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(input + ": not a valid ParameterList XML file: " + e.what());
+    }
+    contact::validateDriverParameters(*params, input);
+    code = contact::runDriver(comm, *params, output);
+  } catch (const std::exception& e) {
+    if (root) std::cerr << "tfeti_contact: error: " << e.what() << "\n";
+    return 1;
+  }
+  return code;
+}

@@ -1,0 +1,311 @@
+#include "contact_Driver.hpp"
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "contact_Json.hpp"
+#include "contact_StructuredProblem.hpp"
+#include "contact_VtuWriter.hpp"
+#include "tfeti_FetiSolver.hpp"
+
+namespace contact {
+
+namespace {
+
+using Teuchos::Array;
+using Teuchos::ParameterList;
+using tfeti::GO;
+
+Teuchos::RCP<Teuchos::StringToIntegralParameterEntryValidator<int>> choice(
+    std::initializer_list<std::string> names) {
+  return Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+      Array<std::string>(names.begin(), names.end()), *names.begin()));
+}
+
+template <class T>
+Array<T> arr(std::initializer_list<T> values) {
+  return Array<T>(values.begin(), values.end());
+}
+
+const char* kStoppingRule =
+    "relative norm of the projected gradient: ||P(F lambda - d)|| <= tol * ||P d||";
+
+StructuredProblem problemFrom(const ParameterList& p, const std::string& field) {
+  StructuredProblem sp;
+  sp.field = field;
+  const auto& mesh = p.sublist("Mesh");
+  const auto domain = mesh.get<Array<double>>("Domain");
+  const auto subs = mesh.get<Array<int>>("Subdomains");
+  const auto elems = mesh.get<Array<int>>("Elements per subdomain");
+  if (domain.size() != 4 || subs.size() != 2 || elems.size() != 2)
+    throw std::invalid_argument(
+        "Mesh: \"Domain\" takes 4 values {x0, x1, y0, y1}, \"Subdomains\" and \"Elements per "
+        "subdomain\" take 2 values {x, y}");
+  sp.x0 = domain[0], sp.x1 = domain[1], sp.y0 = domain[2], sp.y1 = domain[3];
+  sp.subdomainsX = subs[0], sp.subdomainsY = subs[1];
+  sp.elementsX = elems[0], sp.elementsY = elems[1];
+  const auto& mat = p.sublist("Material");
+  sp.law = plasticity::ElasticLaw(mat.get<double>("Young's modulus"),
+                                  mat.get<double>("Poisson's ratio"));
+  const auto& load = p.sublist("Load");
+  sp.source = load.get<double>("Source");
+  const auto bf = load.get<Array<double>>("Body force");
+  if (bf.size() != 2) throw std::invalid_argument("Load: \"Body force\" takes 2 values {bx, by}");
+  sp.bodyForce[0] = bf[0], sp.bodyForce[1] = bf[1];
+  sp.mesh();  // validates the sizes
+  return sp;
+}
+
+Json timingsJson(const tfeti::FetiTimings& t, int iterations) {
+  Json j = Json::object();
+  j["factorization_s"] = t.factorization;
+  j["tearing_s"] = t.tearing;
+  j["coarse_s"] = t.coarse;
+  j["preconditioner_s"] = t.preconditioner;
+  j["dual_rhs_s"] = t.dualRhs;
+  j["setup_s"] = t.setup();
+  j["solve_s"] = t.solve;
+  j["recovery_s"] = t.recovery;
+  j["per_iteration_s"] = iterations > 0 ? t.solve / iterations : 0.0;
+  return j;
+}
+
+void writeSummary(const tfeti::Comm& comm, const std::string& dir, const Json& summary) {
+  if (comm.getRank() != 0) return;
+  const std::string path = dir + "/summary.json";
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out << summary.dump();
+}
+
+VtuPiece vtuPiece(const tfeti::FetiSolver& solver) {
+  VtuPiece piece;
+  VtuField u{"u", 1, {}}, sub{"subdomain", 1, {}};
+  const bool vec = !solver.data().empty() && solver.data().front().dofsPerNode == 2;
+  if (vec) u = VtuField{"displacement", 3, {}};
+  for (std::size_t i = 0; i < solver.data().size(); ++i) {
+    const auto& mesh = solver.data()[i].mesh;
+    const int base = static_cast<int>(piece.points.size() / 2);
+    piece.points.insert(piece.points.end(), mesh.coords.begin(), mesh.coords.end());
+    for (int q : mesh.quads) piece.quads.push_back(base + q);
+    const auto& us = solver.solution(i);
+    for (int n = 0; n < mesh.numNodes(); ++n) {
+      if (vec)
+        u.values.insert(u.values.end(), {us[2 * n], us[2 * n + 1], 0.0});
+      else
+        u.values.push_back(us[n]);
+    }
+    sub.values.insert(sub.values.end(), mesh.numElements(), static_cast<double>(mesh.id));
+  }
+  piece.pointData.push_back(std::move(u));
+  piece.cellData.push_back(std::move(sub));
+  return piece;
+}
+
+int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
+              const std::string& dir) {
+  const bool root = comm->getRank() == 0;
+  const std::string field = params.get<std::string>("Problem");
+  const StructuredProblem sp = problemFrom(params, field);
+  const auto& out = params.sublist("Output");
+  const int verbosity = out.get<int>("Verbosity");
+
+  tfeti::FetiSolver solver(comm, sp.subdomainsX * sp.subdomainsY,
+                           buildLocalSubdomains(sp, *comm), params.sublist("FETI"));
+  const tfeti::PcpgResult result = solver.solve();
+
+  Json s = Json::object();
+  s["study"] = "single";
+  s["problem"] = field;
+  s["ranks"] = comm->getSize();
+  s["subdomains"] = sp.subdomainsX * sp.subdomainsY;
+  s["elements"] = static_cast<long long>(sp.subdomainsX) * sp.elementsX * sp.subdomainsY * sp.elementsY;
+  const auto& feti = params.sublist("FETI");
+  s["formulation"] = feti.get<std::string>("Formulation");
+  s["preconditioner"] = feti.get<std::string>("Preconditioner");
+  s["local_solver"] = feti.get<std::string>("Local solver");
+  s["primal_dim"] = solver.primalDimension();
+  s["dual_dim"] = solver.dualDimension();
+  s["gluing_rows"] = solver.gluingRows();
+  s["dirichlet_rows"] = solver.dirichletRows();
+  s["coarse_dim"] = solver.coarseDimension();
+  s["converged"] = result.converged;
+  s["iterations"] = result.iterations;
+  s["relative_residual"] = result.relativeResidual;
+  s["stopping_rule"] = kStoppingRule;
+  s["tolerance"] = feti.sublist("PCPG").get<double>("Relative tolerance");
+  s["dual_operator_applies"] = solver.dualOperatorApplies();
+  s["factor_bytes"] = static_cast<unsigned long long>(solver.globalFactorBytes());
+  s["preconditioner_factor_bytes"] =
+      static_cast<unsigned long long>(solver.globalPreconditionerFactorBytes());
+  s["timings"] = timingsJson(solver.timings(), result.iterations);
+  if (out.get<bool>("Compare with direct solve")) {
+    const double err = relativeErrorAgainstDirectSolve(sp, solver);
+    s["error_vs_direct"] = err;
+    if (root && verbosity > 0) std::cout << "max relative error against direct solve: " << err << "\n";
+  }
+  if (out.get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", vtuPiece(solver));
+  writeSummary(*comm, dir, s);
+  if (root && verbosity > 0)
+    std::cout << field << ": " << sp.subdomainsX * sp.subdomainsY << " subdomains, primal "
+              << solver.primalDimension() << ", dual " << solver.dualDimension() << ", "
+              << result.iterations << " iterations (" << (result.converged ? "converged" : "NOT CONVERGED")
+              << "), setup " << solver.timings().setup() << " s, solve " << solver.timings().solve
+              << " s\n";
+  if (!result.converged && root)
+    std::cerr << "tfeti_contact: PCPG did not converge (relative residual "
+              << result.relativeResidual << "); results written to " << dir << "\n";
+  return result.converged ? 0 : 2;
+}
+
+std::string fraction(int denominator) { return "1/" + std::to_string(denominator); }
+
+int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
+                   const std::string& dir) {
+  const bool root = comm->getRank() == 0;
+  const auto& sc = params.sublist("Scalability");
+  const auto problems = sc.get<Array<std::string>>("Problems");
+  const auto Hinv = sc.get<Array<int>>("Subdomains per side");
+  const auto ratios = sc.get<Array<int>>("H over h");
+  const auto precs = sc.get<Array<std::string>>("Preconditioners");
+  const double tol = params.sublist("FETI").sublist("PCPG").get<double>("Relative tolerance");
+  bool allConverged = true;
+
+  Json table = Json::array();
+  std::ostringstream printed;
+  printed << std::left << std::setw(11) << "problem" << std::setw(6) << "H" << std::setw(7) << "h"
+          << std::right << std::setw(9) << "primal" << std::setw(9) << "dualFETI" << std::setw(10)
+          << "dualTFETI";
+  for (const char* f : {"FETI", "TFETI"})
+    for (const auto& p : precs) printed << std::setw(14) << (std::string(f) + ":" + p);
+  printed << "\n";
+  if (root) std::cout << printed.str() << std::flush;
+
+  for (const auto& problem : problems) {
+    for (int ratio : ratios)
+      for (int hinv : Hinv) {
+        ParameterList run = params;
+        auto& mesh = run.sublist("Mesh");
+        mesh.set("Subdomains", arr<int>({hinv, hinv}));
+        mesh.set("Elements per subdomain", arr<int>({ratio, ratio}));
+        const StructuredProblem sp = problemFrom(run, problem);
+        const auto local = buildLocalSubdomains(sp, *comm);
+        Json row = Json::object();
+        row["problem"] = problem;
+        row["H"] = 1.0 / hinv;
+        row["h"] = 1.0 / (hinv * ratio);
+        row["H_inverse"] = hinv;
+        row["h_inverse"] = hinv * ratio;
+        row["subdomains"] = hinv * hinv;
+        Json iterations = Json::object();
+        std::ostringstream line;
+        GO primal = 0, dual[2] = {0, 0};
+        for (int f = 0; f < 2; ++f) {
+          const std::string form = f == 0 ? "FETI" : "TFETI";
+          Json its = Json::object();
+          for (const auto& prec : precs) {
+            ParameterList feti = run.sublist("FETI");
+            feti.set("Formulation", form);
+            feti.set("Preconditioner", prec);
+            tfeti::FetiSolver solver(comm, hinv * hinv, local, feti);
+            const auto res = solver.solve();
+            allConverged &= res.converged;
+            its[prec] = res.converged ? Json(res.iterations) : Json();
+            primal = solver.primalDimension();
+            dual[f] = solver.dualDimension();
+            line << std::setw(14) << (res.converged ? std::to_string(res.iterations) : "n/c");
+          }
+          iterations[f == 0 ? "feti" : "tfeti"] = std::move(its);
+        }
+        row["primal_dim"] = primal;
+        row["dual_dim_feti"] = dual[0];
+        row["dual_dim_tfeti"] = dual[1];
+        row["iterations"] = std::move(iterations);
+        table.push(std::move(row));
+        if (root)
+          std::cout << std::left << std::setw(11) << problem << std::setw(6) << fraction(hinv)
+                    << std::setw(7) << fraction(hinv * ratio) << std::right << std::setw(9)
+                    << primal << std::setw(9) << dual[0] << std::setw(10) << dual[1] << line.str()
+                    << "\n"
+                    << std::flush;
+      }
+  }
+  Json s = Json::object();
+  s["study"] = "scalability";
+  s["ranks"] = comm->getSize();
+  s["stopping_rule"] = kStoppingRule;
+  s["tolerance"] = tol;
+  s["local_solver"] = params.sublist("FETI").get<std::string>("Local solver");
+  s["all_converged"] = allConverged;
+  s["table"] = std::move(table);
+  writeSummary(*comm, dir, s);
+  return allConverged ? 0 : 2;
+}
+
+}  // namespace
+
+Teuchos::RCP<const ParameterList> validDriverParameters() {
+  static Teuchos::RCP<ParameterList> pl;
+  if (!pl.is_null()) return pl;
+  pl = Teuchos::rcp(new ParameterList("tfeti_contact"));
+  pl->set("Study", "single", "single: one problem; scalability: the paper's table",
+          choice({"single", "scalability"}));
+  pl->set("Problem", "poisson", "the model problem (Study = single)",
+          choice({"poisson", "elasticity"}));
+  auto& mesh = pl->sublist("Mesh", false, "structured Q1 mesh of a rectangle, torn into a grid");
+  mesh.set("Domain", arr<double>({0.0, 1.0, 0.0, 1.0}), "{x0, x1, y0, y1}");
+  mesh.set("Subdomains", arr<int>({4, 4}), "subdomains in x and y (1/H)");
+  mesh.set("Elements per subdomain", arr<int>({16, 16}), "elements per subdomain in x and y (H/h)");
+  auto& mat = pl->sublist("Material", false, "isotropic linear elasticity, plane strain");
+  mat.set("Young's modulus", 1.0, "E");
+  mat.set("Poisson's ratio", 0.3, "nu");
+  auto& load = pl->sublist("Load");
+  load.set("Source", 1.0, "right-hand side of -Δu = source (poisson)");
+  load.set("Body force", arr<double>({0.0, -1.0}), "{bx, by} per unit volume (elasticity)");
+  pl->sublist("FETI").setParameters(*tfeti::FetiSolver::validParameters());
+  auto& out = pl->sublist("Output");
+  out.set("VTU", true, "write solution.pvtu (u and subdomain id)");
+  out.set("Compare with direct solve", false,
+          "solve the undecomposed problem directly on every rank and report the error "
+          "(small problems only)");
+  out.set("Verbosity", 1, "0 silent, 1 summary lines");
+  auto& sc = pl->sublist("Scalability", false, "Study = scalability");
+  sc.set("Problems", arr<std::string>({"poisson"}), "poisson and/or elasticity");
+  sc.set("Subdomains per side", arr<int>({2, 4, 8, 16}), "values of 1/H");
+  sc.set("H over h", arr<int>({2, 4, 8}), "elements per subdomain side");
+  sc.set("Preconditioners", arr<std::string>({"none", "lumped", "dirichlet"}), "columns");
+  return pl;
+}
+
+void validateDriverParameters(ParameterList& params, const std::string& source) {
+  try {
+    params.validateParametersAndSetDefaults(*validDriverParameters());
+    const auto& sc = params.sublist("Scalability");
+    for (const auto& p : sc.get<Array<std::string>>("Problems"))
+      if (p != "poisson" && p != "elasticity")
+        throw std::invalid_argument("Scalability: \"Problems\" has \"" + p +
+                                    "\"; valid: poisson, elasticity");
+    for (const auto& p : sc.get<Array<std::string>>("Preconditioners"))
+      if (p != "none" && p != "lumped" && p != "dirichlet")
+        throw std::invalid_argument("Scalability: \"Preconditioners\" has \"" + p +
+                                    "\"; valid: none, lumped, dirichlet");
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(source + ": invalid parameters:\n" + e.what());
+  }
+}
+
+int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
+              const std::string& outputDirectory) {
+  if (comm->getRank() == 0) std::filesystem::create_directories(outputDirectory);
+  comm->barrier();
+  if (params.get<std::string>("Study") == "scalability")
+    return runScalability(comm, params, outputDirectory);
+  return runSingle(comm, params, outputDirectory);
+}
+
+}  // namespace contact

@@ -1,0 +1,27 @@
+#pragma once
+// The tfeti_contact driver: reads a validated ParameterList, runs the requested study and writes
+// summary.json (and VTU) into the output directory.
+//   Study = "single":      one problem (Problem, Mesh, Material, Load, FETI), with VTU output
+//   Study = "scalability": the reference paper's table (dimensions and iteration counts of FETI
+//                          and TFETI for every preconditioner over H and H/h)
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+
+#include "tfeti_Types.hpp"
+
+namespace contact {
+
+// Every parameter the driver accepts, with defaults and documentation.
+Teuchos::RCP<const Teuchos::ParameterList> validDriverParameters();
+
+// Validates params (throws std::invalid_argument naming the source and the bad parameter with the
+// valid ones) and fills in defaults.
+void validateDriverParameters(Teuchos::ParameterList& params, const std::string& source);
+
+// Runs the study. Returns the process exit code: 0 on success, 2 when a solve did not converge
+// (all output is still written).
+int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
+              const std::string& outputDirectory);
+
+}  // namespace contact

@@ -1,0 +1,102 @@
+// CHOLMOD (SuiteSparse) sparse Cholesky behind the LocalSolver interface.
+#include <cholmod.h>
+
+#include <cstring>
+#include <stdexcept>
+
+#include "tfeti_LocalSolver.hpp"
+
+namespace tfeti {
+namespace {
+
+// One CHOLMOD workspace per process: subdomains are factorized and solved one after the other
+// (Kokkos is Serial here), and a common per subdomain would multiply its workspace.
+struct CholmodCommon {
+  cholmod_common c;
+  CholmodCommon() {
+    cholmod_start(&c);
+    c.print = 0;
+    c.error_handler = nullptr;
+  }
+  ~CholmodCommon() { cholmod_finish(&c); }
+};
+
+cholmod_common* common() {
+  static CholmodCommon instance;
+  return &instance.c;
+}
+
+class CholmodSolver final : public LocalSolver {
+ public:
+  ~CholmodSolver() override { release(); }
+
+  void factorize(const CsrMatrix& A) override {
+    release();
+    n_ = A.rows;
+    // A symmetric CSR matrix is its own CSC; stype = 1 tells CHOLMOD to read the upper part.
+    cholmod_sparse S;
+    std::memset(&S, 0, sizeof(S));
+    S.nrow = S.ncol = static_cast<size_t>(A.rows);
+    S.nzmax = A.nnz();
+    S.p = const_cast<int*>(A.rowPtr.data());
+    S.i = const_cast<int*>(A.colInd.data());
+    S.x = const_cast<double*>(A.values.data());
+    S.stype = 1;
+    S.itype = CHOLMOD_INT;
+    S.xtype = CHOLMOD_REAL;
+    S.dtype = CHOLMOD_DOUBLE;
+    S.sorted = 1;
+    S.packed = 1;
+    cholmod_common* c = common();
+    L_ = cholmod_analyze(&S, c);
+    if (!L_) throw std::runtime_error("cholmod: symbolic analysis failed");
+    if (!cholmod_factorize(&S, L_, c) || c->status != CHOLMOD_OK)
+      throw std::runtime_error("cholmod: the subdomain matrix is not positive definite (column " +
+                               std::to_string(L_->minor) + " of " + std::to_string(n_) + ")");
+  }
+
+  void solve(const double* b, double* x, int nrhs) override {
+    cholmod_common* c = common();
+    cholmod_dense B;
+    std::memset(&B, 0, sizeof(B));
+    B.nrow = static_cast<size_t>(n_);
+    B.ncol = static_cast<size_t>(nrhs);
+    B.nzmax = B.nrow * B.ncol;
+    B.d = B.nrow;
+    B.x = const_cast<double*>(b);
+    B.xtype = CHOLMOD_REAL;
+    B.dtype = CHOLMOD_DOUBLE;
+    if (!cholmod_solve2(CHOLMOD_A, L_, &B, nullptr, &X_, nullptr, &Y_, &E_, c))
+      throw std::runtime_error("cholmod: solve failed");
+    std::memcpy(x, X_->x, sizeof(double) * B.nzmax);
+  }
+
+  std::size_t factorBytes() const override {
+    if (!L_) return 0;
+    if (L_->is_super)
+      return L_->xsize * sizeof(double) + L_->ssize * sizeof(int) + L_->nsuper * 4 * sizeof(int);
+    return L_->nzmax * (sizeof(double) + sizeof(int)) + 2 * (L_->n + 1) * sizeof(int);
+  }
+
+  std::string name() const override { return "cholmod"; }
+
+ private:
+  void release() {
+    cholmod_common* c = common();
+    if (L_) cholmod_free_factor(&L_, c);
+    if (X_) cholmod_free_dense(&X_, c);
+    if (Y_) cholmod_free_dense(&Y_, c);
+    if (E_) cholmod_free_dense(&E_, c);
+  }
+  int n_ = 0;
+  cholmod_factor* L_ = nullptr;
+  cholmod_dense* X_ = nullptr;
+  cholmod_dense* Y_ = nullptr;
+  cholmod_dense* E_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<LocalSolver> createCholmodSolver() { return std::make_unique<CholmodSolver>(); }
+
+}  // namespace tfeti

@@ -1,0 +1,166 @@
+#include "tfeti_CoarseSpace.hpp"
+
+#include <TpetraExt_MatrixMatrix.hpp>
+#include <Teuchos_CommHelpers.hpp>
+
+#include <map>
+
+#include "tfeti_Gather.hpp"
+#include <stdexcept>
+
+namespace tfeti {
+
+CoarseSpace::CoarseSpace(const Tearing& tearing, const SubdomainList& subdomains,
+                         const std::string& localSolver)
+    : subdomains_(subdomains) {
+  auto comm = tearing.multiplierMap->getComm();
+  const int N = static_cast<int>(tearing.dofOffset.size()) - 1;
+
+  // Coarse ids: subdomain by subdomain, kernelDim() each (0 for a non-floating subdomain).
+  std::vector<long long> dims(N, 0), allDims(N, 0);
+  for (const auto& s : subdomains) dims[s->id()] = s->kernelDim();
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, N, dims.data(), allDims.data());
+  std::vector<GO> offset(N + 1, 0);
+  for (int s = 0; s < N; ++s) offset[s + 1] = offset[s] + allDims[s];
+  dimension_ = offset[N];
+  std::vector<GO> mine;
+  for (const auto& s : subdomains) {
+    coarseOffset_.push_back(offset[s->id()]);
+    for (int k = 0; k < s->kernelDim(); ++k) mine.push_back(offset[s->id()] + k);
+  }
+  coarseMap_ = Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(dimension_),
+                                    Teuchos::ArrayView<const GO>(mine), 0, comm));
+
+  // G = R^T B^T, one row per kernel vector, assembled where the subdomain lives.
+  std::vector<std::map<GO, double>> gRows;
+  for (std::size_t i = 0; i < subdomains.size(); ++i) {
+    const auto& s = *subdomains[i];
+    const int n = s.numDofs();
+    for (int k = 0; k < s.kernelDim(); ++k) {
+      std::map<GO, double> entries;
+      for (const auto& e : tearing.subdomainRows[i])
+        entries[e.row] += e.coef * s.kernel()[static_cast<std::size_t>(k) * n + e.dof];
+      gRows.push_back(std::move(entries));
+    }
+  }
+  Teuchos::Array<size_t> counts(gRows.size());
+  for (std::size_t r = 0; r < gRows.size(); ++r) counts[r] = gRows[r].size();
+  G_ = Teuchos::rcp(new CrsMatrix(coarseMap_, counts()));
+  for (std::size_t r = 0; r < gRows.size(); ++r) {
+    std::vector<GO> cols;
+    std::vector<double> vals;
+    for (const auto& [c, v] : gRows[r]) {
+      cols.push_back(c);
+      vals.push_back(v);
+    }
+    G_->insertGlobalValues(mine[r], Teuchos::ArrayView<const GO>(cols),
+                           Teuchos::ArrayView<const double>(vals));
+  }
+  G_->fillComplete(tearing.multiplierMap, coarseMap_);
+  if (dimension_ == 0) return;
+
+  CrsMatrix GGt(coarseMap_, 0);
+  Tpetra::MatrixMatrix::Multiply(*G_, false, *G_, true, GGt);
+
+  // Gather G G^T to every rank and factorize it there.
+  std::vector<long long> ij;
+  std::vector<double> vals;
+  for (std::size_t l = 0; l < coarseMap_->getNodeNumElements(); ++l) {
+    const GO g = coarseMap_->getGlobalElement(static_cast<LO>(l));
+    Teuchos::ArrayView<const LO> cols;
+    Teuchos::ArrayView<const double> v;
+    GGt.getLocalRowView(static_cast<LO>(l), cols, v);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(cols.size()); ++k) {
+      ij.insert(ij.end(), {g, GGt.getColMap()->getGlobalElement(cols[k])});
+      vals.push_back(v[k]);
+    }
+  }
+  const auto allIj = allGather(*comm, ij);
+  const auto allVals = allGather(*comm, vals);
+  std::vector<int> ri, ci;
+  for (std::size_t k = 0; k < allVals.size(); ++k) {
+    ri.push_back(static_cast<int>(allIj[2 * k]));
+    ci.push_back(static_cast<int>(allIj[2 * k + 1]));
+  }
+  const std::vector<double>& v = allVals;
+  const int nc = static_cast<int>(dimension_);
+  factor_ = createLocalSolver(localSolver);
+  try {
+    factor_->factorize(csrFromTriplets(nc, nc, ri, ci, v));
+  } catch (const std::exception& e) {
+    throw std::runtime_error(
+        std::string("coarse problem G G^T is singular: the constraints do not remove every "
+                    "rigid body mode (") + e.what() + ")");
+  }
+  // Coarse right-hand sides reach every rank through an Import onto a replicated map.
+  std::vector<GO> all(dimension_);
+  for (GO g = 0; g < dimension_; ++g) all[g] = g;
+  replicatedMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                        Teuchos::ArrayView<const GO>(all), 0, comm));
+  replicate_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(coarseMap_, replicatedMap_));
+  replicated_ = Teuchos::rcp(new Vector(replicatedMap_));
+  c_ = Teuchos::rcp(new Vector(coarseMap_));
+  alpha_ = Teuchos::rcp(new Vector(coarseMap_));
+  rhs_.resize(nc);
+  sol_.resize(nc);
+}
+
+void CoarseSpace::coarseSolve(const Vector& c, Vector& alpha) const {
+  if (dimension_ == 0) return;
+  replicated_->doImport(c, *replicate_, Tpetra::INSERT);
+  auto r = replicated_->getData();
+  for (GO g = 0; g < dimension_; ++g) rhs_[g] = r[g];
+  factor_->solve(rhs_.data(), sol_.data());
+  auto a = alpha.getDataNonConst();
+  const auto& map = *coarseMap_;
+  for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) a[l] = sol_[map.getGlobalElement(l)];
+}
+
+void CoarseSpace::leastSquaresCoefficients(const Vector& x, Vector& alpha) const {
+  if (dimension_ == 0) return;
+  G_->apply(x, *c_);
+  coarseSolve(*c_, alpha);
+}
+
+void CoarseSpace::project(const Vector& x, Vector& y) const {
+  if (&x != &y) Tpetra::deep_copy(y, x);
+  if (dimension_ == 0) return;
+  leastSquaresCoefficients(x, *alpha_);
+  G_->apply(*alpha_, y, Teuchos::TRANS, -1.0, 1.0);
+}
+
+void CoarseSpace::particularSolution(const Vector& e, Vector& lambda) const {
+  lambda.putScalar(0.0);
+  if (dimension_ == 0) return;
+  coarseSolve(e, *alpha_);
+  G_->apply(*alpha_, lambda, Teuchos::TRANS);
+}
+
+void CoarseSpace::applyKernelTranspose(const MultiVector& primal, Vector& coarse) const {
+  auto x = primal.getData(0);
+  auto c = coarse.getDataNonConst();
+  std::size_t offset = 0, cl = 0;
+  for (const auto& s : subdomains_) {
+    const int n = s->numDofs();
+    for (int k = 0; k < s->kernelDim(); ++k) {
+      double dot = 0.0;
+      for (int i = 0; i < n; ++i) dot += s->kernel()[static_cast<std::size_t>(k) * n + i] * x[offset + i];
+      c[cl++] = dot;
+    }
+    offset += n;
+  }
+}
+
+void CoarseSpace::addKernelCombination(const Vector& alpha, MultiVector& primal) const {
+  auto a = alpha.getData();
+  auto u = primal.getDataNonConst(0);
+  std::size_t offset = 0, cl = 0;
+  for (const auto& s : subdomains_) {
+    const int n = s->numDofs();
+    for (int k = 0; k < s->kernelDim(); ++k, ++cl)
+      for (int i = 0; i < n; ++i) u[offset + i] += a[cl] * s->kernel()[static_cast<std::size_t>(k) * n + i];
+    offset += n;
+  }
+}
+
+}  // namespace tfeti

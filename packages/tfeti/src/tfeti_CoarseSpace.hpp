@@ -1,0 +1,52 @@
+#pragma once
+// The natural coarse space of (T)FETI: G = R^T B^T (one row per rigid body mode of a floating
+// subdomain), the coarse matrix G G^T, and the orthogonal projector onto ker G,
+//   P = I - G^T (G G^T)^{-1} G  =  I - Ghat^T Ghat,   Ghat = L^{-1} G,  G G^T = L L^T,
+// i.e. G orthonormalized implicitly through the Cholesky factor of G G^T. G G^T is small (the
+// number of rigid body modes) and sparse; it is gathered to every rank and factorized there
+// once, so each coarse solve is local after one Import.
+#include <memory>
+
+#include "tfeti_DualOperators.hpp"
+#include "tfeti_LocalSolver.hpp"
+
+namespace tfeti {
+
+class CoarseSpace {
+ public:
+  CoarseSpace(const Tearing& tearing, const SubdomainList& subdomains,
+              const std::string& localSolver);
+
+  GO dimension() const { return dimension_; }
+  Teuchos::RCP<const Map> coarseMap() const { return coarseMap_; }
+  Teuchos::RCP<const CrsMatrix> G() const { return G_; }
+
+  // alpha = (G G^T)^{-1} G x   (alpha on the coarse map)
+  void leastSquaresCoefficients(const Vector& x, Vector& alpha) const;
+  // alpha = (G G^T)^{-1} c
+  void coarseSolve(const Vector& c, Vector& alpha) const;
+  // y = P x (y may alias x)
+  void project(const Vector& x, Vector& y) const;
+  // The minimum-norm solution of G lambda = e: lambda = G^T (G G^T)^{-1} e.
+  void particularSolution(const Vector& e, Vector& lambda) const;
+  // e = R^T f (coarse map) for the local subdomains' loads.
+  void applyKernelTranspose(const MultiVector& primal, Vector& coarse) const;
+  // u += R alpha on the local subdomains.
+  void addKernelCombination(const Vector& alpha, MultiVector& primal) const;
+
+  std::size_t factorBytes() const { return factor_ ? factor_->factorBytes() : 0; }
+
+ private:
+  GO dimension_ = 0;
+  SubdomainList subdomains_;
+  std::vector<GO> coarseOffset_;  // per local subdomain: first coarse id
+  Teuchos::RCP<const Map> coarseMap_, replicatedMap_;
+  Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> replicate_;
+  Teuchos::RCP<CrsMatrix> G_;
+  std::unique_ptr<LocalSolver> factor_;
+  mutable Teuchos::RCP<Vector> c_, alpha_;
+  mutable Teuchos::RCP<Vector> replicated_;
+  mutable std::vector<double> rhs_, sol_;
+};
+
+}  // namespace tfeti

@@ -1,0 +1,97 @@
+#include "tfeti_CsrMatrix.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace tfeti {
+
+long CsrMatrix::find(int i, int j) const {
+  auto first = colInd.begin() + rowPtr[i];
+  auto last = colInd.begin() + rowPtr[i + 1];
+  auto it = std::lower_bound(first, last, j);
+  if (it == last || *it != j) return -1;
+  return static_cast<long>(it - colInd.begin());
+}
+
+void CsrMatrix::multiply(const double* x, double* y) const {
+  for (int i = 0; i < rows; ++i) {
+    double s = 0.0;
+    for (int k = rowPtr[i]; k < rowPtr[i + 1]; ++k) s += values[k] * x[colInd[k]];
+    y[i] = s;
+  }
+}
+
+double CsrMatrix::maxAbs() const {
+  double m = 0.0;
+  for (double v : values) m = std::max(m, std::abs(v));
+  return m;
+}
+
+double CsrMatrix::frobeniusNorm() const {
+  double s = 0.0;
+  for (double v : values) s += v * v;
+  return std::sqrt(s);
+}
+
+bool CsrMatrix::isSymmetric(double tol) const {
+  if (rows != cols) return false;
+  const double scale = std::max(maxAbs(), 1e-300);
+  for (int i = 0; i < rows; ++i)
+    for (int k = rowPtr[i]; k < rowPtr[i + 1]; ++k) {
+      const long t = find(colInd[k], i);
+      const double vt = t < 0 ? 0.0 : values[t];
+      if (std::abs(values[k] - vt) > tol * scale) return false;
+    }
+  return true;
+}
+
+CsrMatrix CsrMatrix::submatrix(const std::vector<int>& rowsKept,
+                               const std::vector<int>& colsKept) const {
+  std::vector<int> newCol(cols, -1);
+  for (std::size_t j = 0; j < colsKept.size(); ++j) newCol[colsKept[j]] = static_cast<int>(j);
+  CsrMatrix s;
+  s.rows = static_cast<int>(rowsKept.size());
+  s.cols = static_cast<int>(colsKept.size());
+  s.rowPtr.assign(s.rows + 1, 0);
+  for (int r = 0; r < s.rows; ++r) {
+    const int i = rowsKept[r];
+    for (int k = rowPtr[i]; k < rowPtr[i + 1]; ++k) {
+      const int c = newCol[colInd[k]];
+      if (c < 0) continue;
+      s.colInd.push_back(c);
+      s.values.push_back(values[k]);
+    }
+    s.rowPtr[r + 1] = static_cast<int>(s.colInd.size());
+  }
+  return s;
+}
+
+CsrMatrix csrFromTriplets(int rows, int cols, const std::vector<int>& ri,
+                          const std::vector<int>& ci, const std::vector<double>& v) {
+  std::vector<std::size_t> order(ri.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return ri[a] != ri[b] ? ri[a] < ri[b] : ci[a] < ci[b];
+  });
+  CsrMatrix m;
+  m.rows = rows;
+  m.cols = cols;
+  m.rowPtr.assign(rows + 1, 0);
+  int lastR = -1, lastC = -1;
+  for (std::size_t k : order) {
+    if (ri[k] == lastR && ci[k] == lastC) {
+      m.values.back() += v[k];
+      continue;
+    }
+    m.colInd.push_back(ci[k]);
+    m.values.push_back(v[k]);
+    m.rowPtr[ri[k] + 1]++;
+    lastR = ri[k];
+    lastC = ci[k];
+  }
+  for (int i = 0; i < rows; ++i) m.rowPtr[i + 1] += m.rowPtr[i];
+  return m;
+}
+
+}  // namespace tfeti

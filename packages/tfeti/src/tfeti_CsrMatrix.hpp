@@ -1,0 +1,35 @@
+#pragma once
+// A serial sparse matrix in compressed sparse row form: the storage of one subdomain's
+// stiffness matrix. Subdomain matrices live on one rank and are factorized there, so they
+// need no Tpetra map; the local solvers read these arrays directly.
+#include <cstddef>
+#include <vector>
+
+namespace tfeti {
+
+struct CsrMatrix {
+  int rows = 0;
+  int cols = 0;
+  std::vector<int> rowPtr;  // size rows + 1
+  std::vector<int> colInd;  // sorted within each row
+  std::vector<double> values;
+
+  std::size_t nnz() const { return colInd.size(); }
+  // Index of entry (i, j) in colInd/values, or -1 when (i, j) is not in the pattern.
+  long find(int i, int j) const;
+  // y = A x (y resized to rows).
+  void multiply(const double* x, double* y) const;
+  // Largest absolute entry.
+  double maxAbs() const;
+  // Frobenius norm.
+  double frobeniusNorm() const;
+  bool isSymmetric(double tol) const;
+  // The submatrix A(rowsKept, colsKept); index lists must be sorted ascending.
+  CsrMatrix submatrix(const std::vector<int>& rowsKept, const std::vector<int>& colsKept) const;
+};
+
+// Builds a CSR matrix from (row, col, value) triplets, summing duplicates.
+CsrMatrix csrFromTriplets(int rows, int cols, const std::vector<int>& ri,
+                          const std::vector<int>& ci, const std::vector<double>& v);
+
+}  // namespace tfeti

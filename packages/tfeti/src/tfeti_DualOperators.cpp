@@ -1,0 +1,105 @@
+#include "tfeti_DualOperators.hpp"
+
+#include <stdexcept>
+
+namespace tfeti {
+
+namespace {
+// Reuses a work vector when it already has the right map and column count.
+void ensure(Teuchos::RCP<MultiVector>& v, const Teuchos::RCP<const Map>& map, std::size_t cols) {
+  if (v.is_null() || v->getNumVectors() != cols) v = Teuchos::rcp(new MultiVector(map, cols));
+}
+
+void checkMode(Teuchos::ETransp mode) {
+  // All three operators are symmetric, so the transposed apply is the apply.
+  (void)mode;
+}
+}  // namespace
+
+PseudoInverseOperator::PseudoInverseOperator(Teuchos::RCP<const Map> primalMap,
+                                             SubdomainList subdomains)
+    : map_(std::move(primalMap)), subdomains_(std::move(subdomains)) {}
+
+void PseudoInverseOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode,
+                                  Scalar alpha, Scalar beta) const {
+  checkMode(mode);
+  for (std::size_t j = 0; j < X.getNumVectors(); ++j) {
+    auto x = X.getData(j);
+    auto y = Y.getDataNonConst(j);
+    std::size_t offset = 0;
+    for (const auto& s : subdomains_) {
+      const int n = s->numDofs();
+      out_.resize(n);
+      s->applyPseudoInverse(x.getRawPtr() + offset, out_.data());
+      for (int i = 0; i < n; ++i)
+        y[offset + i] = alpha * out_[i] + (beta == 0.0 ? 0.0 : beta * y[offset + i]);
+      offset += n;
+    }
+  }
+}
+
+DualOperator::DualOperator(Teuchos::RCP<const CrsMatrix> B, Teuchos::RCP<const Operator> Kplus)
+    : B_(std::move(B)), Kplus_(std::move(Kplus)) {}
+
+void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode, Scalar alpha,
+                         Scalar beta) const {
+  checkMode(mode);
+  ensure(p1_, B_->getDomainMap(), X.getNumVectors());
+  ensure(p2_, B_->getDomainMap(), X.getNumVectors());
+  B_->apply(X, *p1_, Teuchos::TRANS);
+  Kplus_->apply(*p1_, *p2_);
+  B_->apply(*p2_, Y, Teuchos::NO_TRANS, alpha, beta);
+  applies_ += static_cast<long long>(X.getNumVectors());
+}
+
+DualPreconditioner::DualPreconditioner(const Tearing& tearing, SubdomainList subdomains)
+    : B_(tearing.B), subdomains_(std::move(subdomains)), groupRows_(tearing.groupRows),
+      groupScaling_(tearing.groupScaling) {}
+
+void DualPreconditioner::scale(MultiVector& X) const {
+  std::vector<double> tmp;
+  for (std::size_t j = 0; j < X.getNumVectors(); ++j) {
+    auto x = X.getDataNonConst(j);
+    for (std::size_t g = 0; g < groupRows_.size(); ++g) {
+      const auto& rows = groupRows_[g];
+      const auto& Q = groupScaling_[g];
+      const int m = static_cast<int>(rows.size());
+      tmp.assign(m, 0.0);
+      for (int c = 0; c < m; ++c)
+        for (int r = 0; r < m; ++r) tmp[r] += Q[c * m + r] * x[rows[c]];
+      for (int r = 0; r < m; ++r) x[rows[r]] = tmp[r];
+    }
+  }
+}
+
+void DualPreconditioner::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode,
+                               Scalar alpha, Scalar beta) const {
+  checkMode(mode);
+  const std::size_t nv = X.getNumVectors();
+  ensure(q_, B_->getRangeMap(), nv);
+  ensure(p1_, B_->getDomainMap(), nv);
+  ensure(p2_, B_->getDomainMap(), nv);
+  Tpetra::deep_copy(*q_, X);
+  scale(*q_);
+  B_->apply(*q_, *p1_, Teuchos::TRANS);
+  p2_->putScalar(0.0);
+  for (std::size_t j = 0; j < nv; ++j) {
+    auto v = p1_->getData(j);
+    auto y = p2_->getDataNonConst(j);
+    std::size_t offset = 0;
+    for (const auto& s : subdomains_) {
+      const auto& b = s->interfaceDofs();
+      vb_.resize(b.size());
+      yb_.resize(b.size());
+      for (std::size_t k = 0; k < b.size(); ++k) vb_[k] = v[offset + b[k]];
+      s->applyPreconditionerBlock(vb_.data(), yb_.data());
+      for (std::size_t k = 0; k < b.size(); ++k) y[offset + b[k]] = yb_[k];
+      offset += s->numDofs();
+    }
+  }
+  B_->apply(*p2_, *q_);
+  scale(*q_);
+  Y.update(alpha, *q_, beta);
+}
+
+}  // namespace tfeti

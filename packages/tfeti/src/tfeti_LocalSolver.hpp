@@ -1,0 +1,33 @@
+#pragma once
+// Sparse direct factorization of one subdomain matrix, on one rank. Every local solver in the
+// package (CHOLMOD, Amesos2's KLU2 and Tacho) sits behind this interface so that the choice
+// is a run-time parameter and can be measured rather than assumed.
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tfeti_CsrMatrix.hpp"
+
+namespace tfeti {
+
+class LocalSolver {
+ public:
+  virtual ~LocalSolver() = default;
+  // Factorizes the symmetric positive definite matrix A (the full symmetric pattern is given).
+  // Throws std::runtime_error naming the solver when the factorization fails.
+  virtual void factorize(const CsrMatrix& A) = 0;
+  // x = A^{-1} b for nrhs right-hand sides stored column by column with leading dimension n.
+  virtual void solve(const double* b, double* x, int nrhs = 1) = 0;
+  // Memory held by the factor (values and indices), in bytes: what one solve streams.
+  virtual std::size_t factorBytes() const = 0;
+  virtual std::string name() const = 0;
+};
+
+// Local solver types this build offers: "cholmod", "klu2", "tacho".
+const std::vector<std::string>& localSolverTypes();
+
+// Creates a local solver by type name; an unknown name is an error listing the valid ones.
+std::unique_ptr<LocalSolver> createLocalSolver(const std::string& type);
+
+}  // namespace tfeti

@@ -1,0 +1,47 @@
+#pragma once
+// Projected preconditioned conjugate gradients (Farhat & Roux) for the equality-constrained
+// dual problem  min 1/2 l^T F l - l^T d  subject to  G l = e:  CG on P F P from the particular
+// solution l0 with G l0 = e, preconditioned by P M^{-1} P.
+//
+// Stopping rule: ||P (F l - d)|| <= tolerance * ||P d||, the projected gradient relative to the
+// projected right-hand side (independent of the initial guess).
+#include <Teuchos_ParameterList.hpp>
+
+#include <functional>
+#include <vector>
+
+#include "tfeti_CoarseSpace.hpp"
+
+namespace tfeti {
+
+struct PcpgResult {
+  bool converged = false;
+  int iterations = 0;
+  double projectedGradientNorm = 0.0;   // final ||P g||
+  double relativeResidual = 0.0;        // ||P g|| / ||P d||
+  std::vector<double> history;          // relative residual per iteration
+};
+
+class Pcpg {
+ public:
+  // Valid parameters with their defaults: "Relative tolerance" (1e-6), "Maximum iterations"
+  // (1000), "Verbosity" (0: silent, 1: summary, 2: every iteration).
+  static Teuchos::RCP<const Teuchos::ParameterList> validParameters();
+
+  Pcpg(Teuchos::RCP<const Operator> F, const CoarseSpace& coarse,
+       Teuchos::RCP<const Operator> preconditioner, const Teuchos::ParameterList& params);
+
+  // Solves from lambda (on entry the particular solution, G lambda = e; on exit the solution);
+  // g returns F lambda - d.
+  PcpgResult solve(const Vector& d, Vector& lambda, Vector& g) const;
+
+ private:
+  Teuchos::RCP<const Operator> F_;
+  const CoarseSpace& coarse_;
+  Teuchos::RCP<const Operator> M_;
+  double tol_;
+  int maxIter_;
+  int verbosity_;
+};
+
+}  // namespace tfeti

@@ -1,0 +1,43 @@
+#include "tfeti_SubdomainMesh.hpp"
+
+#include <algorithm>
+#include <map>
+#include <utility>
+
+namespace tfeti {
+
+std::vector<int> SubdomainMesh::boundaryNodes() const {
+  std::map<std::pair<int, int>, int> edgeCount;
+  for (int e = 0; e < numElements(); ++e)
+    for (int a = 0; a < 4; ++a) {
+      int p = quads[4 * e + a], q = quads[4 * e + (a + 1) % 4];
+      edgeCount[{std::min(p, q), std::max(p, q)}]++;
+    }
+  std::vector<char> onBoundary(numNodes(), 0);
+  for (const auto& [edge, count] : edgeCount)
+    if (count == 1) onBoundary[edge.first] = onBoundary[edge.second] = 1;
+  std::vector<int> nodes;
+  for (int n = 0; n < numNodes(); ++n)
+    if (onBoundary[n]) nodes.push_back(n);
+  return nodes;
+}
+
+int ownerOfSubdomain(int subdomain, int numSubdomains, int numRanks) {
+  // Inverse of subdomainsOfRank: rank r holds [r*N/P, (r+1)*N/P).
+  int r = static_cast<int>((static_cast<long long>(subdomain) * numRanks) / numSubdomains);
+  while (r + 1 < numRanks &&
+         static_cast<long long>(r + 1) * numSubdomains / numRanks <= subdomain)
+    ++r;
+  while (r > 0 && static_cast<long long>(r) * numSubdomains / numRanks > subdomain) --r;
+  return r;
+}
+
+std::vector<int> subdomainsOfRank(int rank, int numSubdomains, int numRanks) {
+  const long long first = static_cast<long long>(rank) * numSubdomains / numRanks;
+  const long long last = static_cast<long long>(rank + 1) * numSubdomains / numRanks;
+  std::vector<int> ids;
+  for (long long s = first; s < last; ++s) ids.push_back(static_cast<int>(s));
+  return ids;
+}
+
+}  // namespace tfeti

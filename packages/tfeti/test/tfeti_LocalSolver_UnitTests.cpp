@@ -1,0 +1,178 @@
+// Unit tests of the local (subdomain) direct solvers behind tfeti::LocalSolver: CHOLMOD, and
+// Amesos2's KLU2 and Tacho. Each factorizes the 5-point 2D Laplacian plus a diagonal shift and
+// must solve it to a relative residual below 1e-12, for one and several right-hand sides, and
+// after a refactorization. Tacho only runs on small matrices (it segfaults at 5000+ rows in
+// Trilinos 13.2, see the pitfalls notes).
+#include <Teuchos_UnitTestHarness.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tfeti_CsrMatrix.hpp"
+#include "tfeti_LocalSolver.hpp"
+
+namespace {
+
+// 5-point Laplacian on a g x g grid of interior points (Dirichlet closure) plus shift * I:
+// SPD, n = g * g rows, eigenvalues in (shift, 8 + shift).
+tfeti::CsrMatrix laplacian2d(int g, double shift) {
+  std::vector<int> ri, ci;
+  std::vector<double> v;
+  auto add = [&](int i, int j, double a) {
+    ri.push_back(i);
+    ci.push_back(j);
+    v.push_back(a);
+  };
+  for (int y = 0; y < g; ++y)
+    for (int x = 0; x < g; ++x) {
+      const int i = y * g + x;
+      add(i, i, 4.0 + shift);
+      if (x > 0) add(i, i - 1, -1.0);
+      if (x + 1 < g) add(i, i + 1, -1.0);
+      if (y > 0) add(i, i - g, -1.0);
+      if (y + 1 < g) add(i, i + g, -1.0);
+    }
+  return tfeti::csrFromTriplets(g * g, g * g, ri, ci, v);
+}
+
+// Deterministic pseudo-random values in [-1, 1).
+std::vector<double> randomVector(std::size_t n, unsigned seed) {
+  std::vector<double> x(n);
+  unsigned long long s = 0x9E3779B97F4A7C15ull * (seed + 1);
+  for (auto& xi : x) {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    xi = static_cast<double>(s >> 11) / static_cast<double>(1ull << 53) * 2.0 - 1.0;
+  }
+  return x;
+}
+
+double norm2(const double* x, int n) {
+  double s = 0.0;
+  for (int i = 0; i < n; ++i) s += x[i] * x[i];
+  return std::sqrt(s);
+}
+
+struct Accuracy {
+  double residual = 0.0;  // max over columns of ||b - A x|| / ||b||
+  double error = 0.0;     // max over columns of ||x - x_true|| / ||x_true||
+};
+
+// Solves A X = A X_true for nrhs columns with the factorized solver.
+Accuracy solveAndMeasure(tfeti::LocalSolver& solver, const tfeti::CsrMatrix& A, int nrhs,
+                         unsigned seed) {
+  const int n = A.rows;
+  const std::vector<double> xt = randomVector(static_cast<std::size_t>(n) * nrhs, seed);
+  std::vector<double> b(xt.size()), x(xt.size(), 0.0), r(n);
+  for (int j = 0; j < nrhs; ++j) A.multiply(&xt[std::size_t(j) * n], &b[std::size_t(j) * n]);
+  solver.solve(b.data(), x.data(), nrhs);
+  Accuracy acc;
+  for (int j = 0; j < nrhs; ++j) {
+    const double* bj = &b[std::size_t(j) * n];
+    const double* xj = &x[std::size_t(j) * n];
+    const double* tj = &xt[std::size_t(j) * n];
+    A.multiply(xj, r.data());
+    for (int i = 0; i < n; ++i) r[i] = bj[i] - r[i];
+    acc.residual = std::max(acc.residual, norm2(r.data(), n) / norm2(bj, n));
+    for (int i = 0; i < n; ++i) r[i] = xj[i] - tj[i];
+    acc.error = std::max(acc.error, norm2(r.data(), n) / norm2(tj, n));
+  }
+  return acc;
+}
+
+// Nonzeros of the lower triangle (with the diagonal): a lower bound of any factor's entries.
+std::size_t lowerNnz(const tfeti::CsrMatrix& A) { return (A.nnz() + A.rows) / 2; }
+
+void checkSolver(const std::string& type, int g, Teuchos::FancyOStream& out, bool& success) {
+  const tfeti::CsrMatrix A = laplacian2d(g, 1.0);
+  out << type << " on the " << g << "x" << g << " Laplacian (n = " << A.rows << ")\n";
+  auto solver = tfeti::createLocalSolver(type);
+  TEST_EQUALITY(solver->name(), type);
+  solver->factorize(A);
+  TEST_COMPARE(solver->factorBytes(), >=, lowerNnz(A) * sizeof(double));
+  const Accuracy one = solveAndMeasure(*solver, A, 1, 1);
+  TEST_COMPARE(one.residual, <, 1e-12);
+  TEST_COMPARE(one.error, <, 1e-12);
+  // Several right-hand sides in one call, then a different count on the same factorization.
+  const Accuracy four = solveAndMeasure(*solver, A, 4, 2);
+  TEST_COMPARE(four.residual, <, 1e-12);
+  TEST_COMPARE(four.error, <, 1e-12);
+  const Accuracy two = solveAndMeasure(*solver, A, 2, 3);
+  TEST_COMPARE(two.residual, <, 1e-12);
+  const Accuracy oneAgain = solveAndMeasure(*solver, A, 1, 4);
+  TEST_COMPARE(oneAgain.residual, <, 1e-12);
+  // Refactorization with another (worse conditioned) matrix of the same pattern on the same
+  // object: the old factor must not be used.
+  const tfeti::CsrMatrix A2 = laplacian2d(g, 1e-2);
+  solver->factorize(A2);
+  const Accuracy second = solveAndMeasure(*solver, A2, 3, 5);
+  TEST_COMPARE(second.residual, <, 1e-12);
+  TEST_COMPARE(second.error, <, 1e-10);
+}
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(LocalSolver, TypesAreCholmodKlu2Tacho) {
+  const std::vector<std::string> expected{"cholmod", "klu2", "tacho"};
+  TEST_COMPARE_ARRAYS(tfeti::localSolverTypes(), expected);
+}
+
+TEUCHOS_UNIT_TEST(LocalSolver, CholmodSmall) { checkSolver("cholmod", 20, out, success); }
+TEUCHOS_UNIT_TEST(LocalSolver, CholmodLarge) { checkSolver("cholmod", 55, out, success); }
+TEUCHOS_UNIT_TEST(LocalSolver, Klu2Small) { checkSolver("klu2", 20, out, success); }
+TEUCHOS_UNIT_TEST(LocalSolver, Klu2Large) { checkSolver("klu2", 55, out, success); }
+TEUCHOS_UNIT_TEST(LocalSolver, TachoSmall) { checkSolver("tacho", 20, out, success); }
+TEUCHOS_UNIT_TEST(LocalSolver, TachoMedium) { checkSolver("tacho", 30, out, success); }
+
+TEUCHOS_UNIT_TEST(LocalSolver, OneByOneAndTinySystems) {
+  // The smallest systems a subdomain (or a coarse problem) can produce.
+  for (const auto& type : tfeti::localSolverTypes()) {
+    const tfeti::CsrMatrix one = tfeti::csrFromTriplets(1, 1, {0}, {0}, {4.0});
+    auto s = tfeti::createLocalSolver(type);
+    s->factorize(one);
+    double b = 2.0, x = 0.0;
+    s->solve(&b, &x, 1);
+    TEST_FLOATING_EQUALITY(x, 0.5, 1e-15);
+    const tfeti::CsrMatrix A = laplacian2d(2, 0.5);
+    s->factorize(A);
+    const Accuracy acc = solveAndMeasure(*s, A, 3, 7);
+    TEST_COMPARE(acc.residual, <, 1e-14);
+  }
+}
+
+TEUCHOS_UNIT_TEST(LocalSolver, UnknownTypeThrowsListingValidNames) {
+  bool threw = false;
+  try {
+    tfeti::createLocalSolver("mumps");
+  } catch (const std::invalid_argument& e) {
+    threw = true;
+    const std::string msg = e.what();
+    out << "message: " << msg << "\n";
+    TEST_INEQUALITY(msg.find("\"mumps\""), std::string::npos);
+    for (const auto& t : tfeti::localSolverTypes()) TEST_INEQUALITY(msg.find(t), std::string::npos);
+  }
+  TEST_ASSERT(threw);
+  TEST_THROW(tfeti::createLocalSolver(""), std::invalid_argument);
+  TEST_THROW(tfeti::createLocalSolver("KLU2"), std::invalid_argument);  // names are lower case
+}
+
+TEUCHOS_UNIT_TEST(LocalSolver, CholmodRejectsIndefiniteMatrixNamingItself) {
+  // Symmetric but indefinite: the Laplacian minus 10 I.
+  const tfeti::CsrMatrix A = laplacian2d(5, -10.0);
+  auto s = tfeti::createLocalSolver("cholmod");
+  bool threw = false;
+  try {
+    s->factorize(A);
+  } catch (const std::runtime_error& e) {
+    threw = true;
+    out << "message: " << e.what() << "\n";
+    TEST_INEQUALITY(std::string(e.what()).find("cholmod"), std::string::npos);
+  }
+  TEST_ASSERT(threw);
+  // The same object is usable again after the failure.
+  const tfeti::CsrMatrix B = laplacian2d(5, 1.0);
+  s->factorize(B);
+  TEST_COMPARE(solveAndMeasure(*s, B, 2, 9).residual, <, 1e-12);
+}

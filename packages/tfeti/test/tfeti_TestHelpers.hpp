@@ -1,0 +1,139 @@
+#pragma once
+// Shared helpers of the tfeti unit tests: the benchmark problems (Poisson and plane-strain
+// elasticity on a StructuredRectangle, assembled with the plasticity Q1 kernels), the direct
+// reference solve of the undecomposed problem, and small dense utilities.
+#include <Teuchos_CommHelpers.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "plasticity_Q1Assembly.hpp"
+#include "tfeti_CsrMatrix.hpp"
+#include "tfeti_FetiSolver.hpp"
+#include "tfeti_LocalSolver.hpp"
+#include "tfeti_StructuredMesh.hpp"
+#include "tfeti_SubdomainMesh.hpp"
+
+namespace tfeti_test {
+
+struct Physics {
+  plasticity::Field field = plasticity::Field::Scalar;
+  plasticity::ElasticLaw law;
+  double source[2] = {1.0, 0.0};
+  int dofsPerNode() const { return plasticity::dofsPerNode(field); }
+  const char* name() const { return field == plasticity::Field::Scalar ? "Poisson" : "elasticity"; }
+};
+
+// -Laplace u = 1.
+inline Physics poisson() { return Physics{}; }
+
+// Plane strain, E = 1, nu = 0.3, body force (0, -1).
+inline Physics elasticity() {
+  Physics p;
+  p.field = plasticity::Field::Elasticity;
+  p.law = plasticity::ElasticLaw(1.0, 0.3);
+  p.source[0] = 0.0;
+  p.source[1] = -1.0;
+  return p;
+}
+
+inline plasticity::QuadMesh quadMesh(const tfeti::SubdomainMesh& m) {
+  plasticity::QuadMesh q;
+  q.coords = m.coords;
+  q.quads = m.quads;
+  return q;
+}
+
+inline tfeti::SubdomainData subdomainData(const tfeti::SubdomainMesh& mesh, const Physics& ph) {
+  tfeti::SubdomainData d;
+  d.mesh = mesh;
+  d.dofsPerNode = ph.dofsPerNode();
+  d.K = plasticity::assembleStiffness(quadMesh(mesh), ph.field, ph.law);
+  d.f = plasticity::assembleBodyLoad(quadMesh(mesh), ph.field, ph.source);
+  return d;
+}
+
+// The subdomains of this rank, in increasing id order.
+inline std::vector<tfeti::SubdomainData> localSubdomains(const tfeti::StructuredRectangle& rect,
+                                                          const tfeti::Comm& comm,
+                                                          const Physics& ph) {
+  std::vector<tfeti::SubdomainData> local;
+  for (int s : tfeti::subdomainsOfRank(comm.getRank(), rect.numSubdomains(), comm.getSize()))
+    local.push_back(subdomainData(rect.subdomain(s), ph));
+  return local;
+}
+
+inline std::vector<int> dirichletDofs(const tfeti::SubdomainMesh& mesh, int dpn) {
+  std::vector<int> dofs;
+  for (int n : mesh.dirichletNodes)
+    for (int c = 0; c < dpn; ++c) dofs.push_back(n * dpn + c);
+  return dofs;
+}
+
+// Direct solve of the undecomposed problem: the whole mesh assembled with the same kernels, the
+// Dirichlet dofs (x = x0) replaced by identity rows and columns, factorized by CHOLMOD. Indexed
+// by untorn dof (dofsPerNode * global node + component).
+inline std::vector<double> referenceSolution(const tfeti::StructuredRectangle& rect,
+                                             const Physics& ph) {
+  const tfeti::SubdomainMesh whole = rect.wholeMesh();
+  const int dpn = ph.dofsPerNode();
+  tfeti::CsrMatrix K = plasticity::assembleStiffness(quadMesh(whole), ph.field, ph.law);
+  std::vector<double> f = plasticity::assembleBodyLoad(quadMesh(whole), ph.field, ph.source);
+  std::vector<char> fixed(K.rows, 0);
+  for (int d : dirichletDofs(whole, dpn)) fixed[d] = 1;
+  for (int i = 0; i < K.rows; ++i)
+    for (int k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k) {
+      const int j = K.colInd[k];
+      if (fixed[i] || fixed[j]) K.values[k] = (i == j) ? 1.0 : 0.0;
+    }
+  for (int i = 0; i < K.rows; ++i)
+    if (fixed[i]) f[i] = 0.0;
+  auto solver = tfeti::createLocalSolver("cholmod");
+  solver->factorize(K);
+  std::vector<double> u(K.rows);
+  solver->solve(f.data(), u.data());
+  return u;
+}
+
+// Column-major dense copy.
+inline std::vector<double> toDense(const tfeti::CsrMatrix& A) {
+  std::vector<double> D(static_cast<std::size_t>(A.rows) * A.cols, 0.0);
+  for (int i = 0; i < A.rows; ++i)
+    for (int k = A.rowPtr[i]; k < A.rowPtr[i + 1]; ++k)
+      D[static_cast<std::size_t>(A.colInd[k]) * A.rows + i] = A.values[k];
+  return D;
+}
+
+inline double norm2(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s);
+}
+
+inline double maxAbs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+inline double globalMax(const tfeti::Comm& comm, double local) {
+  double g = local;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &local, &g);
+  return g;
+}
+
+inline double globalSum(const tfeti::Comm& comm, double local) {
+  double g = local;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 1, &local, &g);
+  return g;
+}
+
+inline long long globalSum(const tfeti::Comm& comm, long long local) {
+  long long g = local;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 1, &local, &g);
+  return g;
+}
+
+}  // namespace tfeti_test
