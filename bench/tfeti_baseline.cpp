@@ -147,14 +147,35 @@ System assemble(const Problem& p, const RCP<const Comm>& comm) {
   return s;
 }
 
+void nodePosition(const Problem& p, GO node, double& x, double& y) {
+  x = (node % (p.nx + 1)) * p.lx / p.nx;
+  y = (node / (p.nx + 1)) * p.ly / p.ny;
+}
+
+// Node coordinates on the node map matching dofMap (whose nodes' dofs are contiguous).
+RCP<MV> nodeCoordinates(const Problem& p, const RCP<const Map>& dofMap) {
+  const int dpn = p.dofsPerNode();
+  auto nodeMap = rcp(new Map(dofMap->getGlobalNumElements() / dpn,
+                             dofMap->getNodeNumElements() / dpn, 0, dofMap->getComm()));
+  auto coords = rcp(new MV(nodeMap, 2));
+  for (size_t l = 0; l < nodeMap->getNodeNumElements(); ++l) {
+    double x, y;
+    nodePosition(p, nodeMap->getGlobalElement(static_cast<LO>(l)), x, y);
+    coords->replaceLocalValue(static_cast<LO>(l), 0, x);
+    coords->replaceLocalValue(static_cast<LO>(l), 1, y);
+  }
+  return coords;
+}
+
 // Translations and the in-plane rotation (about the domain's centre, for conditioning).
 RCP<MV> rigidBodyModes(const Problem& p, const RCP<const Map>& map) {
   auto modes = rcp(new MV(map, 3));
   for (size_t l = 0; l < map->getNodeNumElements(); ++l) {
     const GO dof = map->getGlobalElement(static_cast<LO>(l));
-    const GO node = dof / 2;
-    const double x = (node % (p.nx + 1)) * p.lx / p.nx - 0.5 * p.lx;
-    const double y = (node / (p.nx + 1)) * p.ly / p.ny - 0.5 * p.ly;
+    double x, y;
+    nodePosition(p, dof / 2, x, y);
+    x -= 0.5 * p.lx;
+    y -= 0.5 * p.ly;
     const int c = static_cast<int>(dof % 2);
     modes->replaceLocalValue(static_cast<LO>(l), 0, c == 0 ? 1.0 : 0.0);
     modes->replaceLocalValue(static_cast<LO>(l), 1, c == 1 ? 1.0 : 0.0);
@@ -208,15 +229,20 @@ Result solveMueLuCg(const Problem& p, const System& s, double rtol) {
   params.set("verbosity", "none");
   params.set("multigrid algorithm", "sa");
   params.set("smoother: type", "CHEBYSHEV");
-  params.sublist("smoother: params").set("chebyshev: degree", 2);
-  // MueLu's default coarse solver is a distributed KLU2 solve, which is miscompiled in this
-  // Trilinos (see the pitfalls notes); a small coarse level smoothed to convergence is exact
-  // enough and works on any number of ranks.
-  params.set("coarse: max size", 1000);
-  params.set("coarse: type", "RELAXATION");
-  Teuchos::ParameterList& coarse = params.sublist("coarse: params");
-  coarse.set("relaxation: type", "Symmetric Gauss-Seidel");
-  coarse.set("relaxation: sweeps", 20);
+  params.sublist("smoother: params").set("chebyshev: degree", 3);
+  // MueLu's coarse solver is KLU2 through Amesos2, which gives wrong answers in this Trilinos
+  // for a matrix spread over more than one rank (see the pitfalls notes) and takes no "Trans"
+  // parameter from MueLu. So the hierarchy gathers a level onto one rank as soon as some rank
+  // holds fewer than 2000 of its rows (never for balance, always into a single part): the coarse
+  // matrix then lives on a one-rank subcommunicator, where Amesos2's KLU2 path is correct, and
+  // the coarse solve stays exact.
+  params.set("repartition: enable", true);
+  params.set("repartition: start level", 1);
+  params.set("repartition: min rows per proc", 2000);
+  params.set("repartition: target rows per proc", 1000000000);
+  params.set("repartition: max imbalance", 1e9);
+  // Input of the partitioner, which a single part never calls but the setup requires.
+  params.sublist("user data").set("Coordinates", nodeCoordinates(p, s.A->getRowMap()));
   if (p.field == plasticity::Field::Elasticity) {
     params.set("number of equations", 2);
     params.sublist("user data").set("Nullspace", rigidBodyModes(p, s.A->getRowMap()));

@@ -2,6 +2,9 @@
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
+#include <Teuchos_CommHelpers.hpp>
+
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -137,6 +140,9 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   s["converged"] = result.converged;
   s["iterations"] = result.iterations;
   s["relative_residual"] = result.relativeResidual;
+  Json history = Json::array();
+  for (double h : result.history) history.push(h);
+  s["residual_history"] = std::move(history);
   s["stopping_rule"] = kStoppingRule;
   s["tolerance"] = feti.sublist("PCPG").get<double>("Relative tolerance");
   s["dual_operator_applies"] = solver.dualOperatorApplies();
@@ -144,6 +150,16 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   s["preconditioner_factor_bytes"] =
       static_cast<unsigned long long>(solver.globalPreconditionerFactorBytes());
   s["timings"] = timingsJson(solver.timings(), result.iterations);
+  double local[2] = {0.0, 0.0}, global[2] = {0.0, 0.0};  // sum of squares, max |u|
+  for (std::size_t i = 0; i < solver.data().size(); ++i)
+    for (double v : solver.solution(i)) {
+      local[0] += v * v;
+      local[1] = std::max(local[1], std::abs(v));
+    }
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &local[0], &global[0]);
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &local[1], &global[1]);
+  s["solution_norm2"] = std::sqrt(global[0]);  // over all subdomain copies
+  s["max_abs_u"] = global[1];
   if (out.get<bool>("Compare with direct solve")) {
     const double err = relativeErrorAgainstDirectSolve(sp, solver);
     s["error_vs_direct"] = err;
@@ -182,7 +198,7 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
           << std::right << std::setw(9) << "primal" << std::setw(9) << "dualFETI" << std::setw(10)
           << "dualTFETI";
   for (const char* f : {"FETI", "TFETI"})
-    for (const auto& p : precs) printed << std::setw(14) << (std::string(f) + ":" + p);
+    for (const auto& p : precs) printed << std::setw(16) << (std::string(f) + ":" + p);
   printed << "\n";
   if (root) std::cout << printed.str() << std::flush;
 
@@ -218,7 +234,7 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
             its[prec] = res.converged ? Json(res.iterations) : Json();
             primal = solver.primalDimension();
             dual[f] = solver.dualDimension();
-            line << std::setw(14) << (res.converged ? std::to_string(res.iterations) : "n/c");
+            line << std::setw(16) << (res.converged ? std::to_string(res.iterations) : "n/c");
           }
           iterations[f == 0 ? "feti" : "tfeti"] = std::move(its);
         }

@@ -1,0 +1,191 @@
+// End-to-end tests of tfeti::FetiSolver on 1, 2 and 3 ranks: Poisson and plane-strain
+// elasticity on the unit square (4x4 subdomains of 4x4 elements, clamped at x = 0), TFETI and
+// FETI, preconditioners none / lumped / Dirichlet, every local solver. The recovered solution
+// must equal a direct solve of the undecomposed problem (computed redundantly on every rank) at
+// every subdomain copy of every node, and satisfy the constraints B u = 0.
+#include <Teuchos_UnitTestHarness.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tfeti_FetiSolver.hpp"
+#include "tfeti_TestHelpers.hpp"
+
+namespace {
+
+using tfeti_test::Physics;
+
+struct Options {
+  std::string formulation = "TFETI";
+  std::string preconditioner = "dirichlet";
+  std::string localSolver = "cholmod";
+  std::string gluing = "nonredundant";
+  bool gluingAtDirichlet = true;
+};
+
+std::string describe(const Physics& ph, const Options& o) {
+  return std::string(ph.name()) + ", " + o.formulation + ", " + o.preconditioner + ", " +
+         o.localSolver + ", " + o.gluing + (o.gluingAtDirichlet ? "" : ", no gluing at Dirichlet");
+}
+
+struct Outcome {
+  tfeti::PcpgResult result;
+  double solutionError = 0.0;  // max over copies |u - u_ref| / max |u_ref|
+  double constraint = 0.0;     // ||B u|| / ||u||
+  double dirichlet = 0.0;      // max |u| on Dirichlet copies / max |u_ref|
+};
+
+const double kTolerance = 1e-10;
+
+// Solves with FetiSolver and compares with the reference on every local subdomain copy.
+Outcome solveAndCompare(const tfeti::StructuredRectangle& rect, const Physics& ph,
+                        const Options& o, const std::vector<double>& reference) {
+  auto comm = Tpetra::getDefaultComm();
+  Teuchos::ParameterList params;
+  params.set("Formulation", o.formulation);
+  params.set("Preconditioner", o.preconditioner);
+  params.set("Local solver", o.localSolver);
+  params.set("Gluing", o.gluing);
+  params.set("Gluing at Dirichlet nodes", o.gluingAtDirichlet);
+  auto& pcpg = params.sublist("PCPG");
+  pcpg.set("Relative tolerance", kTolerance);
+  pcpg.set("Maximum iterations", 200);
+  pcpg.set("Verbosity", 0);
+  tfeti::FetiSolver solver(comm, rect.numSubdomains(),
+                           tfeti_test::localSubdomains(rect, *comm, ph), params);
+  Outcome out;
+  out.result = solver.solve();
+
+  const int dpn = ph.dofsPerNode();
+  const double scale = tfeti_test::maxAbs(reference);
+  double err = 0.0, dir = 0.0;
+  tfeti::Vector u(solver.tearing().primalMap);
+  auto ud = u.getDataNonConst();
+  std::size_t off = 0;
+  for (std::size_t i = 0; i < solver.data().size(); ++i) {
+    const tfeti::SubdomainMesh& mesh = solver.data()[i].mesh;
+    const std::vector<double>& us = solver.solution(i);
+    for (int n = 0; n < mesh.numNodes(); ++n)
+      for (int c = 0; c < dpn; ++c) {
+        const double ref = reference[mesh.globalNode[n] * dpn + c];
+        err = std::max(err, std::abs(us[n * dpn + c] - ref));
+        ud[off++] = us[n * dpn + c];
+      }
+    for (int n : mesh.dirichletNodes)
+      for (int c = 0; c < dpn; ++c) dir = std::max(dir, std::abs(us[n * dpn + c]));
+  }
+  ud = Teuchos::null;
+  out.solutionError = tfeti_test::globalMax(*comm, err) / scale;
+  out.dirichlet = tfeti_test::globalMax(*comm, dir) / scale;
+  tfeti::Vector Bu(solver.tearing().multiplierMap);
+  solver.tearing().B->apply(u, Bu);
+  out.constraint = Bu.norm2() / u.norm2();
+  return out;
+}
+
+void check(const tfeti::StructuredRectangle& rect, const Physics& ph, const Options& o,
+           const std::vector<double>& reference, Teuchos::FancyOStream& out, bool& success) {
+  const Outcome r = solveAndCompare(rect, ph, o, reference);
+  out << describe(ph, o) << ": " << (r.result.converged ? "converged" : "NOT converged")
+      << " in " << r.result.iterations << " iterations, error " << r.solutionError << ", ||Bu||/||u|| "
+      << r.constraint << "\n";
+  TEST_ASSERT(r.result.converged);
+  TEST_COMPARE(r.result.relativeResidual, <=, kTolerance);
+  TEST_COMPARE(r.result.iterations, >, 0);
+  TEST_COMPARE(r.result.iterations, <, 100);
+  TEST_EQUALITY(static_cast<int>(r.result.history.size()), r.result.iterations + 1);
+  TEST_COMPARE(r.solutionError, <, 1e-6);
+  TEST_COMPARE(r.constraint, <, 1e-6);
+  TEST_COMPARE(r.dirichlet, <, 1e-6);
+}
+
+tfeti::StructuredRectangle square() { return tfeti::StructuredRectangle(0, 1, 0, 1, 4, 4, 4, 4); }
+
+void runMatrix(const Physics& ph, Teuchos::FancyOStream& out, bool& success) {
+  const tfeti::StructuredRectangle rect = square();
+  const std::vector<double> reference = tfeti_test::referenceSolution(rect, ph);
+  // The reference itself: nonzero and zero on x = 0.
+  TEST_COMPARE(tfeti_test::maxAbs(reference), >, 1e-3);
+  for (const std::string form : {"TFETI", "FETI"}) {
+    std::map<std::string, int> iterations;
+    for (const std::string prec : {"none", "lumped", "dirichlet"}) {
+      Options o;
+      o.formulation = form;
+      o.preconditioner = prec;
+      const Outcome r = solveAndCompare(rect, ph, o, reference);
+      out << describe(ph, o) << ": " << r.result.iterations << " iterations, error "
+          << r.solutionError << ", ||Bu||/||u|| " << r.constraint << "\n";
+      TEST_ASSERT(r.result.converged);
+      TEST_COMPARE(r.result.relativeResidual, <=, kTolerance);
+      TEST_COMPARE(r.result.iterations, >, 0);
+      TEST_COMPARE(r.solutionError, <, 1e-6);
+      TEST_COMPARE(r.constraint, <, 1e-6);
+      TEST_COMPARE(r.dirichlet, <, 1e-6);
+      iterations[prec] = r.result.iterations;
+    }
+    // The Dirichlet preconditioner must pay off against no preconditioning.
+    TEST_COMPARE(iterations["dirichlet"], <, iterations["none"]);
+  }
+}
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(FetiSolver, PoissonAllFormulationsAndPreconditioners) {
+  runMatrix(tfeti_test::poisson(), out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiSolver, ElasticityAllFormulationsAndPreconditioners) {
+  runMatrix(tfeti_test::elasticity(), out, success);
+}
+
+TEUCHOS_UNIT_TEST(FetiSolver, EveryLocalSolver) {
+  const tfeti::StructuredRectangle rect = square();
+  for (const Physics& ph : {tfeti_test::poisson(), tfeti_test::elasticity()}) {
+    const std::vector<double> reference = tfeti_test::referenceSolution(rect, ph);
+    for (const auto& solver : tfeti::localSolverTypes())
+      for (const std::string form : {"TFETI", "FETI"}) {
+        Options o;
+        o.formulation = form;
+        o.localSolver = solver;
+        check(rect, ph, o, reference, out, success);
+      }
+  }
+}
+
+TEUCHOS_UNIT_TEST(FetiSolver, GluingVariants) {
+  // Redundant gluing, and TFETI without the gluing rows that duplicate Dirichlet rows.
+  const tfeti::StructuredRectangle rect = square();
+  for (const Physics& ph : {tfeti_test::poisson(), tfeti_test::elasticity()}) {
+    const std::vector<double> reference = tfeti_test::referenceSolution(rect, ph);
+    for (const std::string prec : {"lumped", "dirichlet"}) {
+      Options o;
+      o.preconditioner = prec;
+      o.gluing = "redundant";
+      check(rect, ph, o, reference, out, success);
+      o.gluing = "nonredundant";
+      o.gluingAtDirichlet = false;
+      check(rect, ph, o, reference, out, success);
+      o.formulation = "FETI";
+      o.gluing = "redundant";
+      check(rect, ph, o, reference, out, success);
+    }
+  }
+}
+
+TEUCHOS_UNIT_TEST(FetiSolver, NonSquareDecomposition) {
+  // (0,2) x (0,1) in 3 x 2 subdomains of 5 x 4 elements: subdomain grid and element counts differ
+  // in x and y, and 6 subdomains do not divide evenly over 4 or 5 ranks' blocks.
+  const tfeti::StructuredRectangle rect(0, 2, 0, 1, 3, 2, 5, 4);
+  for (const Physics& ph : {tfeti_test::poisson(), tfeti_test::elasticity()}) {
+    const std::vector<double> reference = tfeti_test::referenceSolution(rect, ph);
+    for (const std::string form : {"TFETI", "FETI"}) {
+      Options o;
+      o.formulation = form;
+      check(rect, ph, o, reference, out, success);
+    }
+  }
+}

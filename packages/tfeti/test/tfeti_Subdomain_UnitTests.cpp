@@ -1,0 +1,371 @@
+// Unit tests of tfeti::Subdomain: the kernel R (rigid body modes, orthonormal), the generalized
+// inverse K+ from fixing-dof regularization (K K+ K = K, checked densely), the FETI elimination
+// of Dirichlet dofs, and the preconditioner blocks (K_bb and the Schur complement). Subdomains
+// are assembled with the plasticity Q1 kernels on StructuredRectangle subdomains of 6x5 elements
+// and on a distorted L-shaped mesh; every check runs for each local solver type.
+#include <Teuchos_UnitTestHarness.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tfeti_DenseUtils.hpp"
+#include "tfeti_Subdomain.hpp"
+#include "tfeti_TestHelpers.hpp"
+
+namespace {
+
+using tfeti::Formulation;
+using tfeti_test::Physics;
+
+// 3x2 subdomains of 6x5 elements on (0,3)x(0,2): subdomain 0 touches the Dirichlet side x = 0,
+// subdomain 4 (middle of the top row) touches no boundary condition.
+tfeti::StructuredRectangle rectangle() { return tfeti::StructuredRectangle(0, 3, 0, 2, 3, 2, 6, 5); }
+
+// Subdomain 4 of the rectangle cut to an L (the 3x3 top-right elements removed), with its nodes
+// moved by a smooth map: no two element edges stay parallel.
+tfeti::SubdomainMesh distortedLShape() {
+  const tfeti::SubdomainMesh block = rectangle().subdomain(4);
+  const int ex = 6;
+  tfeti::SubdomainMesh m;
+  m.id = block.id;
+  std::map<int, int> renumber;
+  for (int e = 0; e < block.numElements(); ++e) {
+    const int i = e % ex, j = e / ex;
+    if (i >= 3 && j >= 2) continue;
+    for (int a = 0; a < 4; ++a) {
+      const int n = block.quads[4 * e + a];
+      auto it = renumber.find(n);
+      if (it == renumber.end()) {
+        it = renumber.emplace(n, m.numNodes()).first;
+        const double x = block.coords[2 * n], y = block.coords[2 * n + 1];
+        m.coords.push_back(x + 0.06 * std::sin(3.0 * y) + 0.04 * x * y);
+        m.coords.push_back(y + 0.05 * std::cos(2.5 * x) + 0.03 * x * x);
+        m.globalNode.push_back(block.globalNode[n]);
+      }
+      m.quads.push_back(it->second);
+    }
+  }
+  return m;
+}
+
+// Dense column-major product C = A B (A m x k, B k x n).
+std::vector<double> matmul(const std::vector<double>& A, const std::vector<double>& B, int m, int k,
+                           int n) {
+  std::vector<double> C(static_cast<std::size_t>(m) * n, 0.0);
+  for (int j = 0; j < n; ++j)
+    for (int p = 0; p < k; ++p) {
+      const double b = B[static_cast<std::size_t>(j) * k + p];
+      if (b == 0.0) continue;
+      for (int i = 0; i < m; ++i) C[static_cast<std::size_t>(j) * m + i] += A[std::size_t(p) * m + i] * b;
+    }
+  return C;
+}
+
+double frobenius(const std::vector<double>& A) { return tfeti_test::norm2(A); }
+
+// Raw rigid body modes of the mesh (not orthonormalized), column-major.
+std::vector<std::vector<double>> rawRigidModes(const std::vector<double>& coords, int dpn) {
+  const int nodes = static_cast<int>(coords.size() / 2);
+  if (dpn == 1) return {std::vector<double>(nodes, 1.0)};
+  std::vector<std::vector<double>> R(3, std::vector<double>(2 * nodes, 0.0));
+  for (int a = 0; a < nodes; ++a) {
+    R[0][2 * a] = 1.0;
+    R[1][2 * a + 1] = 1.0;
+    R[2][2 * a] = -coords[2 * a + 1];
+    R[2][2 * a + 1] = coords[2 * a];
+  }
+  return R;
+}
+
+// The checks every subdomain must pass: K R = 0, R^T R = I, K K+ K = K. Returns nothing; the
+// expected kernel dimension is given.
+void checkGeneralizedInverse(tfeti::Subdomain& sd, int expectedKernelDim, Teuchos::FancyOStream& out,
+                             bool& success) {
+  const tfeti::CsrMatrix& K = sd.stiffness();
+  const int n = K.rows, k = sd.kernelDim();
+  TEST_EQUALITY(k, expectedKernelDim);
+  TEST_EQUALITY(sd.numDofs(), n);
+  TEST_EQUALITY(static_cast<int>(sd.kernel().size()), n * k);
+  const std::vector<double> Kd = tfeti_test::toDense(K);
+  const double normK = frobenius(Kd);
+
+  // K R = 0 relative to ||K|| (R has orthonormal columns).
+  if (k > 0) {
+    const std::vector<double> KR = matmul(Kd, sd.kernel(), n, n, k);
+    const double rel = frobenius(KR) / normK;
+    out << "||K R|| / ||K|| = " << rel << "\n";
+    TEST_COMPARE(rel, <, 1e-12);
+  }
+  // R^T R = I.
+  double orth = 0.0;
+  for (int p = 0; p < k; ++p)
+    for (int q = 0; q < k; ++q) {
+      double s = 0.0;
+      for (int i = 0; i < n; ++i) s += sd.kernel()[std::size_t(p) * n + i] * sd.kernel()[std::size_t(q) * n + i];
+      orth = std::max(orth, std::abs(s - (p == q ? 1.0 : 0.0)));
+    }
+  TEST_COMPARE(orth, <, 1e-12);
+
+  // Fixing dofs: kernelDim() distinct sorted dofs with R(F, :) well conditioned.
+  const auto& F = sd.fixingDofs();
+  TEST_EQUALITY(static_cast<int>(F.size()), k);
+  TEST_ASSERT(std::is_sorted(F.begin(), F.end()));
+  TEST_ASSERT(std::adjacent_find(F.begin(), F.end()) == F.end());
+  if (k > 0 && static_cast<int>(F.size()) == k) {
+    std::vector<double> RF(std::size_t(k) * k), RtR(std::size_t(k) * k, 0.0);
+    for (int q = 0; q < k; ++q)
+      for (int p = 0; p < k; ++p) RF[std::size_t(q) * k + p] = sd.kernel()[std::size_t(q) * n + F[p]];
+    for (int a = 0; a < k; ++a)
+      for (int b = 0; b < k; ++b)
+        for (int p = 0; p < k; ++p) RtR[std::size_t(b) * k + a] += RF[std::size_t(a) * k + p] * RF[std::size_t(b) * k + p];
+    std::vector<double> w, V;
+    tfeti::dense::symmetricEigen(k, RtR, w, V);
+    const double cond = std::sqrt(*std::max_element(w.begin(), w.end()) /
+                                  *std::min_element(w.begin(), w.end()));
+    out << "cond R(F,:) = " << cond << "\n";
+    TEST_COMPARE(cond, <, 100.0);
+  }
+
+  // K K+ K = K: K+ applied to all columns of K at once (multiple right-hand sides).
+  std::vector<double> X(Kd.size());
+  sd.applyPseudoInverse(Kd.data(), X.data(), n);
+  const std::vector<double> KXK = matmul(Kd, X, n, n, n);
+  std::vector<double> diff(Kd.size());
+  for (std::size_t i = 0; i < Kd.size(); ++i) diff[i] = KXK[i] - Kd[i];
+  const double relGi = frobenius(diff) / normK;
+  out << "||K K+ K - K|| / ||K|| = " << relGi << "\n";
+  TEST_COMPARE(relGi, <, 1e-10);
+  // Column by column (nrhs = 1) gives the same result.
+  std::vector<double> x1(n);
+  double colDiff = 0.0;
+  for (int j = 0; j < n; j += 7) {
+    sd.applyPseudoInverse(&Kd[std::size_t(j) * n], x1.data(), 1);
+    for (int i = 0; i < n; ++i) colDiff = std::max(colDiff, std::abs(x1[i] - X[std::size_t(j) * n + i]));
+  }
+  TEST_COMPARE(colDiff, <, 1e-12 * tfeti_test::maxAbs(X));
+  // K+ is not the zero matrix in disguise: K+ K is a projector of rank n - k.
+  double trace = 0.0;
+  for (int i = 0; i < n; ++i) trace += X[std::size_t(i) * n + i];
+  TEST_FLOATING_EQUALITY(trace, double(n - k), 1e-9);
+}
+
+// Floating subdomain (TFETI): the kernel spans exactly the rigid body modes.
+void checkFloating(const tfeti::SubdomainMesh& mesh, const Physics& ph, const std::string& solver,
+                   Teuchos::FancyOStream& out, bool& success) {
+  out << ph.name() << ", " << solver << ", " << mesh.numElements() << " elements\n";
+  const tfeti::SubdomainData data = tfeti_test::subdomainData(mesh, ph);
+  const int dpn = ph.dofsPerNode();
+  // TFETI ignores the Dirichlet dofs in K: pass some to check that.
+  const std::vector<int> dir = {0, dpn * 3};
+  tfeti::Subdomain sd(mesh.id, dpn, mesh.coords, data.K, data.f, dir, Formulation::TFETI, solver);
+  TEST_COMPARE_ARRAYS(sd.stiffness().values, data.K.values);
+  TEST_COMPARE_ARRAYS(sd.load(), data.f);
+  const int k = dpn == 1 ? 1 : 3;
+  checkGeneralizedInverse(sd, k, out, success);
+  if (sd.kernelDim() != k) return;
+  const int n = sd.numDofs();
+  for (const auto& r : rawRigidModes(mesh.coords, dpn)) {
+    std::vector<double> res = r;
+    for (int q = 0; q < k; ++q) {
+      double c = 0.0;
+      for (int i = 0; i < n; ++i) c += sd.kernel()[std::size_t(q) * n + i] * r[i];
+      for (int i = 0; i < n; ++i) res[i] -= c * sd.kernel()[std::size_t(q) * n + i];
+    }
+    TEST_COMPARE(tfeti_test::norm2(res) / tfeti_test::norm2(r), <, 1e-12);
+  }
+}
+
+const Physics kPhysics[2] = {tfeti_test::poisson(), tfeti_test::elasticity()};
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(Subdomain, FloatingRectangle) {
+  const tfeti::SubdomainMesh mesh = rectangle().subdomain(4);
+  TEST_EQUALITY(mesh.numElements(), 30);
+  TEST_ASSERT(mesh.dirichletNodes.empty());
+  for (const auto& ph : kPhysics)
+    for (const auto& solver : tfeti::localSolverTypes()) checkFloating(mesh, ph, solver, out, success);
+}
+
+TEUCHOS_UNIT_TEST(Subdomain, FloatingDistortedLShape) {
+  const tfeti::SubdomainMesh mesh = distortedLShape();
+  TEST_EQUALITY(mesh.numElements(), 21);
+  TEST_EQUALITY(mesh.numNodes(), 33);  // 7x6 grid nodes minus the 3x3 cut off
+  for (const auto& ph : kPhysics)
+    for (const auto& solver : tfeti::localSolverTypes()) checkFloating(mesh, ph, solver, out, success);
+}
+
+TEUCHOS_UNIT_TEST(Subdomain, FloatingInFetiWithoutDirichletDofs) {
+  // In FETI a subdomain away from the Dirichlet side floats just as in TFETI.
+  const tfeti::SubdomainMesh mesh = rectangle().subdomain(4);
+  for (const auto& ph : kPhysics) {
+    const tfeti::SubdomainData data = tfeti_test::subdomainData(mesh, ph);
+    tfeti::Subdomain sd(mesh.id, ph.dofsPerNode(), mesh.coords, data.K, data.f, {},
+                        Formulation::FETI, "cholmod");
+    checkGeneralizedInverse(sd, ph.dofsPerNode() == 1 ? 1 : 3, out, success);
+  }
+}
+
+TEUCHOS_UNIT_TEST(Subdomain, FetiNonFloatingWithDirichletSide) {
+  const tfeti::SubdomainMesh mesh = rectangle().subdomain(0);
+  TEST_EQUALITY(static_cast<int>(mesh.dirichletNodes.size()), 6);  // the side x = 0: 5 elements
+  for (const auto& ph : kPhysics)
+    for (const auto& solver : tfeti::localSolverTypes()) {
+      out << ph.name() << ", " << solver << "\n";
+      const int dpn = ph.dofsPerNode();
+      const tfeti::SubdomainData data = tfeti_test::subdomainData(mesh, ph);
+      const std::vector<int> dir = tfeti_test::dirichletDofs(mesh, dpn);
+      tfeti::Subdomain sd(mesh.id, dpn, mesh.coords, data.K, data.f, dir, Formulation::FETI,
+                          solver);
+      checkGeneralizedInverse(sd, 0, out, success);
+      TEST_ASSERT(sd.fixingDofs().empty());
+      // Dirichlet rows and columns are decoupled and keep their diagonal; the load is zero there;
+      // every other entry is untouched.
+      const tfeti::CsrMatrix& K = sd.stiffness();
+      TEST_COMPARE_ARRAYS(K.colInd, data.K.colInd);
+      std::vector<char> isDir(K.rows, 0);
+      for (int d : dir) isDir[d] = 1;
+      double offDiag = 0.0, changed = 0.0, diagChange = 0.0;
+      for (int i = 0; i < K.rows; ++i)
+        for (int p = K.rowPtr[i]; p < K.rowPtr[i + 1]; ++p) {
+          const int j = K.colInd[p];
+          if (isDir[i] || isDir[j]) {
+            if (i == j)
+              diagChange = std::max(diagChange, std::abs(K.values[p] - data.K.values[p]));
+            else
+              offDiag = std::max(offDiag, std::abs(K.values[p]));
+          } else {
+            changed = std::max(changed, std::abs(K.values[p] - data.K.values[p]));
+          }
+        }
+      TEST_EQUALITY_CONST(offDiag, 0.0);
+      TEST_EQUALITY_CONST(changed, 0.0);
+      TEST_EQUALITY_CONST(diagChange, 0.0);
+      double loadAtDirichlet = 0.0;
+      for (int d : dir) loadAtDirichlet = std::max(loadAtDirichlet, std::abs(sd.load()[d]));
+      TEST_EQUALITY_CONST(loadAtDirichlet, 0.0);
+      // K is nonsingular: K+ = K^{-1}, so K+ K = I.
+      const std::vector<double> Kd = tfeti_test::toDense(K);
+      std::vector<double> X(Kd.size());
+      sd.applyPseudoInverse(Kd.data(), X.data(), K.rows);
+      double err = 0.0;
+      for (int j = 0; j < K.rows; ++j)
+        for (int i = 0; i < K.rows; ++i)
+          err = std::max(err, std::abs(X[std::size_t(j) * K.rows + i] - (i == j ? 1.0 : 0.0)));
+      TEST_COMPARE(err, <, 1e-10);
+    }
+}
+
+TEUCHOS_UNIT_TEST(Subdomain, FetiPartialDirichletLeavesTheRemainingModes) {
+  // Only the rigid modes that vanish on the Dirichlet dofs stay in the kernel.
+  const tfeti::SubdomainMesh mesh = distortedLShape();
+  const Physics el = tfeti_test::elasticity();
+  const tfeti::SubdomainData data = tfeti_test::subdomainData(mesh, el);
+  const int node = 7;
+  struct Case {
+    std::vector<int> dofs;
+    int kernel;
+  };
+  // Both components of one node: the rotation about it. One component: 2 modes. Two nodes fully
+  // fixed: none.
+  const std::vector<Case> cases = {{{2 * node, 2 * node + 1}, 1},
+                                   {{2 * node}, 2},
+                                   {{2 * node, 2 * node + 1, 2 * 20, 2 * 20 + 1}, 0}};
+  for (const auto& c : cases)
+    for (const auto& solver : tfeti::localSolverTypes()) {
+      out << c.dofs.size() << " Dirichlet dofs, " << solver << "\n";
+      tfeti::Subdomain sd(mesh.id, 2, mesh.coords, data.K, data.f, c.dofs, Formulation::FETI,
+                          solver);
+      checkGeneralizedInverse(sd, c.kernel, out, success);
+      double onDirichlet = 0.0;
+      for (int q = 0; q < sd.kernelDim(); ++q)
+        for (int d : c.dofs)
+          onDirichlet = std::max(onDirichlet, std::abs(sd.kernel()[std::size_t(q) * sd.numDofs() + d]));
+      TEST_COMPARE(onDirichlet, <, 1e-14);
+    }
+  // Poisson with one Dirichlet node: no kernel left.
+  const tfeti::SubdomainData pd = tfeti_test::subdomainData(mesh, tfeti_test::poisson());
+  tfeti::Subdomain sp(mesh.id, 1, mesh.coords, pd.K, pd.f, {node}, Formulation::FETI, "cholmod");
+  checkGeneralizedInverse(sp, 0, out, success);
+}
+
+TEUCHOS_UNIT_TEST(Subdomain, PreconditionerBlocksAreKbbAndTheSchurComplement) {
+  const tfeti::SubdomainMesh mesh = distortedLShape();
+  const std::vector<int> boundary = mesh.boundaryNodes();
+  TEST_EQUALITY(static_cast<int>(boundary.size()), 22);  // the perimeter of the L has 22 edges
+  for (const auto& ph : kPhysics)
+    for (const auto& solver : tfeti::localSolverTypes()) {
+      out << ph.name() << ", " << solver << "\n";
+      const int dpn = ph.dofsPerNode();
+      const tfeti::SubdomainData data = tfeti_test::subdomainData(mesh, ph);
+      std::vector<int> bdofs;
+      for (int nd : boundary)
+        for (int c = 0; c < dpn; ++c) bdofs.push_back(dpn * nd + c);
+      std::vector<int> idofs;
+      for (int i = 0; i < data.K.rows; ++i)
+        if (!std::binary_search(bdofs.begin(), bdofs.end(), i)) idofs.push_back(i);
+      const int nb = static_cast<int>(bdofs.size()), ni = static_cast<int>(idofs.size());
+      // Reference Schur complement, dense: S = K_bb - K_bi K_ii^{-1} K_ib (CHOLMOD on K_ii).
+      const std::vector<double> Kbb = tfeti_test::toDense(data.K.submatrix(bdofs, bdofs));
+      const std::vector<double> Kib = tfeti_test::toDense(data.K.submatrix(idofs, bdofs));
+      const std::vector<double> Kbi = tfeti_test::toDense(data.K.submatrix(bdofs, idofs));
+      auto Kii = tfeti::createLocalSolver("cholmod");
+      Kii->factorize(data.K.submatrix(idofs, idofs));
+      std::vector<double> Z(Kib.size());
+      Kii->solve(Kib.data(), Z.data(), nb);
+      std::vector<double> S = matmul(Kbi, Z, nb, ni, nb);
+      for (std::size_t i = 0; i < S.size(); ++i) S[i] = Kbb[i] - S[i];
+
+      for (auto type : {tfeti::PreconditionerType::Lumped, tfeti::PreconditionerType::Dirichlet}) {
+        tfeti::Subdomain sd(mesh.id, dpn, mesh.coords, data.K, data.f, {}, Formulation::TFETI,
+                            solver);
+        // Interface given unsorted: the subdomain sorts it.
+        std::vector<int> shuffled(bdofs.rbegin(), bdofs.rend());
+        sd.setupPreconditioner(shuffled, type, solver);
+        TEST_COMPARE_ARRAYS(sd.interfaceDofs(), bdofs);
+        const std::vector<double>& ref = type == tfeti::PreconditionerType::Lumped ? Kbb : S;
+        std::vector<double> e(nb, 0.0), y(nb);
+        double err = 0.0;
+        for (int j = 0; j < nb; ++j) {
+          e[j] = 1.0;
+          sd.applyPreconditionerBlock(e.data(), y.data());
+          e[j] = 0.0;
+          for (int i = 0; i < nb; ++i) err = std::max(err, std::abs(y[i] - ref[std::size_t(j) * nb + i]));
+        }
+        TEST_COMPARE(err, <, 1e-12 * tfeti_test::maxAbs(Kbb));
+        // The Schur complement annihilates the rigid modes' traces; K_bb does not.
+        for (const auto& r : rawRigidModes(mesh.coords, dpn)) {
+          std::vector<double> rb(nb);
+          for (int k = 0; k < nb; ++k) rb[k] = r[bdofs[k]];
+          sd.applyPreconditionerBlock(rb.data(), y.data());
+          const double rel = tfeti_test::norm2(y) / (frobenius(Kbb) * tfeti_test::norm2(rb));
+          if (type == tfeti::PreconditionerType::Dirichlet) {
+            TEST_COMPARE(rel, <, 1e-12);
+          } else {
+            TEST_COMPARE(rel, >, 1e-3);
+          }
+        }
+      }
+      // None: no block is set up.
+      tfeti::Subdomain none(mesh.id, dpn, mesh.coords, data.K, data.f, {}, Formulation::TFETI,
+                            solver);
+      none.setupPreconditioner(bdofs, tfeti::PreconditionerType::None, solver);
+      TEST_EQUALITY(none.preconditionerFactorBytes(), std::size_t(0));
+    }
+}
+
+TEUCHOS_UNIT_TEST(Subdomain, InvalidDofsPerNodeThrowsNamingTheSubdomain) {
+  const tfeti::SubdomainMesh mesh = rectangle().subdomain(4);
+  const tfeti::SubdomainData data = tfeti_test::subdomainData(mesh, tfeti_test::poisson());
+  bool threw = false;
+  try {
+    tfeti::Subdomain sd(17, 3, mesh.coords, data.K, data.f, {}, Formulation::TFETI, "cholmod");
+  } catch (const std::invalid_argument& e) {
+    threw = true;
+    TEST_INEQUALITY(std::string(e.what()).find("subdomain 17"), std::string::npos);
+  }
+  TEST_ASSERT(threw);
+}

@@ -1,0 +1,369 @@
+// Unit tests of the tearing (tfeti::buildTearing) on 1, 2 and 3 ranks: the primal and dual
+// dimensions of the reference paper's Poisson configurations (unit square, H = 1/2 .. 1/8,
+// H/h = 2 and 4) for FETI and TFETI, and the structure of B: entries +-1, gluing rows joining
+// two copies of one node and component, Dirichlet rows on x = 0, B (continuous field) = 0,
+// m-1 (non-redundant) or m(m-1)/2 (redundant) gluing rows at a node shared by m subdomains,
+// the B B^T group pseudo-inverses, and a row numbering that does not depend on the rank count.
+#include <Teuchos_DefaultSerialComm.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <numeric>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tfeti_DenseUtils.hpp"
+#include "tfeti_Tearing.hpp"
+#include "tfeti_TestHelpers.hpp"
+
+namespace {
+
+using tfeti::Formulation;
+using tfeti::GO;
+using tfeti::LO;
+
+// One row of the paper's table: unit square, subs x subs subdomains of elems x elems elements
+// (H = 1/subs, h = 1/(subs * elems)).
+struct PaperCase {
+  int subs, elems;
+  GO primal, feti, tfeti;
+};
+const PaperCase kPaper[] = {{2, 2, 36, 11, 17},    {4, 2, 144, 63, 75},  {8, 2, 576, 287, 311},
+                            {2, 4, 100, 19, 29},   {4, 4, 400, 111, 131}, {8, 4, 1600, 511, 551}};
+
+tfeti::StructuredRectangle unitSquare(int subs, int elems) {
+  return tfeti::StructuredRectangle(0, 1, 0, 1, subs, subs, elems, elems);
+}
+
+// What FetiSolver hands to buildTearing for one subdomain.
+tfeti::TearingInput tearingInput(const tfeti::SubdomainMesh& mesh, int dpn) {
+  tfeti::TearingInput in;
+  in.id = mesh.id;
+  in.numDofs = mesh.numNodes() * dpn;
+  in.boundaryNodes = mesh.boundaryNodes();
+  std::vector<char> dir(mesh.numNodes(), 0);
+  for (int n : mesh.dirichletNodes) dir[n] = 1;
+  for (int n : in.boundaryNodes) {
+    in.boundaryGlobal.push_back(mesh.globalNode[n]);
+    in.boundaryDirichlet.push_back(dir[n]);
+  }
+  return in;
+}
+
+tfeti::Tearing tear(const tfeti::StructuredRectangle& rect, const Teuchos::RCP<const tfeti::Comm>& comm,
+                    const std::vector<int>& ids, int dpn, const tfeti::TearingOptions& opts) {
+  std::vector<tfeti::TearingInput> local;
+  for (int s : ids) local.push_back(tearingInput(rect.subdomain(s), dpn));
+  return tfeti::buildTearing(comm, rect.numSubdomains(), local, dpn, opts);
+}
+
+std::vector<int> myIds(const tfeti::StructuredRectangle& rect, const tfeti::Comm& comm) {
+  return tfeti::subdomainsOfRank(comm.getRank(), rect.numSubdomains(), comm.getSize());
+}
+
+// The entries of a locally owned row of B: (global column, value).
+std::vector<std::pair<GO, double>> rowEntries(const tfeti::CrsMatrix& B, LO row) {
+  const std::size_t len = B.getNumEntriesInLocalRow(row);
+  tfeti::CrsMatrix::nonconst_local_inds_host_view_type idx("idx", len);
+  tfeti::CrsMatrix::nonconst_values_host_view_type val("val", len);
+  std::size_t got = 0;
+  B.getLocalRowCopy(row, idx, val, got);
+  std::vector<std::pair<GO, double>> e;
+  for (std::size_t k = 0; k < got; ++k) e.push_back({B.getColMap()->getGlobalElement(idx(k)), val(k)});
+  std::sort(e.begin(), e.end());
+  return e;
+}
+
+// Expected row counts from the node multiplicities of the structured mesh.
+struct Expected {
+  GO gluing = 0, dirichlet = 0;
+};
+Expected expectedRows(const tfeti::StructuredRectangle& rect, int dpn,
+                      const tfeti::TearingOptions& opts) {
+  std::map<GO, int> mult;
+  std::map<GO, bool> dir;
+  for (int s = 0; s < rect.numSubdomains(); ++s) {
+    const tfeti::SubdomainMesh m = rect.subdomain(s);
+    for (int n = 0; n < m.numNodes(); ++n) mult[m.globalNode[n]]++;
+    for (int n : m.dirichletNodes) dir[m.globalNode[n]] = true;
+  }
+  Expected e;
+  for (const auto& [node, m] : mult) {
+    const bool d = dir.count(node) > 0;
+    if (m > 1 && (!d || opts.gluingAtDirichletNodes))
+      e.gluing += dpn * (opts.gluing == tfeti::Gluing::Redundant ? GO(m) * (m - 1) / 2 : GO(m - 1));
+    if (d && opts.formulation == Formulation::TFETI) e.dirichlet += dpn * GO(m);
+  }
+  return e;
+}
+
+// Subdomain and local dof of a global primal dof.
+std::pair<int, int> locate(const tfeti::Tearing& t, GO col) {
+  const auto it = std::upper_bound(t.dofOffset.begin(), t.dofOffset.end(), col);
+  const int s = static_cast<int>(it - t.dofOffset.begin()) - 1;
+  return {s, static_cast<int>(col - t.dofOffset[s])};
+}
+
+// Every structural property of B on one configuration. All verdicts are global (reduced).
+void checkStructure(const tfeti::StructuredRectangle& rect, int dpn,
+                    const tfeti::TearingOptions& opts, Teuchos::FancyOStream& out, bool& success) {
+  auto comm = Tpetra::getDefaultComm();
+  const std::vector<int> ids = myIds(rect, *comm);
+  const tfeti::Tearing t = tear(rect, comm, ids, dpn, opts);
+  const Expected ex = expectedRows(rect, dpn, opts);
+  out << "  rows " << t.numRows << " = " << t.numGluingRows << " gluing + " << t.numDirichletRows
+      << " Dirichlet (expected " << ex.gluing << " + " << ex.dirichlet << ")\n";
+  TEST_EQUALITY(t.numGluingRows, ex.gluing);
+  TEST_EQUALITY(t.numDirichletRows, ex.dirichlet);
+  TEST_EQUALITY(t.numRows, ex.gluing + ex.dirichlet);
+  TEST_EQUALITY(static_cast<GO>(t.multiplierMap->getGlobalNumElements()), t.numRows);
+  TEST_EQUALITY(static_cast<GO>(t.B->getGlobalNumRows()), t.numRows);
+  TEST_EQUALITY(static_cast<GO>(t.B->getGlobalNumCols()), t.dofOffset.back());
+  TEST_EQUALITY(t.dofOffset.front(), GO(0));
+
+  std::vector<tfeti::SubdomainMesh> meshes;
+  for (int s = 0; s < rect.numSubdomains(); ++s) meshes.push_back(rect.subdomain(s));
+  for (int s = 0; s < rect.numSubdomains(); ++s)
+    TEST_EQUALITY(t.dofOffset[s + 1] - t.dofOffset[s], GO(dpn) * meshes[s].numNodes());
+
+  // Row by row.
+  long long badValue = 0, badGluing = 0, badDirichlet = 0, otherSize = 0, ones = 0, twos = 0;
+  long long duplicates = 0, disconnected = 0;
+  std::set<std::pair<GO, GO>> pairs;
+  std::map<std::pair<GO, int>, std::vector<std::pair<int, int>>> edges;  // (node, comp) -> subs
+  const LO nLocal = static_cast<LO>(t.multiplierMap->getNodeNumElements());
+  for (LO r = 0; r < nLocal; ++r) {
+    const auto e = rowEntries(*t.B, r);
+    for (const auto& [c, v] : e)
+      if (v != 1.0 && v != -1.0) ++badValue;
+    if (e.size() == 1) {
+      ++ones;
+      const auto [s, dof] = locate(t, e[0].first);
+      const int node = dof / dpn;
+      if (e[0].second != 1.0 || meshes[s].coords[2 * node] != 0.0) ++badDirichlet;
+    } else if (e.size() == 2) {
+      ++twos;
+      const auto [sa, da] = locate(t, e[0].first);
+      const auto [sb, db] = locate(t, e[1].first);
+      const GO na = meshes[sa].globalNode[da / dpn], nb = meshes[sb].globalNode[db / dpn];
+      if (sa == sb || na != nb || da % dpn != db % dpn || e[0].second + e[1].second != 0.0)
+        ++badGluing;
+      if (!pairs.insert({e[0].first, e[1].first}).second) ++duplicates;
+      edges[{na, da % dpn}].push_back({sa, sb});
+    } else {
+      ++otherSize;
+    }
+  }
+  // The gluing rows of every (node, component) group connect all copies of the node (groups are
+  // owned by one rank, so the check is local).
+  std::map<GO, std::vector<int>> copies;
+  for (int s = 0; s < rect.numSubdomains(); ++s)
+    for (GO g : meshes[s].globalNode) copies[g].push_back(s);
+  for (const auto& [key, list] : edges) {
+    std::map<int, int> parent;
+    for (int s : copies[key.first]) parent[s] = s;
+    std::function<int(int)> root = [&](int s) { return parent[s] == s ? s : root(parent[s]); };
+    for (const auto& [a, b] : list) parent[root(a)] = root(b);
+    std::set<int> roots;
+    for (int s : copies[key.first]) roots.insert(root(s));
+    if (roots.size() != 1) ++disconnected;
+  }
+  const tfeti::Comm& c = *comm;
+  TEST_EQUALITY(tfeti_test::globalSum(c, badValue), 0LL);
+  TEST_EQUALITY(tfeti_test::globalSum(c, badGluing), 0LL);
+  TEST_EQUALITY(tfeti_test::globalSum(c, badDirichlet), 0LL);
+  TEST_EQUALITY(tfeti_test::globalSum(c, otherSize), 0LL);
+  TEST_EQUALITY(tfeti_test::globalSum(c, duplicates), 0LL);
+  TEST_EQUALITY(tfeti_test::globalSum(c, disconnected), 0LL);
+  TEST_EQUALITY(tfeti_test::globalSum(c, ones), static_cast<long long>(t.numDirichletRows));
+  TEST_EQUALITY(tfeti_test::globalSum(c, twos), static_cast<long long>(t.numGluingRows));
+
+  // B applied to fields on the subdomain copies (Tpetra apply: imports across ranks).
+  tfeti::Vector u(t.primalMap), v(t.primalMap), Bu(t.multiplierMap), Bv(t.multiplierMap);
+  {
+    auto ud = u.getDataNonConst();
+    auto vd = v.getDataNonConst();
+    std::size_t off = 0;
+    for (int s : ids)
+      for (int n = 0; n < meshes[s].numNodes(); ++n)
+        for (int k = 0; k < dpn; ++k, ++off) {
+          const double x = meshes[s].coords[2 * n], y = meshes[s].coords[2 * n + 1];
+          ud[off] = (1.0 + k) + x + (2.0 + k) * y * y;  // continuous, nonzero on x = 0
+          vd[off] = 1.0 + s + 0.5 * k;                  // jumps by >= 1 across every interface
+        }
+    TEST_EQUALITY(off, static_cast<std::size_t>(t.primalMap->getNodeNumElements()));
+  }
+  t.B->apply(u, Bu);
+  t.B->apply(v, Bv);
+  double gluingU = 0.0, minDirichletU = 1e300, minGluingV = 1e300;
+  {
+    auto bu = Bu.getData();
+    auto bv = Bv.getData();
+    for (LO r = 0; r < nLocal; ++r) {
+      if (t.B->getNumEntriesInLocalRow(r) == 2) {
+        gluingU = std::max(gluingU, std::abs(bu[r]));
+        minGluingV = std::min(minGluingV, std::abs(bv[r]));
+      } else {
+        minDirichletU = std::min(minDirichletU, std::abs(bu[r]));
+      }
+    }
+  }
+  TEST_EQUALITY_CONST(tfeti_test::globalMax(c, gluingU), 0.0);
+  TEST_COMPARE(-tfeti_test::globalMax(c, -minGluingV), >=, 1.0);
+  TEST_COMPARE(-tfeti_test::globalMax(c, -minDirichletU), >=, 1.0);
+
+  // Rows touching each local subdomain: every nonzero of B exactly once over all ranks.
+  long long entries = 0, badEntries = 0;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    for (const auto& e : t.subdomainRows[i]) {
+      ++entries;
+      if ((e.coef != 1.0 && e.coef != -1.0) || e.dof < 0 || e.dof >= dpn * meshes[ids[i]].numNodes())
+        ++badEntries;
+    }
+  TEST_EQUALITY(tfeti_test::globalSum(c, entries), static_cast<long long>(t.B->getGlobalNumEntries()));
+  TEST_EQUALITY(tfeti_test::globalSum(c, badEntries), 0LL);
+
+  // Group scalings are the pseudo-inverses of the B B^T blocks: (BBt) Q (BBt) = BBt, Q BBt Q = Q.
+  double pinvErr = 0.0;
+  long long groupedRows = 0;
+  for (std::size_t g = 0; g < t.groupRows.size(); ++g) {
+    const auto& rows = t.groupRows[g];
+    const int m = static_cast<int>(rows.size());
+    groupedRows += m;
+    std::vector<std::vector<std::pair<GO, double>>> e;
+    for (LO r : rows) e.push_back(rowEntries(*t.B, r));
+    std::vector<double> A(std::size_t(m) * m, 0.0);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        for (const auto& [ci, vi] : e[i])
+          for (const auto& [cj, vj] : e[j])
+            if (ci == cj) A[std::size_t(j) * m + i] += vi * vj;
+    const auto& Q = t.groupScaling[g];
+    auto mul = [m](const std::vector<double>& X, const std::vector<double>& Y) {
+      std::vector<double> Z(std::size_t(m) * m, 0.0);
+      for (int j = 0; j < m; ++j)
+        for (int k = 0; k < m; ++k)
+          for (int i = 0; i < m; ++i) Z[std::size_t(j) * m + i] += X[std::size_t(k) * m + i] * Y[std::size_t(j) * m + k];
+      return Z;
+    };
+    const auto AQA = mul(mul(A, Q), A), QAQ = mul(mul(Q, A), Q);
+    for (std::size_t k = 0; k < A.size(); ++k)
+      pinvErr = std::max({pinvErr, std::abs(AQA[k] - A[k]), std::abs(QAQ[k] - Q[k])});
+  }
+  TEST_COMPARE(tfeti_test::globalMax(c, pinvErr), <, 1e-12);
+  TEST_EQUALITY(tfeti_test::globalSum(c, groupedRows), static_cast<long long>(t.numRows));
+
+  // The numbering does not depend on the rank count: a serial tearing of all subdomains has the
+  // same rows under the same ids.
+  std::vector<int> all(rect.numSubdomains());
+  std::iota(all.begin(), all.end(), 0);
+  auto serial = Teuchos::rcp(new Teuchos::SerialComm<int>());
+  const tfeti::Tearing ts = tear(rect, serial, all, dpn, opts);
+  TEST_EQUALITY(ts.numRows, t.numRows);
+  long long mismatched = 0;
+  for (LO r = 0; r < nLocal; ++r) {
+    const GO row = t.multiplierMap->getGlobalElement(r);
+    const LO rs = ts.multiplierMap->getLocalElement(row);
+    if (rs < 0 || rowEntries(*t.B, r) != rowEntries(*ts.B, rs)) ++mismatched;
+  }
+  TEST_EQUALITY(tfeti_test::globalSum(c, mismatched), 0LL);
+}
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(Tearing, PaperTableThroughFetiSolver) {
+  auto comm = Tpetra::getDefaultComm();
+  for (const auto& pc : kPaper) {
+    const tfeti::StructuredRectangle rect = unitSquare(pc.subs, pc.elems);
+    for (const std::string form : {"FETI", "TFETI"}) {
+      Teuchos::ParameterList params;
+      params.set("Formulation", form);
+      params.set("Preconditioner", "none");
+      tfeti::FetiSolver solver(comm, rect.numSubdomains(),
+                               tfeti_test::localSubdomains(rect, *comm, tfeti_test::poisson()),
+                               params);
+      const GO dual = form == "FETI" ? pc.feti : pc.tfeti;
+      out << "H = 1/" << pc.subs << ", h = 1/" << pc.subs * pc.elems << ", " << form
+          << ": primal " << solver.primalDimension() << ", dual " << solver.dualDimension() << "\n";
+      TEST_EQUALITY(solver.primalDimension(), pc.primal);
+      TEST_EQUALITY(solver.dualDimension(), dual);
+      TEST_EQUALITY(static_cast<GO>(solver.tearing().primalMap->getGlobalNumElements()), pc.primal);
+      TEST_EQUALITY(static_cast<GO>(solver.tearing().multiplierMap->getGlobalNumElements()), dual);
+      TEST_EQUALITY(solver.gluingRows(), pc.feti);
+      TEST_EQUALITY(solver.dirichletRows(), form == "FETI" ? GO(0) : pc.tfeti - pc.feti);
+      // One constant kernel vector per floating subdomain; in FETI the column of subdomains on
+      // x = 0 does not float.
+      const GO N = rect.numSubdomains();
+      TEST_EQUALITY(solver.coarseDimension(), form == "FETI" ? N - pc.subs : N);
+    }
+  }
+}
+
+TEUCHOS_UNIT_TEST(Tearing, PaperTableThroughBuildTearing) {
+  auto comm = Tpetra::getDefaultComm();
+  for (const auto& pc : kPaper) {
+    const tfeti::StructuredRectangle rect = unitSquare(pc.subs, pc.elems);
+    for (Formulation f : {Formulation::FETI, Formulation::TFETI}) {
+      tfeti::TearingOptions opts;
+      opts.formulation = f;
+      const tfeti::Tearing t = tear(rect, comm, myIds(rect, *comm), 1, opts);
+      TEST_EQUALITY(t.dofOffset.back(), pc.primal);
+      TEST_EQUALITY(t.numRows, f == Formulation::FETI ? pc.feti : pc.tfeti);
+      // Elasticity: twice the dofs and twice the rows.
+      const tfeti::Tearing t2 = tear(rect, comm, myIds(rect, *comm), 2, opts);
+      TEST_EQUALITY(t2.dofOffset.back(), 2 * pc.primal);
+      TEST_EQUALITY(t2.numRows, 2 * (f == Formulation::FETI ? pc.feti : pc.tfeti));
+    }
+  }
+}
+
+TEUCHOS_UNIT_TEST(Tearing, StructureNonRedundant) {
+  for (int dpn : {1, 2})
+    for (Formulation f : {Formulation::TFETI, Formulation::FETI})
+      for (const auto& [subs, elems] : {std::pair<int, int>{2, 2}, {4, 2}, {3, 3}}) {
+        out << "dofs/node " << dpn << ", " << (f == Formulation::FETI ? "FETI" : "TFETI") << ", "
+            << subs << "x" << subs << " subdomains of " << elems << "x" << elems << "\n";
+        tfeti::TearingOptions opts;
+        opts.formulation = f;
+        checkStructure(unitSquare(subs, elems), dpn, opts, out, success);
+      }
+}
+
+TEUCHOS_UNIT_TEST(Tearing, StructureRedundant) {
+  // A node shared by m subdomains gets m(m-1)/2 gluing rows: 6 at every cross point.
+  for (int dpn : {1, 2})
+    for (Formulation f : {Formulation::TFETI, Formulation::FETI}) {
+      tfeti::TearingOptions opts;
+      opts.formulation = f;
+      opts.gluing = tfeti::Gluing::Redundant;
+      checkStructure(unitSquare(4, 2), dpn, opts, out, success);
+      // By hand for 4x4 subdomains of 2x2 elements: 36 nodes on 2 subdomains, 9 cross points.
+      auto comm = Tpetra::getDefaultComm();
+      const tfeti::StructuredRectangle rect = unitSquare(4, 2);
+      const tfeti::Tearing t = tear(rect, comm, myIds(rect, *comm), dpn, opts);
+      TEST_EQUALITY(t.numGluingRows, GO(dpn) * (36 * 1 + 9 * 6));
+    }
+  // A non-square subdomain grid on a rectangle.
+  tfeti::TearingOptions opts;
+  opts.gluing = tfeti::Gluing::Redundant;
+  checkStructure(tfeti::StructuredRectangle(0, 2, 0, 1, 3, 2, 2, 3), 2, opts, out, success);
+}
+
+TEUCHOS_UNIT_TEST(Tearing, StructureWithoutGluingAtDirichletNodes) {
+  for (auto gluing : {tfeti::Gluing::NonRedundant, tfeti::Gluing::Redundant}) {
+    tfeti::TearingOptions opts;
+    opts.gluing = gluing;
+    opts.gluingAtDirichletNodes = false;
+    checkStructure(unitSquare(4, 2), 1, opts, out, success);
+    // Paper case (1/4, 1/8) without the 3 gluing rows on x = 0: 75 - 3 rows.
+    auto comm = Tpetra::getDefaultComm();
+    const tfeti::StructuredRectangle rect = unitSquare(4, 2);
+    const tfeti::Tearing t = tear(rect, comm, myIds(rect, *comm), 1, opts);
+    if (gluing == tfeti::Gluing::NonRedundant) TEST_EQUALITY(t.numRows, GO(75 - 3));
+  }
+}

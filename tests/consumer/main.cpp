@@ -1,0 +1,23 @@
+// Solves a small Poisson problem through the installed packages and checks the answer against a
+// direct solve: the installed headers, libraries and CMake configs are complete.
+#include <Tpetra_Core.hpp>
+
+#include <iostream>
+
+#include "contact_StructuredProblem.hpp"
+#include "tfeti_FetiSolver.hpp"
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard scope(&argc, &argv);
+  auto comm = Tpetra::getDefaultComm();
+  contact::StructuredProblem problem;
+  problem.subdomainsX = problem.subdomainsY = 3;
+  problem.elementsX = problem.elementsY = 4;
+  Teuchos::ParameterList params;
+  params.sublist("PCPG").set("Relative tolerance", 1e-9);
+  tfeti::FetiSolver solver(comm, 9, contact::buildLocalSubdomains(problem, *comm), params);
+  const auto result = solver.solve();
+  const double err = contact::relativeErrorAgainstDirectSolve(problem, solver);
+  std::cout << "consumer: " << result.iterations << " iterations, error " << err << "\n";
+  return result.converged && err < 1e-6 ? 0 : 1;
+}
