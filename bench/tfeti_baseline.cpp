@@ -197,7 +197,8 @@ double timed(const Comm& comm, const std::function<void()>& f) {
   comm.barrier();
   const auto start = std::chrono::steady_clock::now();
   f();
-  const double local = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double local =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   double global = 0;
   Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, local, Teuchos::outArg(global));
   return global;
@@ -252,9 +253,7 @@ Result solveMueLuCg(const Problem& p, const System& s, double rtol) {
   r.solver = "muelu_cg";
   const Comm& comm = *s.A->getComm();
   RCP<Operator> M;
-  r.setup = timed(comm, [&] {
-    M = MueLu::CreateTpetraPreconditioner(RCP<Operator>(s.A), params);
-  });
+  r.setup = timed(comm, [&] { M = MueLu::CreateTpetraPreconditioner(RCP<Operator>(s.A), params); });
 
   auto x = rcp(new Vector(s.A->getDomainMap()));
   auto problem = rcp(new Belos::LinearProblem<SC, MV, Operator>(s.A, x, s.b));

@@ -4,6 +4,8 @@
 
 #include <Teuchos_CommHelpers.hpp>
 
+#include <sys/resource.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -86,6 +88,15 @@ void writeSummary(const tfeti::Comm& comm, const std::string& dir, const Json& s
   out << summary.dump();
 }
 
+// Largest resident set size over the ranks, in MiB.
+double peakRssMb(const tfeti::Comm& comm) {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  double mine = usage.ru_maxrss / 1024.0, all = 0.0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &mine, &all);
+  return all;
+}
+
 VtuPiece vtuPiece(const tfeti::FetiSolver& solver) {
   VtuPiece piece;
   VtuField u{"u", 1, {}}, sub{"subdomain", 1, {}};
@@ -150,6 +161,14 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   s["preconditioner_factor_bytes"] =
       static_cast<unsigned long long>(solver.globalPreconditionerFactorBytes());
   s["timings"] = timingsJson(solver.timings(), result.iterations);
+  if (out.get<bool>("Time dual operator")) {
+    // One F apply streams every subdomain factor twice (forward and backward substitution):
+    // its time against the factor bytes gives the achieved bandwidth.
+    const double t = solver.timeDualApply(10);
+    s["timings"]["dual_apply_s"] = t;
+    s["dual_apply_bandwidth_gb_s"] = 2.0 * static_cast<double>(solver.globalFactorBytes()) / t / 1e9;
+  }
+  s["peak_rss_mb"] = peakRssMb(*comm);
   double local[2] = {0.0, 0.0}, global[2] = {0.0, 0.0};  // sum of squares, max |u|
   for (std::size_t i = 0; i < solver.data().size(); ++i)
     for (double v : solver.solution(i)) {
@@ -290,6 +309,8 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
           "solve the undecomposed problem directly on every rank and report the error "
           "(small problems only)");
   out.set("Verbosity", 1, "0 silent, 1 summary lines");
+  out.set("Time dual operator", false,
+          "time 10 extra applications of F and report the bandwidth they achieve (benchmarks)");
   auto& sc = pl->sublist("Scalability", false, "Study = scalability");
   sc.set("Problems", arr<std::string>({"poisson"}), "poisson and/or elasticity");
   sc.set("Subdomains per side", arr<int>({2, 4, 8, 16}), "values of 1/H");

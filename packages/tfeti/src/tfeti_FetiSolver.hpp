@@ -49,6 +49,9 @@ class FetiSolver {
 
   PcpgResult solve();
 
+  // Mean wall time of one application of F over `repeats` applications (slowest rank).
+  double timeDualApply(int repeats) const;
+
   // Primal solution of the i-th local subdomain (after solve()).
   const std::vector<double>& solution(std::size_t i) const { return u_[i]; }
   const SubdomainList& subdomains() const { return subdomains_; }

@@ -189,3 +189,17 @@ TEUCHOS_UNIT_TEST(FetiSolver, NonSquareDecomposition) {
     }
   }
 }
+
+TEUCHOS_UNIT_TEST(FetiSolver, RanksWithoutSubdomains) {
+  // 2 subdomains: on 3 ranks, rank 0 holds none (subdomainsOfRank(0, 2, 3) is empty) and must
+  // still take part in every collective with the right number of dofs per node.
+  const tfeti::StructuredRectangle rect(0, 2, 0, 1, 2, 1, 4, 4);
+  for (const Physics& ph : {tfeti_test::poisson(), tfeti_test::elasticity()}) {
+    const std::vector<double> reference = tfeti_test::referenceSolution(rect, ph);
+    for (const std::string form : {"TFETI", "FETI"}) {
+      Options o;
+      o.formulation = form;
+      check(rect, ph, o, reference, out, success);
+    }
+  }
+}

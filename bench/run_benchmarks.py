@@ -1,0 +1,156 @@
+#!/usr/bin/env python3
+"""TFETI benchmarks on (0,2)x(0,1), 2 MPI ranks, side by side with the assembled primal problem
+solved by Belos CG + MueLu and by Amesos2 KLU2 (tfeti_baseline) in the same run.
+
+  python3 bench/run_benchmarks.py [--build build] [--ranks 2] [--sets sweep,reference,solvers]
+                                  [--max-dofs 4.3e6] [--out bench-out]
+
+sweep:      2D elasticity, 64k, 256k, 1M and 4M unknowns, subdomains of 32x32 elements
+reference:  Poisson 1000x500 cells and elasticity 600x300 cells, with 2 subdomains (one per
+            rank) and with the fastest subdomain count found
+solvers:    the local solver choice (cholmod, klu2) on the Poisson reference case
+
+Prints markdown tables (for docs/benchmarks.md) and writes every summary.json under --out.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+TEMPLATE = """<ParameterList name="tfeti_contact">
+  <Parameter name="Problem" type="string" value="{problem}"/>
+  <ParameterList name="Mesh">
+    <Parameter name="Domain" type="Array(double)" value="{{0, 2, 0, 1}}"/>
+    <Parameter name="Subdomains" type="Array(int)" value="{{{sx}, {sy}}}"/>
+    <Parameter name="Elements per subdomain" type="Array(int)" value="{{{ex}, {ey}}}"/>
+  </ParameterList>
+  <ParameterList name="FETI">
+    <Parameter name="Preconditioner" type="string" value="{prec}"/>
+    <Parameter name="Local solver" type="string" value="{solver}"/>
+    <ParameterList name="PCPG">
+      <Parameter name="Relative tolerance" type="double" value="1e-6"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Output">
+    <Parameter name="VTU" type="bool" value="false"/>
+    <Parameter name="Time dual operator" type="bool" value="true"/>
+    <Parameter name="Verbosity" type="int" value="0"/>
+  </ParameterList>
+</ParameterList>
+"""
+
+
+def mpirun(args, ranks):
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    cmd = ["mpirun", "--oversubscribe", "--bind-to", "core", "-np", str(ranks)] + args
+    res = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    if res.returncode != 0:
+        print("FAILED:", " ".join(cmd), res.stdout, res.stderr, file=sys.stderr)
+    return res
+
+
+def feti(o, problem, nx, ny, sx, sy, prec="dirichlet", solver="cholmod"):
+    name = f"{problem}_{nx}x{ny}_{sx}x{sy}_{prec}_{solver}"
+    d = os.path.join(o.out, name)
+    os.makedirs(d, exist_ok=True)
+    xml = os.path.join(d, "input.xml")
+    with open(xml, "w") as f:
+        f.write(TEMPLATE.format(problem=problem, sx=sx, sy=sy, ex=nx // sx, ey=ny // sy,
+                                prec=prec, solver=solver))
+    res = mpirun([o.build + "/bin/tfeti_contact", "--input=" + xml, "--output=" + d], o.ranks)
+    if res.returncode != 0:
+        return None
+    with open(d + "/summary.json") as f:
+        return json.load(f)
+
+
+def baseline(o, problem, nx, ny, solver):
+    res = mpirun([o.build + "/bin/tfeti_baseline", "--problem=" + problem, f"--nx={nx}",
+                  f"--ny={ny}", "--solver=" + solver], o.ranks)
+    for line in res.stdout.splitlines():
+        if line.startswith("{"):
+            return json.loads(line)
+    return None
+
+
+def row(label, s):
+    t = s["timings"]
+    return (f"| {label} | {s['primal_dim']:,} | {s['subdomains']} | {t['setup_s']:.2f} | "
+            f"{t['solve_s']:.2f} | {s['iterations']} | {1e3 * t['per_iteration_s']:.1f} | "
+            f"{1e3 * t['dual_apply_s']:.1f} | {s['factor_bytes'] / 2**20:.0f} | "
+            f"{s['dual_apply_bandwidth_gb_s']:.1f} | {s['peak_rss_mb']:.0f} |")
+
+
+HEADER = ("| case | unknowns | subdomains | setup s | solve s | iterations | ms/iteration | "
+          "ms/F-apply | factors MiB | F-apply GB/s | peak MiB/rank |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|")
+
+
+def base_row(label, b):
+    if b is None:
+        return f"| {label} | failed | | | | | |"
+    return (f"| {label} | {b['solver']} | {b['setup_s']:.2f} | {b['solve_s']:.2f} | "
+            f"{b.get('iterations', '')} | {b['relative_residual']:.1e} | {b['peak_rss_mb']:.0f} |")
+
+
+BASE_HEADER = ("| case | baseline | setup s | solve s | iterations | rel. residual | peak MiB/rank |\n"
+               "|---|---|---|---|---|---|---|")
+
+
+def sweep(o):
+    print("\n## Elasticity size sweep (H/h = 32, Dirichlet preconditioner, CHOLMOD)\n")
+    print(HEADER)
+    base = []
+    for nx, ny in [(256, 128), (512, 256), (1024, 512), (2048, 1024)]:
+        if 2 * (nx + 1) * (ny + 1) > o.max_dofs:
+            continue
+        s = feti(o, "elasticity", nx, ny, nx // 32, ny // 32)
+        if s:
+            print(row(f"elasticity {nx}x{ny}", s), flush=True)
+        for solver in ["muelu"] + (["klu2"] if nx <= 1024 else []):
+            base.append((f"elasticity {nx}x{ny}", baseline(o, "elasticity", nx, ny, solver), s))
+    print("\n" + BASE_HEADER)
+    for label, b, s in base:
+        ratio = ""
+        if b and s:
+            ratio = f" (TFETI/baseline total time {(s['timings']['setup_s'] + s['timings']['solve_s']) / (b['setup_s'] + b['solve_s']):.1f}x)"
+        print(base_row(label, b) + ratio)
+
+
+def reference(o):
+    print("\n## Reference cases (2 ranks)\n")
+    print(HEADER)
+    for problem, nx, ny in [("poisson", 1000, 500), ("elasticity", 600, 300)]:
+        runs = []
+        for sx, sy in [(2, 1), (10, 5), (20, 10), (40, 20), (50, 25)]:
+            s = feti(o, problem, nx, ny, sx, sy)
+            if s:
+                runs.append(s)
+                print(row(f"{problem} {nx}x{ny}, {sx}x{sy} subdomains", s), flush=True)
+        if runs:
+            best = min(runs, key=lambda s: s["timings"]["setup_s"] + s["timings"]["solve_s"])
+            print(f"| fastest: {best['subdomains']} subdomains | | | | | | | | | | |")
+        for solver in ("muelu", "klu2"):
+            print("  baseline:", json.dumps(baseline(o, problem, nx, ny, solver)))
+
+
+def solvers(o):
+    print("\n## Local solver choice (Poisson 1000x500, 20x10 subdomains of 50x50 elements)\n")
+    print(HEADER)
+    for solver in ("cholmod", "klu2"):
+        s = feti(o, "poisson", 1000, 500, 20, 10, solver=solver)
+        if s:
+            print(row(f"local solver {solver}", s), flush=True)
+
+
+if __name__ == "__main__":
+    p = argparse.ArgumentParser()
+    p.add_argument("--build", default="build")
+    p.add_argument("--ranks", type=int, default=2)
+    p.add_argument("--sets", default="solvers,reference,sweep")
+    p.add_argument("--max-dofs", type=float, default=4.3e6)
+    p.add_argument("--out", default="bench-out")
+    o = p.parse_args()
+    for name in o.sets.split(","):
+        {"sweep": sweep, "reference": reference, "solvers": solvers}[name](o)
