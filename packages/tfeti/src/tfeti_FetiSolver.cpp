@@ -75,7 +75,9 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   const PreconditionerType precType =
       parsePreconditioner(params_.get<std::string>("Preconditioner"));
   const std::string solver = params_.get<std::string>("Local solver");
-  const int dpn = data_.empty() ? 1 : data_.front().dofsPerNode;
+  // A rank may hold no subdomain; every rank must still agree on the dofs per node.
+  int localDpn = data_.empty() ? 0 : data_.front().dofsPerNode, dpn = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &localDpn, &dpn);
 
   {
     PhaseTimer t(*comm_, timings_.factorization);

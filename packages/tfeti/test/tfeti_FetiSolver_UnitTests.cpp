@@ -37,7 +37,14 @@ struct Outcome {
   double solutionError = 0.0;  // max over copies |u - u_ref| / max |u_ref|
   double constraint = 0.0;     // ||B u|| / ||u||
   double dirichlet = 0.0;      // max |u| on Dirichlet copies / max |u_ref|
+  // Dimensions as every rank reports them: min and max over ranks must agree.
+  long long dualMin = 0, dualMax = 0, coarseMin = 0, coarseMax = 0, primalMin = 0, primalMax = 0;
 };
+
+void minMax(const tfeti::Comm& comm, long long v, long long& lo, long long& hi) {
+  hi = static_cast<long long>(tfeti_test::globalMax(comm, static_cast<double>(v)));
+  lo = -static_cast<long long>(tfeti_test::globalMax(comm, -static_cast<double>(v)));
+}
 
 const double kTolerance = 1e-10;
 
@@ -58,6 +65,9 @@ Outcome solveAndCompare(const tfeti::StructuredRectangle& rect, const Physics& p
   tfeti::FetiSolver solver(comm, rect.numSubdomains(),
                            tfeti_test::localSubdomains(rect, *comm, ph), params);
   Outcome out;
+  minMax(*comm, solver.dualDimension(), out.dualMin, out.dualMax);
+  minMax(*comm, solver.primalDimension(), out.primalMin, out.primalMax);
+  minMax(*comm, solver.coarseDimension(), out.coarseMin, out.coarseMax);
   out.result = solver.solve();
 
   const int dpn = ph.dofsPerNode();
@@ -87,12 +97,15 @@ Outcome solveAndCompare(const tfeti::StructuredRectangle& rect, const Physics& p
   return out;
 }
 
-void check(const tfeti::StructuredRectangle& rect, const Physics& ph, const Options& o,
-           const std::vector<double>& reference, Teuchos::FancyOStream& out, bool& success) {
+Outcome check(const tfeti::StructuredRectangle& rect, const Physics& ph, const Options& o,
+              const std::vector<double>& reference, Teuchos::FancyOStream& out, bool& success) {
   const Outcome r = solveAndCompare(rect, ph, o, reference);
   out << describe(ph, o) << ": " << (r.result.converged ? "converged" : "NOT converged")
       << " in " << r.result.iterations << " iterations, error " << r.solutionError << ", ||Bu||/||u|| "
       << r.constraint << "\n";
+  TEST_EQUALITY(r.dualMin, r.dualMax);
+  TEST_EQUALITY(r.primalMin, r.primalMax);
+  TEST_EQUALITY(r.coarseMin, r.coarseMax);
   TEST_ASSERT(r.result.converged);
   TEST_COMPARE(r.result.relativeResidual, <=, kTolerance);
   TEST_COMPARE(r.result.iterations, >, 0);
@@ -101,6 +114,7 @@ void check(const tfeti::StructuredRectangle& rect, const Physics& ph, const Opti
   TEST_COMPARE(r.solutionError, <, 1e-6);
   TEST_COMPARE(r.constraint, <, 1e-6);
   TEST_COMPARE(r.dirichlet, <, 1e-6);
+  return r;
 }
 
 tfeti::StructuredRectangle square() { return tfeti::StructuredRectangle(0, 1, 0, 1, 4, 4, 4, 4); }
@@ -108,23 +122,21 @@ tfeti::StructuredRectangle square() { return tfeti::StructuredRectangle(0, 1, 0,
 void runMatrix(const Physics& ph, Teuchos::FancyOStream& out, bool& success) {
   const tfeti::StructuredRectangle rect = square();
   const std::vector<double> reference = tfeti_test::referenceSolution(rect, ph);
-  // The reference itself: nonzero and zero on x = 0.
-  TEST_COMPARE(tfeti_test::maxAbs(reference), >, 1e-3);
+  TEST_COMPARE(tfeti_test::maxAbs(reference), >, 1e-3);  // a nontrivial solution to compare with
+  const int N = rect.numSubdomains(), k = ph.dofsPerNode() == 1 ? 1 : 3;
   for (const std::string form : {"TFETI", "FETI"}) {
     std::map<std::string, int> iterations;
     for (const std::string prec : {"none", "lumped", "dirichlet"}) {
       Options o;
       o.formulation = form;
       o.preconditioner = prec;
-      const Outcome r = solveAndCompare(rect, ph, o, reference);
-      out << describe(ph, o) << ": " << r.result.iterations << " iterations, error "
-          << r.solutionError << ", ||Bu||/||u|| " << r.constraint << "\n";
-      TEST_ASSERT(r.result.converged);
-      TEST_COMPARE(r.result.relativeResidual, <=, kTolerance);
-      TEST_COMPARE(r.result.iterations, >, 0);
-      TEST_COMPARE(r.solutionError, <, 1e-6);
-      TEST_COMPARE(r.constraint, <, 1e-6);
-      TEST_COMPARE(r.dirichlet, <, 1e-6);
+      const Outcome r = check(rect, ph, o, reference, out, success);
+      // Paper counts scaled by the dofs per node: (1/4, 1/16) has 400 primal dofs per component
+      // and 111 (FETI) or 131 (TFETI) multipliers; the coarse space has k modes per floating
+      // subdomain (in FETI the 4 subdomains on x = 0 do not float).
+      TEST_EQUALITY(r.primalMax, 400LL * ph.dofsPerNode());
+      TEST_EQUALITY(r.dualMax, (form == "TFETI" ? 131LL : 111LL) * ph.dofsPerNode());
+      TEST_EQUALITY(r.coarseMax, static_cast<long long>(k * (form == "TFETI" ? N : N - 4)));
       iterations[prec] = r.result.iterations;
     }
     // The Dirichlet preconditioner must pay off against no preconditioning.
@@ -193,13 +205,62 @@ TEUCHOS_UNIT_TEST(FetiSolver, NonSquareDecomposition) {
 TEUCHOS_UNIT_TEST(FetiSolver, RanksWithoutSubdomains) {
   // 2 subdomains: on 3 ranks, rank 0 holds none (subdomainsOfRank(0, 2, 3) is empty) and must
   // still take part in every collective with the right number of dofs per node.
+  // Dual dimension: 5 interface nodes, plus 5 Dirichlet nodes in TFETI, per component.
   const tfeti::StructuredRectangle rect(0, 2, 0, 1, 2, 1, 4, 4);
   for (const Physics& ph : {tfeti_test::poisson(), tfeti_test::elasticity()}) {
     const std::vector<double> reference = tfeti_test::referenceSolution(rect, ph);
+    const int dpn = ph.dofsPerNode();
     for (const std::string form : {"TFETI", "FETI"}) {
       Options o;
       o.formulation = form;
-      check(rect, ph, o, reference, out, success);
+      const Outcome r = check(rect, ph, o, reference, out, success);
+      TEST_EQUALITY(r.dualMax, dpn * (form == "TFETI" ? 10LL : 5LL));
+      TEST_EQUALITY(r.primalMax, dpn * 50LL);
+      TEST_EQUALITY(r.coarseMax, (dpn == 1 ? 1LL : 3LL) * (form == "TFETI" ? 2 : 1));
     }
   }
+}
+
+TEUCHOS_UNIT_TEST(FetiSolver, IterationLimitIsReportedAsFailure) {
+  const tfeti::StructuredRectangle rect = square();
+  const Physics ph = tfeti_test::poisson();
+  auto comm = Tpetra::getDefaultComm();
+  Teuchos::ParameterList params;
+  params.set("Preconditioner", "none");
+  params.sublist("PCPG").set("Relative tolerance", 1e-12);
+  params.sublist("PCPG").set("Maximum iterations", 3);
+  tfeti::FetiSolver solver(comm, rect.numSubdomains(), tfeti_test::localSubdomains(rect, *comm, ph),
+                           params);
+  const tfeti::PcpgResult r = solver.solve();
+  TEST_ASSERT(!r.converged);
+  TEST_EQUALITY(r.iterations, 3);
+  TEST_COMPARE(r.relativeResidual, >, 1e-12);
+  TEST_EQUALITY(static_cast<int>(r.history.size()), 4);
+  TEST_FLOATING_EQUALITY(r.history.back(), r.relativeResidual, 1e-14);
+  TEST_EQUALITY(solver.dualOperatorApplies() >= 3, true);
+}
+
+TEUCHOS_UNIT_TEST(FetiSolver, InvalidParametersThrow) {
+  const tfeti::StructuredRectangle rect(0, 1, 0, 1, 2, 2, 2, 2);
+  auto comm = Tpetra::getDefaultComm();
+  const auto make = [&](const Teuchos::ParameterList& params) {
+    tfeti::FetiSolver solver(comm, rect.numSubdomains(),
+                             tfeti_test::localSubdomains(rect, *comm, tfeti_test::poisson()),
+                             params);
+  };
+  for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
+           {"Formulation", "TFETI2"},
+           {"Preconditioner", "jacobi"},
+           {"Local solver", "mumps"},
+           {"Gluing", "both"}}) {
+    Teuchos::ParameterList params;
+    params.set(name, value);
+    TEST_THROW(make(params), Teuchos::Exceptions::InvalidParameter);
+  }
+  Teuchos::ParameterList typo;
+  typo.set("Preconditoner", "lumped");
+  TEST_THROW(make(typo), Teuchos::Exceptions::InvalidParameter);
+  Teuchos::ParameterList pcpgTypo;
+  pcpgTypo.sublist("PCPG").set("Tolerance", 1e-8);
+  TEST_THROW(make(pcpgTypo), Teuchos::Exceptions::InvalidParameter);
 }

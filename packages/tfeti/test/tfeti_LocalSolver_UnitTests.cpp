@@ -162,6 +162,31 @@ TEUCHOS_UNIT_TEST(LocalSolver, UnknownTypeThrowsListingValidNames) {
 // benchmarks measure), and a matrix that is not positive definite is refused (a wrongly
 // regularized subdomain must not be solved silently). Registered as their own ctest.
 
+// One solver object reused for matrices of different sizes (smaller, then larger), with the
+// same number of right-hand sides each time: factorize() may be called again (the interface
+// does not restrict it to one size).
+void checkRefactorizeWithAnotherSize(const std::string& type, Teuchos::FancyOStream& out,
+                                     bool& success) {
+  auto s = tfeti::createLocalSolver(type);
+  for (int g : {12, 7, 16}) {
+    const tfeti::CsrMatrix A = laplacian2d(g, 0.5);
+    s->factorize(A);
+    const Accuracy acc = solveAndMeasure(*s, A, 2, static_cast<unsigned>(g));
+    out << type << ", n = " << A.rows << ": residual " << acc.residual << "\n";
+    TEST_COMPARE(acc.residual, <, 1e-12);
+  }
+}
+
+TEUCHOS_UNIT_TEST(LocalSolverContract, CholmodRefactorizeWithAnotherSize) {
+  checkRefactorizeWithAnotherSize("cholmod", out, success);
+}
+TEUCHOS_UNIT_TEST(LocalSolverContract, Klu2RefactorizeWithAnotherSize) {
+  checkRefactorizeWithAnotherSize("klu2", out, success);
+}
+TEUCHOS_UNIT_TEST(LocalSolverContract, TachoRefactorizeWithAnotherSize) {
+  checkRefactorizeWithAnotherSize("tacho", out, success);
+}
+
 TEUCHOS_UNIT_TEST(LocalSolverContract, FactorBytesAtLeastTheLowerTriangle) {
   // Any factor of A holds at least the values of its lower triangle (for the 2D Laplacian with
   // nested dissection, several times more).

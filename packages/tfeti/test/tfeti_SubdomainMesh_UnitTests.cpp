@@ -1,0 +1,128 @@
+// Unit tests of the mesh side of tfeti: dealing subdomains to ranks (subdomainsOfRank and its
+// inverse ownerOfSubdomain), StructuredRectangle subdomains and whole mesh, and
+// SubdomainMesh::boundaryNodes.
+#include <Teuchos_UnitTestHarness.hpp>
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tfeti_StructuredMesh.hpp"
+#include "tfeti_SubdomainMesh.hpp"
+
+TEUCHOS_UNIT_TEST(SubdomainMesh, DealingIsContiguousBalancedAndInvertible) {
+  int bad = 0;
+  for (int N = 1; N <= 40; ++N)
+    for (int P = 1; P <= 12; ++P) {
+      int next = 0, minCount = N, maxCount = 0;
+      for (int r = 0; r < P; ++r) {
+        const std::vector<int> ids = tfeti::subdomainsOfRank(r, N, P);
+        minCount = std::min(minCount, static_cast<int>(ids.size()));
+        maxCount = std::max(maxCount, static_cast<int>(ids.size()));
+        for (int s : ids) {
+          if (s != next++) ++bad;                                 // contiguous, increasing
+          if (tfeti::ownerOfSubdomain(s, N, P) != r) ++bad;       // inverse
+        }
+      }
+      if (next != N || maxCount - minCount > 1) ++bad;            // partition, balanced
+    }
+  TEST_EQUALITY(bad, 0);
+  // 16 subdomains on 3 ranks: 5, 5, 6.
+  TEST_EQUALITY(tfeti::subdomainsOfRank(0, 16, 3).size(), std::size_t(5));
+  TEST_EQUALITY(tfeti::subdomainsOfRank(2, 16, 3).front(), 10);
+}
+
+TEUCHOS_UNIT_TEST(StructuredRectangle, SubdomainsTileTheWholeMesh) {
+  // (0,2) x (0,1), 3 x 2 subdomains of 4 x 3 elements.
+  const tfeti::StructuredRectangle rect(0, 2, 0, 1, 3, 2, 4, 3);
+  TEST_EQUALITY(rect.numSubdomains(), 6);
+  TEST_EQUALITY(rect.elementsX(), 12);
+  TEST_EQUALITY(rect.elementsY(), 6);
+  TEST_EQUALITY(rect.numGlobalNodes(), tfeti::GO(13 * 7));
+  const tfeti::SubdomainMesh whole = rect.wholeMesh();
+  TEST_EQUALITY(whole.id, -1);
+  TEST_EQUALITY(static_cast<tfeti::GO>(whole.numNodes()), rect.numGlobalNodes());
+  TEST_EQUALITY(whole.numElements(), 72);
+  TEST_EQUALITY(static_cast<int>(whole.dirichletNodes.size()), 7);  // the side x = 0
+  for (int n = 0; n < whole.numNodes(); ++n) TEST_EQUALITY(whole.globalNode[n], tfeti::GO(n));
+
+  std::map<tfeti::GO, int> copies;
+  int elements = 0, badCoord = 0, badDirichlet = 0, negativeArea = 0;
+  for (int s = 0; s < rect.numSubdomains(); ++s) {
+    const tfeti::SubdomainMesh m = rect.subdomain(s);
+    TEST_EQUALITY(m.id, s);
+    TEST_EQUALITY(m.numNodes(), 5 * 4);
+    elements += m.numElements();
+    for (int n = 0; n < m.numNodes(); ++n) {
+      const tfeti::GO g = m.globalNode[n];
+      copies[g]++;
+      // Every copy sits exactly where the untorn node is.
+      if (m.coords[2 * n] != whole.coords[2 * g] || m.coords[2 * n + 1] != whole.coords[2 * g + 1])
+        ++badCoord;
+    }
+    std::vector<char> dir(m.numNodes(), 0);
+    for (int n : m.dirichletNodes) dir[n] = 1;
+    for (int n = 0; n < m.numNodes(); ++n)
+      if ((m.coords[2 * n] == 0.0) != (dir[n] == 1)) ++badDirichlet;
+    for (int e = 0; e < m.numElements(); ++e) {  // counter-clockwise: positive signed area
+      double a = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        const int p = m.quads[4 * e + k], q = m.quads[4 * e + (k + 1) % 4];
+        a += m.coords[2 * p] * m.coords[2 * q + 1] - m.coords[2 * q] * m.coords[2 * p + 1];
+      }
+      if (!(a > 0.0)) ++negativeArea;
+    }
+    // Boundary of a 4 x 3 block: all nodes but the 3 x 2 interior ones.
+    TEST_EQUALITY(static_cast<int>(m.boundaryNodes().size()), 20 - 6);
+  }
+  TEST_EQUALITY(elements, 72);
+  TEST_EQUALITY(badCoord, 0);
+  TEST_EQUALITY(badDirichlet, 0);
+  TEST_EQUALITY(negativeArea, 0);
+  TEST_EQUALITY(static_cast<tfeti::GO>(copies.size()), rect.numGlobalNodes());
+  // Multiplicities: 2 interior cross points with 4 copies; the rest of the interface has 2.
+  std::map<int, int> histogram;
+  for (const auto& [g, m] : copies) histogram[m]++;
+  TEST_EQUALITY(histogram[4], 2);
+  TEST_EQUALITY(histogram[2], 7 + 7 + 13 - 2 * 2);  // 2 vertical lines, 1 horizontal, less crossings
+}
+
+TEUCHOS_UNIT_TEST(StructuredRectangle, InvalidArgumentsThrow) {
+  TEST_THROW(tfeti::StructuredRectangle(0, 1, 0, 1, 0, 2, 2, 2), std::invalid_argument);
+  TEST_THROW(tfeti::StructuredRectangle(0, 1, 0, 1, 2, 2, 2, -1), std::invalid_argument);
+  TEST_THROW(tfeti::StructuredRectangle(1, 1, 0, 1, 2, 2, 2, 2), std::invalid_argument);
+  const tfeti::StructuredRectangle rect(0, 1, 0, 1, 2, 2, 2, 2);
+  TEST_THROW(rect.subdomain(4), std::out_of_range);
+  TEST_THROW(rect.subdomain(-1), std::out_of_range);
+}
+
+TEUCHOS_UNIT_TEST(SubdomainMesh, BoundaryNodesOfAnLShape) {
+  // 3 elements in an L: nodes of the 2x2 block minus the top-right element.
+  //   6 7
+  //   3 4 5
+  //   0 1 2
+  tfeti::SubdomainMesh m;
+  m.coords = {0, 0, 1, 0, 2, 0, 0, 1, 1, 1, 2, 1, 0, 2, 1, 2};
+  m.globalNode = {0, 1, 2, 3, 4, 5, 6, 7};
+  m.quads = {0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 7, 6};
+  const std::vector<int> b = m.boundaryNodes();
+  // Every node is on the boundary, the re-entrant corner 4 included.
+  TEST_EQUALITY(static_cast<int>(b.size()), 8);
+  // A 3x3 block has 4 interior nodes.
+  tfeti::SubdomainMesh q;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      q.coords.insert(q.coords.end(), {double(i), double(j)});
+      q.globalNode.push_back(4 * j + i);
+    }
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const int n = 4 * j + i;
+      q.quads.insert(q.quads.end(), {n, n + 1, n + 5, n + 4});
+    }
+  const std::vector<int> qb = q.boundaryNodes();
+  TEST_EQUALITY(static_cast<int>(qb.size()), 12);
+  for (int n : {5, 6, 9, 10}) TEST_ASSERT(std::find(qb.begin(), qb.end(), n) == qb.end());
+}
