@@ -33,7 +33,10 @@ int main(int argc, char** argv) {
   if (parse == Teuchos::CommandLineProcessor::PARSE_HELP_PRINTED) return 0;
   if (parse != Teuchos::CommandLineProcessor::PARSE_SUCCESSFUL) return 1;
   if (printParameters) {
-    if (root) contact::validDriverParameters()->print(std::cout, Teuchos::ParameterList::PrintOptions().showDoc(true).indent(2).showTypes(true));
+    if (root)
+      contact::validDriverParameters()->print(
+          std::cout,
+          Teuchos::ParameterList::PrintOptions().showDoc(true).indent(2).showTypes(true));
     return 0;
   }
   if (input.empty()) {

@@ -129,8 +129,8 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   const auto& out = params.sublist("Output");
   const int verbosity = out.get<int>("Verbosity");
 
-  tfeti::FetiSolver solver(comm, sp.subdomainsX * sp.subdomainsY,
-                           buildLocalSubdomains(sp, *comm), params.sublist("FETI"));
+  tfeti::FetiSolver solver(comm, sp.subdomainsX * sp.subdomainsY, buildLocalSubdomains(sp, *comm),
+                           params.sublist("FETI"));
   const tfeti::PcpgResult result = solver.solve();
 
   Json s = Json::object();
@@ -138,7 +138,8 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   s["problem"] = field;
   s["ranks"] = comm->getSize();
   s["subdomains"] = sp.subdomainsX * sp.subdomainsY;
-  s["elements"] = static_cast<long long>(sp.subdomainsX) * sp.elementsX * sp.subdomainsY * sp.elementsY;
+  s["elements"] =
+      static_cast<long long>(sp.subdomainsX) * sp.elementsX * sp.subdomainsY * sp.elementsY;
   const auto& feti = params.sublist("FETI");
   s["formulation"] = feti.get<std::string>("Formulation");
   s["preconditioner"] = feti.get<std::string>("Preconditioner");
@@ -166,7 +167,8 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
     // its time against the factor bytes gives the achieved bandwidth.
     const double t = solver.timeDualApply(10);
     s["timings"]["dual_apply_s"] = t;
-    s["dual_apply_bandwidth_gb_s"] = 2.0 * static_cast<double>(solver.globalFactorBytes()) / t / 1e9;
+    s["dual_apply_bandwidth_gb_s"] =
+        2.0 * static_cast<double>(solver.globalFactorBytes()) / t / 1e9;
   }
   s["peak_rss_mb"] = peakRssMb(*comm);
   double local[2] = {0.0, 0.0}, global[2] = {0.0, 0.0};  // sum of squares, max |u|
@@ -182,23 +184,26 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   if (out.get<bool>("Compare with direct solve")) {
     const double err = relativeErrorAgainstDirectSolve(sp, solver);
     s["error_vs_direct"] = err;
-    if (root && verbosity > 0) std::cout << "max relative error against direct solve: " << err << "\n";
+    if (root && verbosity > 0)
+      std::cout << "max relative error against direct solve: " << err << "\n";
   }
   if (out.get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", vtuPiece(solver));
   writeSummary(*comm, dir, s);
   if (root && verbosity > 0)
     std::cout << field << ": " << sp.subdomainsX * sp.subdomainsY << " subdomains, primal "
               << solver.primalDimension() << ", dual " << solver.dualDimension() << ", "
-              << result.iterations << " iterations (" << (result.converged ? "converged" : "NOT CONVERGED")
-              << "), setup " << solver.timings().setup() << " s, solve " << solver.timings().solve
-              << " s\n";
+              << result.iterations << " iterations ("
+              << (result.converged ? "converged" : "NOT CONVERGED") << "), setup "
+              << solver.timings().setup() << " s, solve " << solver.timings().solve << " s\n";
   if (!result.converged && root)
     std::cerr << "tfeti_contact: PCPG did not converge (relative residual "
               << result.relativeResidual << "); results written to " << dir << "\n";
   return result.converged ? 0 : 2;
 }
 
-std::string fraction(int denominator) { return "1/" + std::to_string(denominator); }
+std::string fraction(int denominator) {
+  return "1/" + std::to_string(denominator);
+}
 
 int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
                    const std::string& dir) {

@@ -27,10 +27,18 @@ void writeString(std::string& out, const std::string& s) {
   out += '"';
   for (char c : s) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char buf[8];
@@ -50,9 +58,15 @@ void Json::write(std::string& out, int indent, int depth) const {
   const std::string padEnd(static_cast<std::size_t>(indent) * depth, ' ');
   const char* nl = indent > 0 ? "\n" : "";
   switch (kind_) {
-    case Kind::Null: out += "null"; break;
-    case Kind::Bool: out += bool_ ? "true" : "false"; break;
-    case Kind::Integer: out += std::to_string(integer_); break;
+    case Kind::Null:
+      out += "null";
+      break;
+    case Kind::Bool:
+      out += bool_ ? "true" : "false";
+      break;
+    case Kind::Integer:
+      out += std::to_string(integer_);
+      break;
     case Kind::Number: {
       if (!std::isfinite(number_)) {
         out += "null";
@@ -63,7 +77,9 @@ void Json::write(std::string& out, int indent, int depth) const {
       out += buf;
       break;
     }
-    case Kind::String: writeString(out, string_); break;
+    case Kind::String:
+      writeString(out, string_);
+      break;
     case Kind::Array:
     case Kind::Object: {
       const bool obj = kind_ == Kind::Object;

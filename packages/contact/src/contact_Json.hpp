@@ -25,8 +25,16 @@ class Json {
   Json(const char* s) : kind_(Kind::String), string_(s) {}
   Json(std::string s) : kind_(Kind::String), string_(std::move(s)) {}
 
-  static Json object() { Json j; j.kind_ = Kind::Object; return j; }
-  static Json array() { Json j; j.kind_ = Kind::Array; return j; }
+  static Json object() {
+    Json j;
+    j.kind_ = Kind::Object;
+    return j;
+  }
+  static Json array() {
+    Json j;
+    j.kind_ = Kind::Array;
+    return j;
+  }
 
   // Object member (created on first use, insertion order kept).
   Json& operator[](const std::string& key);

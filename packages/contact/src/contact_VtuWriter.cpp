@@ -10,7 +10,8 @@ void writeArray(std::ofstream& out, const VtuField& f) {
   out << "        <DataArray type=\"Float64\" Name=\"" << f.name << "\" NumberOfComponents=\""
       << f.components << "\" format=\"ascii\">\n";
   out.precision(10);
-  for (std::size_t i = 0; i < f.values.size(); ++i) out << f.values[i] << ((i + 1) % 12 ? ' ' : '\n');
+  for (std::size_t i = 0; i < f.values.size(); ++i)
+    out << f.values[i] << ((i + 1) % 12 ? ' ' : '\n');
   out << "\n        </DataArray>\n";
 }
 
@@ -40,10 +41,13 @@ std::string writeVtu(const tfeti::Comm& comm, const std::string& directory,
     writeArray(out, xyz);
     out << "      </Points>\n      <Cells>\n"
         << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-    for (std::size_t k = 0; k < piece.quads.size(); ++k) out << piece.quads[k] << ((k + 1) % 16 ? ' ' : '\n');
-    out << "\n        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for (std::size_t k = 0; k < piece.quads.size(); ++k)
+      out << piece.quads[k] << ((k + 1) % 16 ? ' ' : '\n');
+    out << "\n        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
+           "format=\"ascii\">\n";
     for (std::size_t c = 0; c < nc; ++c) out << 4 * (c + 1) << ((c + 1) % 16 ? ' ' : '\n');
-    out << "\n        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    out << "\n        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" "
+           "format=\"ascii\">\n";
     for (std::size_t c = 0; c < nc; ++c) out << "9" << ((c + 1) % 32 ? ' ' : '\n');  // VTK_QUAD
     out << "\n        </DataArray>\n      </Cells>\n      <PointData>\n";
     for (const auto& f : piece.pointData) writeArray(out, f);

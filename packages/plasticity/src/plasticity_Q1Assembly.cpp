@@ -13,8 +13,8 @@ using ExecSpace = Kokkos::DefaultHostExecutionSpace;
 constexpr double kGauss = 0.57735026918962576451;  // 1/sqrt(3)
 
 // Shape function derivatives at (xi, eta) mapped to x, y; returns the Jacobian determinant.
-KOKKOS_INLINE_FUNCTION double q1Gradients(const double xe[8], double xi, double eta, double dN[4][2],
-                                          double N[4]) {
+KOKKOS_INLINE_FUNCTION double q1Gradients(const double xe[8], double xi, double eta,
+                                          double dN[4][2], double N[4]) {
   const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
   double dXi[4][2];
   for (int a = 0; a < 4; ++a) {
@@ -96,8 +96,16 @@ tfeti::CsrMatrix assembleStiffness(const QuadMesh& mesh, Field field, const Elas
                 DB[i][j] = D[3 * i] * Bm[0][j] + D[3 * i + 1] * Bm[1][j] + D[3 * i + 2] * Bm[2][j];
             for (int i = 0; i < 8; ++i)
               for (int j = 0; j < 8; ++j)
-                Ke(e, i, j) += (Bm[0][i] * DB[0][j] + Bm[1][i] * DB[1][j] + Bm[2][i] * DB[2][j]) * det;
+                Ke(e, i, j) +=
+                    (Bm[0][i] * DB[0][j] + Bm[1][i] * DB[1][j] + Bm[2][i] * DB[2][j]) * det;
           }
+        }
+        // Corners too: a non-convex quadrilateral can have positive Gauss-point Jacobians.
+        for (int c = 0; c < 4; ++c) {
+          double dN[4][2], N[4];
+          const double det =
+              q1Gradients(x, c == 1 || c == 2 ? 1.0 : -1.0, c >= 2 ? 1.0 : -1.0, dN, N);
+          detMin = det < detMin ? det : detMin;
         }
         minDet(e) = detMin;
       });
@@ -128,18 +136,17 @@ tfeti::CsrMatrix assembleStiffness(const QuadMesh& mesh, Field field, const Elas
   Kokkos::View<double*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> vals(
       K.values.data(), K.values.size());
   const tfeti::CsrMatrix& Kc = K;
-  Kokkos::parallel_for(
-      "plasticity::q1_scatter", Kokkos::RangePolicy<ExecSpace>(0, ne), [&](int e) {
-        for (int a = 0; a < 4; ++a)
-          for (int c = 0; c < dpn; ++c) {
-            const int row = mesh.quads[4 * e + a] * dpn + c;
-            for (int b = 0; b < 4; ++b)
-              for (int d = 0; d < dpn; ++d) {
-                const long k = Kc.find(row, mesh.quads[4 * e + b] * dpn + d);
-                Kokkos::atomic_add(&vals(k), Ke(e, a * dpn + c, b * dpn + d));
-              }
+  Kokkos::parallel_for("plasticity::q1_scatter", Kokkos::RangePolicy<ExecSpace>(0, ne), [&](int e) {
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < dpn; ++c) {
+        const int row = mesh.quads[4 * e + a] * dpn + c;
+        for (int b = 0; b < 4; ++b)
+          for (int d = 0; d < dpn; ++d) {
+            const long k = Kc.find(row, mesh.quads[4 * e + b] * dpn + d);
+            Kokkos::atomic_add(&vals(k), Ke(e, a * dpn + c, b * dpn + d));
           }
-      });
+      }
+  });
   return K;
 }
 

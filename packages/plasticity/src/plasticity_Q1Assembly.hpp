@@ -12,7 +12,9 @@ namespace plasticity {
 
 enum class Field { Scalar, Elasticity };
 
-inline int dofsPerNode(Field f) { return f == Field::Scalar ? 1 : 2; }
+inline int dofsPerNode(Field f) {
+  return f == Field::Scalar ? 1 : 2;
+}
 
 // A mesh of Q1 elements: node coordinates (x0, y0, x1, y1, ...) and 4 nodes per element in
 // counter-clockwise order.

@@ -48,10 +48,12 @@ double quadArea(const std::vector<double>& c) {
 // the domain is still the unit square (area 1, centroid (0.5, 0.5)).
 QuadMesh distortedPatch() {
   QuadMesh m;
-  const double dx[4][4] = {{0, 0.05, -0.04, 0}, {0, 0.07, -0.06, 0}, {0, 0.05, -0.08, 0},
+  const double dx[4][4] = {{0, 0.05, -0.04, 0},
+                           {0, 0.07, -0.06, 0},
+                           {0, 0.05, -0.08, 0},
                            {0, -0.06, 0.03, 0}};  // [j][i]
-  const double dy[4][4] = {{0, 0, 0, 0}, {0.04, -0.05, 0.08, -0.03}, {-0.05, 0.06, -0.04, 0.06},
-                           {0, 0, 0, 0}};
+  const double dy[4][4] = {
+      {0, 0, 0, 0}, {0.04, -0.05, 0.08, -0.03}, {-0.05, 0.06, -0.04, 0.06}, {0, 0, 0, 0}};
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
       m.coords.push_back(i / 3.0 + dx[j][i]);
@@ -82,7 +84,9 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
   return s;
 }
 
-double norm2(const std::vector<double>& v) { return std::sqrt(dot(v, v)); }
+double norm2(const std::vector<double>& v) {
+  return std::sqrt(dot(v, v));
+}
 
 double maxAbs(const std::vector<double>& v) {
   double m = 0.0;

@@ -20,6 +20,7 @@ class Amesos2Solver final : public LocalSolver {
   void factorize(const CsrMatrix& A) override {
     auto comm = Teuchos::rcp(new Teuchos::SerialComm<int>());
     map_ = Teuchos::rcp(new Map(A.rows, 0, comm, Tpetra::LocallyReplicated));
+    X_ = B_ = Teuchos::null;  // work vectors of a previous factorization have the old size
     Teuchos::Array<size_t> rowCounts(A.rows);
     for (int i = 0; i < A.rows; ++i) rowCounts[i] = A.rowPtr[i + 1] - A.rowPtr[i];
     matrix_ = Teuchos::rcp(new CrsMatrix(map_, map_, rowCounts()));
@@ -52,6 +53,7 @@ class Amesos2Solver final : public LocalSolver {
     }
   }
 
+  // Amesos2's Tacho adapter does not report its factor size (0 then means unknown).
   std::size_t factorBytes() const override { return nnzLU_ * (sizeof(double) + sizeof(int)); }
   std::string name() const override { return type_; }
 

@@ -17,6 +17,9 @@ struct CholmodCommon {
     cholmod_start(&c);
     c.print = 0;
     c.error_handler = nullptr;
+    // Keep L L^T even for simplicial factors: an L D L^T factorization would accept an
+    // indefinite matrix, and a subdomain matrix that is not positive definite is a bug to report.
+    c.final_ll = 1;
   }
   ~CholmodCommon() { cholmod_finish(&c); }
 };
@@ -97,6 +100,8 @@ class CholmodSolver final : public LocalSolver {
 
 }  // namespace
 
-std::unique_ptr<LocalSolver> createCholmodSolver() { return std::make_unique<CholmodSolver>(); }
+std::unique_ptr<LocalSolver> createCholmodSolver() {
+  return std::make_unique<CholmodSolver>();
+}
 
 }  // namespace tfeti

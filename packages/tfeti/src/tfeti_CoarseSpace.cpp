@@ -1,12 +1,12 @@
 #include "tfeti_CoarseSpace.hpp"
 
-#include <TpetraExt_MatrixMatrix.hpp>
 #include <Teuchos_CommHelpers.hpp>
+#include <TpetraExt_MatrixMatrix.hpp>
 
 #include <map>
 
-#include "tfeti_Gather.hpp"
 #include <stdexcept>
+#include "tfeti_Gather.hpp"
 
 namespace tfeti {
 
@@ -90,7 +90,8 @@ CoarseSpace::CoarseSpace(const Tearing& tearing, const SubdomainList& subdomains
   } catch (const std::exception& e) {
     throw std::runtime_error(
         std::string("coarse problem G G^T is singular: the constraints do not remove every "
-                    "rigid body mode (") + e.what() + ")");
+                    "rigid body mode (") +
+        e.what() + ")");
   }
   // Coarse right-hand sides reach every rank through an Import onto a replicated map.
   std::vector<GO> all(dimension_);
@@ -144,7 +145,8 @@ void CoarseSpace::applyKernelTranspose(const MultiVector& primal, Vector& coarse
     const int n = s->numDofs();
     for (int k = 0; k < s->kernelDim(); ++k) {
       double dot = 0.0;
-      for (int i = 0; i < n; ++i) dot += s->kernel()[static_cast<std::size_t>(k) * n + i] * x[offset + i];
+      for (int i = 0; i < n; ++i)
+        dot += s->kernel()[static_cast<std::size_t>(k) * n + i] * x[offset + i];
       c[cl++] = dot;
     }
     offset += n;
@@ -158,7 +160,8 @@ void CoarseSpace::addKernelCombination(const Vector& alpha, MultiVector& primal)
   for (const auto& s : subdomains_) {
     const int n = s->numDofs();
     for (int k = 0; k < s->kernelDim(); ++k, ++cl)
-      for (int i = 0; i < n; ++i) u[offset + i] += a[cl] * s->kernel()[static_cast<std::size_t>(k) * n + i];
+      for (int i = 0; i < n; ++i)
+        u[offset + i] += a[cl] * s->kernel()[static_cast<std::size_t>(k) * n + i];
     offset += n;
   }
 }

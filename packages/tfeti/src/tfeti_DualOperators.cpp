@@ -53,7 +53,9 @@ void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp 
 }
 
 DualPreconditioner::DualPreconditioner(const Tearing& tearing, SubdomainList subdomains)
-    : B_(tearing.B), subdomains_(std::move(subdomains)), groupRows_(tearing.groupRows),
+    : B_(tearing.B),
+      subdomains_(std::move(subdomains)),
+      groupRows_(tearing.groupRows),
       groupScaling_(tearing.groupScaling) {}
 
 void DualPreconditioner::scale(MultiVector& X) const {

@@ -85,9 +85,9 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       std::vector<int> dirichletDofs;
       for (int n : sd.mesh.dirichletNodes)
         for (int c = 0; c < sd.dofsPerNode; ++c) dirichletDofs.push_back(n * sd.dofsPerNode + c);
-      subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode,
-                                                        sd.mesh.coords, sd.K, sd.f, dirichletDofs,
-                                                        formulation, solver));
+      subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, sd.mesh.coords,
+                                                        sd.K, sd.f, dirichletDofs, formulation,
+                                                        solver));
       // The subdomain keeps its own (possibly modified) copy of K.
       sd.K = CsrMatrix();
     }
@@ -97,7 +97,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     TearingOptions opts;
     opts.formulation = formulation;
     opts.gluing = params_.get<std::string>("Gluing") == "redundant" ? Gluing::Redundant
-                                                                   : Gluing::NonRedundant;
+                                                                    : Gluing::NonRedundant;
     opts.gluingAtDirichletNodes = params_.get<bool>("Gluing at Dirichlet nodes");
     std::vector<TearingInput> input;
     for (const auto& sd : data_) {

@@ -17,9 +17,9 @@ namespace tfeti {
 struct PcpgResult {
   bool converged = false;
   int iterations = 0;
-  double projectedGradientNorm = 0.0;   // final ||P g||
-  double relativeResidual = 0.0;        // ||P g|| / ||P d||
-  std::vector<double> history;          // relative residual per iteration
+  double projectedGradientNorm = 0.0;  // final ||P g||
+  double relativeResidual = 0.0;       // ||P g|| / ||P d||
+  std::vector<double> history;         // relative residual per iteration
 };
 
 class Pcpg {

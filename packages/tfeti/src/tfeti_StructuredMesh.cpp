@@ -5,8 +5,8 @@
 
 namespace tfeti {
 
-StructuredRectangle::StructuredRectangle(double x0, double x1, double y0, double y1, int sx,
-                                         int sy, int ex, int ey)
+StructuredRectangle::StructuredRectangle(double x0, double x1, double y0, double y1, int sx, int sy,
+                                         int ex, int ey)
     : x0_(x0), x1_(x1), y0_(y0), y1_(y1), sx_(sx), sy_(sy), ex_(ex), ey_(ey) {
   if (!(x1 > x0) || !(y1 > y0))
     throw std::invalid_argument("structured mesh: the domain must have x1 > x0 and y1 > y0");

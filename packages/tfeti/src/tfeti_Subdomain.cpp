@@ -35,7 +35,10 @@ CsrMatrix decoupleDofs(const CsrMatrix& A, const std::vector<int>& dofs) {
 Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords, CsrMatrix K,
                      std::vector<double> f, const std::vector<int>& dirichletDofs,
                      Formulation formulation, const std::string& localSolver)
-    : id_(id), dofsPerNode_(dofsPerNode), formulation_(formulation), K_(std::move(K)),
+    : id_(id),
+      dofsPerNode_(dofsPerNode),
+      formulation_(formulation),
+      K_(std::move(K)),
       f_(std::move(f)) {
   if (dofsPerNode != 1 && dofsPerNode != 2)
     throw std::invalid_argument("subdomain " + std::to_string(id) +
@@ -150,8 +153,8 @@ void Subdomain::applyPseudoInverse(const double* b, double* x, int nrhs) {
     for (int d : fixing_) x[static_cast<std::size_t>(j) * n + d] = 0.0;
 }
 
-void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs,
-                                    PreconditionerType type, const std::string& localSolver) {
+void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs, PreconditionerType type,
+                                    const std::string& localSolver) {
   precType_ = type;
   interface_ = interfaceDofs;
   std::sort(interface_.begin(), interface_.end());
@@ -186,12 +189,15 @@ void Subdomain::applyPreconditionerBlock(const double* vb, double* yb) {
   interiorFactor_->solve(wi_.data(), zi_.data());
   for (int r = 0; r < Kbi_.rows; ++r) {
     double s = 0.0;
-    for (int k = Kbi_.rowPtr[r]; k < Kbi_.rowPtr[r + 1]; ++k) s += Kbi_.values[k] * zi_[Kbi_.colInd[k]];
+    for (int k = Kbi_.rowPtr[r]; k < Kbi_.rowPtr[r + 1]; ++k)
+      s += Kbi_.values[k] * zi_[Kbi_.colInd[k]];
     yb[r] -= s;
   }
 }
 
-std::size_t Subdomain::factorBytes() const { return factor_ ? factor_->factorBytes() : 0; }
+std::size_t Subdomain::factorBytes() const {
+  return factor_ ? factor_->factorBytes() : 0;
+}
 
 std::size_t Subdomain::preconditionerFactorBytes() const {
   return interiorFactor_ ? interiorFactor_->factorBytes() : 0;

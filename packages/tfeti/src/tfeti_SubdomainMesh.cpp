@@ -25,8 +25,7 @@ std::vector<int> SubdomainMesh::boundaryNodes() const {
 int ownerOfSubdomain(int subdomain, int numSubdomains, int numRanks) {
   // Inverse of subdomainsOfRank: rank r holds [r*N/P, (r+1)*N/P).
   int r = static_cast<int>((static_cast<long long>(subdomain) * numRanks) / numSubdomains);
-  while (r + 1 < numRanks &&
-         static_cast<long long>(r + 1) * numSubdomains / numRanks <= subdomain)
+  while (r + 1 < numRanks && static_cast<long long>(r + 1) * numSubdomains / numRanks <= subdomain)
     ++r;
   while (r > 0 && static_cast<long long>(r) * numSubdomains / numRanks > subdomain) --r;
   return r;

@@ -10,10 +10,10 @@ namespace tfeti {
 
 struct SubdomainMesh {
   int id = -1;
-  std::vector<double> coords;        // x0, y0, x1, y1, ... per local node
-  std::vector<int> quads;            // 4 local nodes per element, counter-clockwise
-  std::vector<GO> globalNode;        // untorn id of each local node
-  std::vector<int> dirichletNodes;   // local nodes where every component is prescribed zero
+  std::vector<double> coords;       // x0, y0, x1, y1, ... per local node
+  std::vector<int> quads;           // 4 local nodes per element, counter-clockwise
+  std::vector<GO> globalNode;       // untorn id of each local node
+  std::vector<int> dirichletNodes;  // local nodes where every component is prescribed zero
   int numNodes() const { return static_cast<int>(globalNode.size()); }
   int numElements() const { return static_cast<int>(quads.size() / 4); }
   // Local nodes on the subdomain's boundary (on an element edge that no other element of the

@@ -87,8 +87,8 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
             rows.push_back(
                 {group, 2, {copies[a].sub, copies[b].sub}, {dofOf(a), dofOf(b)}, {1.0, -1.0}});
         }
-        t.numGluingRows += static_cast<GO>(rows.size() - before) -
-                           (tfetiDirichlet ? static_cast<GO>(m) : 0);
+        t.numGluingRows +=
+            static_cast<GO>(rows.size() - before) - (tfetiDirichlet ? static_cast<GO>(m) : 0);
       }
       if (tfetiDirichlet) t.numDirichletRows += m;
       if (rows.size() > before)
@@ -124,7 +124,8 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     for (int k = 0; k < rows[r].n; ++k) {
       auto it = localIndex.find(rows[r].sub[k]);
       if (it != localIndex.end())
-        t.subdomainRows[it->second].push_back({static_cast<GO>(r), rows[r].dof[k], rows[r].coef[k]});
+        t.subdomainRows[it->second].push_back(
+            {static_cast<GO>(r), rows[r].dof[k], rows[r].coef[k]});
     }
 
   // Owned groups and the pseudo-inverse of B B^T on each (rows of a group share its node's dofs).

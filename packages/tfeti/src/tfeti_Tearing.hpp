@@ -29,8 +29,8 @@ struct TearingOptions {
 struct TearingInput {
   int id;
   int numDofs;
-  std::vector<int> boundaryNodes;   // local nodes that may be shared
-  std::vector<GO> boundaryGlobal;   // their untorn ids
+  std::vector<int> boundaryNodes;  // local nodes that may be shared
+  std::vector<GO> boundaryGlobal;  // their untorn ids
   std::vector<char> boundaryDirichlet;
 };
 
@@ -44,7 +44,7 @@ struct Tearing {
   Teuchos::RCP<const Map> primalMap;      // all subdomain dofs, owned by the subdomain's rank
   Teuchos::RCP<const Map> multiplierMap;  // rows of B
   Teuchos::RCP<CrsMatrix> B;
-  std::vector<GO> dofOffset;              // first global dof of every subdomain
+  std::vector<GO> dofOffset;  // first global dof of every subdomain
   // For each local subdomain (same order as the input): the rows that touch it.
   std::vector<std::vector<RowEntry>> subdomainRows;
   // Locally owned groups: local row indices and the pseudo-inverse of their B B^T block.

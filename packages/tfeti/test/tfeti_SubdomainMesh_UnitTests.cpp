@@ -22,11 +22,11 @@ TEUCHOS_UNIT_TEST(SubdomainMesh, DealingIsContiguousBalancedAndInvertible) {
         minCount = std::min(minCount, static_cast<int>(ids.size()));
         maxCount = std::max(maxCount, static_cast<int>(ids.size()));
         for (int s : ids) {
-          if (s != next++) ++bad;                                 // contiguous, increasing
-          if (tfeti::ownerOfSubdomain(s, N, P) != r) ++bad;       // inverse
+          if (s != next++) ++bad;                            // contiguous, increasing
+          if (tfeti::ownerOfSubdomain(s, N, P) != r) ++bad;  // inverse
         }
       }
-      if (next != N || maxCount - minCount > 1) ++bad;            // partition, balanced
+      if (next != N || maxCount - minCount > 1) ++bad;  // partition, balanced
     }
   TEST_EQUALITY(bad, 0);
   // 16 subdomains on 3 ranks: 5, 5, 6.
@@ -86,7 +86,8 @@ TEUCHOS_UNIT_TEST(StructuredRectangle, SubdomainsTileTheWholeMesh) {
   std::map<int, int> histogram;
   for (const auto& [g, m] : copies) histogram[m]++;
   TEST_EQUALITY(histogram[4], 2);
-  TEST_EQUALITY(histogram[2], 7 + 7 + 13 - 2 * 2);  // 2 vertical lines, 1 horizontal, less crossings
+  TEST_EQUALITY(histogram[2],
+                7 + 7 + 13 - 2 * 2);  // 2 vertical lines, 1 horizontal, less crossings
 }
 
 TEUCHOS_UNIT_TEST(StructuredRectangle, InvalidArgumentsThrow) {

@@ -22,7 +22,9 @@ using tfeti_test::Physics;
 
 // 3x2 subdomains of 6x5 elements on (0,3)x(0,2): subdomain 0 touches the Dirichlet side x = 0,
 // subdomain 4 (middle of the top row) touches no boundary condition.
-tfeti::StructuredRectangle rectangle() { return tfeti::StructuredRectangle(0, 3, 0, 2, 3, 2, 6, 5); }
+tfeti::StructuredRectangle rectangle() {
+  return tfeti::StructuredRectangle(0, 3, 0, 2, 3, 2, 6, 5);
+}
 
 // Subdomain 4 of the rectangle cut to an L (the 3x3 top-right elements removed), with its nodes
 // moved by a smooth map: no two element edges stay parallel.
@@ -59,12 +61,15 @@ std::vector<double> matmul(const std::vector<double>& A, const std::vector<doubl
     for (int p = 0; p < k; ++p) {
       const double b = B[static_cast<std::size_t>(j) * k + p];
       if (b == 0.0) continue;
-      for (int i = 0; i < m; ++i) C[static_cast<std::size_t>(j) * m + i] += A[std::size_t(p) * m + i] * b;
+      for (int i = 0; i < m; ++i)
+        C[static_cast<std::size_t>(j) * m + i] += A[std::size_t(p) * m + i] * b;
     }
   return C;
 }
 
-double frobenius(const std::vector<double>& A) { return tfeti_test::norm2(A); }
+double frobenius(const std::vector<double>& A) {
+  return tfeti_test::norm2(A);
+}
 
 // Raw rigid body modes of the mesh (not orthonormalized), column-major.
 std::vector<std::vector<double>> rawRigidModes(const std::vector<double>& coords, int dpn) {
@@ -82,8 +87,8 @@ std::vector<std::vector<double>> rawRigidModes(const std::vector<double>& coords
 
 // The checks every subdomain must pass: K R = 0, R^T R = I, K K+ K = K. Returns nothing; the
 // expected kernel dimension is given.
-void checkGeneralizedInverse(tfeti::Subdomain& sd, int expectedKernelDim, Teuchos::FancyOStream& out,
-                             bool& success) {
+void checkGeneralizedInverse(tfeti::Subdomain& sd, int expectedKernelDim,
+                             Teuchos::FancyOStream& out, bool& success) {
   const tfeti::CsrMatrix& K = sd.stiffness();
   const int n = K.rows, k = sd.kernelDim();
   TEST_EQUALITY(k, expectedKernelDim);
@@ -104,7 +109,8 @@ void checkGeneralizedInverse(tfeti::Subdomain& sd, int expectedKernelDim, Teucho
   for (int p = 0; p < k; ++p)
     for (int q = 0; q < k; ++q) {
       double s = 0.0;
-      for (int i = 0; i < n; ++i) s += sd.kernel()[std::size_t(p) * n + i] * sd.kernel()[std::size_t(q) * n + i];
+      for (int i = 0; i < n; ++i)
+        s += sd.kernel()[std::size_t(p) * n + i] * sd.kernel()[std::size_t(q) * n + i];
       orth = std::max(orth, std::abs(s - (p == q ? 1.0 : 0.0)));
     }
   TEST_COMPARE(orth, <, 1e-12);
@@ -117,14 +123,16 @@ void checkGeneralizedInverse(tfeti::Subdomain& sd, int expectedKernelDim, Teucho
   if (k > 0 && static_cast<int>(F.size()) == k) {
     std::vector<double> RF(std::size_t(k) * k), RtR(std::size_t(k) * k, 0.0);
     for (int q = 0; q < k; ++q)
-      for (int p = 0; p < k; ++p) RF[std::size_t(q) * k + p] = sd.kernel()[std::size_t(q) * n + F[p]];
+      for (int p = 0; p < k; ++p)
+        RF[std::size_t(q) * k + p] = sd.kernel()[std::size_t(q) * n + F[p]];
     for (int a = 0; a < k; ++a)
       for (int b = 0; b < k; ++b)
-        for (int p = 0; p < k; ++p) RtR[std::size_t(b) * k + a] += RF[std::size_t(a) * k + p] * RF[std::size_t(b) * k + p];
+        for (int p = 0; p < k; ++p)
+          RtR[std::size_t(b) * k + a] += RF[std::size_t(a) * k + p] * RF[std::size_t(b) * k + p];
     std::vector<double> w, V;
     tfeti::dense::symmetricEigen(k, RtR, w, V);
-    const double cond = std::sqrt(*std::max_element(w.begin(), w.end()) /
-                                  *std::min_element(w.begin(), w.end()));
+    const double cond =
+        std::sqrt(*std::max_element(w.begin(), w.end()) / *std::min_element(w.begin(), w.end()));
     out << "cond R(F,:) = " << cond << "\n";
     TEST_COMPARE(cond, <, 100.0);
   }
@@ -143,7 +151,8 @@ void checkGeneralizedInverse(tfeti::Subdomain& sd, int expectedKernelDim, Teucho
   double colDiff = 0.0;
   for (int j = 0; j < n; j += 7) {
     sd.applyPseudoInverse(&Kd[std::size_t(j) * n], x1.data(), 1);
-    for (int i = 0; i < n; ++i) colDiff = std::max(colDiff, std::abs(x1[i] - X[std::size_t(j) * n + i]));
+    for (int i = 0; i < n; ++i)
+      colDiff = std::max(colDiff, std::abs(x1[i] - X[std::size_t(j) * n + i]));
   }
   TEST_COMPARE(colDiff, <, 1e-12 * tfeti_test::maxAbs(X));
   // K+ is not the zero matrix in disguise: K+ K is a projector of rank n - k.
@@ -187,7 +196,8 @@ TEUCHOS_UNIT_TEST(Subdomain, FloatingRectangle) {
   TEST_EQUALITY(mesh.numElements(), 30);
   TEST_ASSERT(mesh.dirichletNodes.empty());
   for (const auto& ph : kPhysics)
-    for (const auto& solver : tfeti::localSolverTypes()) checkFloating(mesh, ph, solver, out, success);
+    for (const auto& solver : tfeti::localSolverTypes())
+      checkFloating(mesh, ph, solver, out, success);
 }
 
 TEUCHOS_UNIT_TEST(Subdomain, FloatingDistortedLShape) {
@@ -195,7 +205,8 @@ TEUCHOS_UNIT_TEST(Subdomain, FloatingDistortedLShape) {
   TEST_EQUALITY(mesh.numElements(), 21);
   TEST_EQUALITY(mesh.numNodes(), 33);  // 7x6 grid nodes minus the 3x3 cut off
   for (const auto& ph : kPhysics)
-    for (const auto& solver : tfeti::localSolverTypes()) checkFloating(mesh, ph, solver, out, success);
+    for (const auto& solver : tfeti::localSolverTypes())
+      checkFloating(mesh, ph, solver, out, success);
 }
 
 TEUCHOS_UNIT_TEST(Subdomain, FloatingInFetiWithoutDirichletDofs) {
@@ -283,7 +294,8 @@ TEUCHOS_UNIT_TEST(Subdomain, FetiPartialDirichletLeavesTheRemainingModes) {
       double onDirichlet = 0.0;
       for (int q = 0; q < sd.kernelDim(); ++q)
         for (int d : c.dofs)
-          onDirichlet = std::max(onDirichlet, std::abs(sd.kernel()[std::size_t(q) * sd.numDofs() + d]));
+          onDirichlet =
+              std::max(onDirichlet, std::abs(sd.kernel()[std::size_t(q) * sd.numDofs() + d]));
       TEST_COMPARE(onDirichlet, <, 1e-14);
     }
   // Poisson with one Dirichlet node: no kernel left.
@@ -333,7 +345,8 @@ TEUCHOS_UNIT_TEST(Subdomain, PreconditionerBlocksAreKbbAndTheSchurComplement) {
           e[j] = 1.0;
           sd.applyPreconditionerBlock(e.data(), y.data());
           e[j] = 0.0;
-          for (int i = 0; i < nb; ++i) err = std::max(err, std::abs(y[i] - ref[std::size_t(j) * nb + i]));
+          for (int i = 0; i < nb; ++i)
+            err = std::max(err, std::abs(y[i] - ref[std::size_t(j) * nb + i]));
         }
         TEST_COMPARE(err, <, 1e-12 * tfeti_test::maxAbs(Kbb));
         // The Schur complement annihilates the rigid modes' traces; K_bb does not.

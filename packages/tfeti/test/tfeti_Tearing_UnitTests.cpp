@@ -33,8 +33,8 @@ struct PaperCase {
   int subs, elems;
   GO primal, feti, tfeti;
 };
-const PaperCase kPaper[] = {{2, 2, 36, 11, 17},    {4, 2, 144, 63, 75},  {8, 2, 576, 287, 311},
-                            {2, 4, 100, 19, 29},   {4, 4, 400, 111, 131}, {8, 4, 1600, 511, 551}};
+const PaperCase kPaper[] = {{2, 2, 36, 11, 17},  {4, 2, 144, 63, 75},   {8, 2, 576, 287, 311},
+                            {2, 4, 100, 19, 29}, {4, 4, 400, 111, 131}, {8, 4, 1600, 511, 551}};
 
 tfeti::StructuredRectangle unitSquare(int subs, int elems) {
   return tfeti::StructuredRectangle(0, 1, 0, 1, subs, subs, elems, elems);
@@ -55,8 +55,9 @@ tfeti::TearingInput tearingInput(const tfeti::SubdomainMesh& mesh, int dpn) {
   return in;
 }
 
-tfeti::Tearing tear(const tfeti::StructuredRectangle& rect, const Teuchos::RCP<const tfeti::Comm>& comm,
-                    const std::vector<int>& ids, int dpn, const tfeti::TearingOptions& opts) {
+tfeti::Tearing tear(const tfeti::StructuredRectangle& rect,
+                    const Teuchos::RCP<const tfeti::Comm>& comm, const std::vector<int>& ids,
+                    int dpn, const tfeti::TearingOptions& opts) {
   std::vector<tfeti::TearingInput> local;
   for (int s : ids) local.push_back(tearingInput(rect.subdomain(s), dpn));
   return tfeti::buildTearing(comm, rect.numSubdomains(), local, dpn, opts);
@@ -74,7 +75,8 @@ std::vector<std::pair<GO, double>> rowEntries(const tfeti::CrsMatrix& B, LO row)
   std::size_t got = 0;
   B.getLocalRowCopy(row, idx, val, got);
   std::vector<std::pair<GO, double>> e;
-  for (std::size_t k = 0; k < got; ++k) e.push_back({B.getColMap()->getGlobalElement(idx(k)), val(k)});
+  for (std::size_t k = 0; k < got; ++k)
+    e.push_back({B.getColMap()->getGlobalElement(idx(k)), val(k)});
   std::sort(e.begin(), e.end());
   return e;
 }
@@ -222,10 +224,12 @@ void checkStructure(const tfeti::StructuredRectangle& rect, int dpn,
   for (std::size_t i = 0; i < ids.size(); ++i)
     for (const auto& e : t.subdomainRows[i]) {
       ++entries;
-      if ((e.coef != 1.0 && e.coef != -1.0) || e.dof < 0 || e.dof >= dpn * meshes[ids[i]].numNodes())
+      if ((e.coef != 1.0 && e.coef != -1.0) || e.dof < 0 ||
+          e.dof >= dpn * meshes[ids[i]].numNodes())
         ++badEntries;
     }
-  TEST_EQUALITY(tfeti_test::globalSum(c, entries), static_cast<long long>(t.B->getGlobalNumEntries()));
+  TEST_EQUALITY(tfeti_test::globalSum(c, entries),
+                static_cast<long long>(t.B->getGlobalNumEntries()));
   TEST_EQUALITY(tfeti_test::globalSum(c, badEntries), 0LL);
 
   // Group scalings are the pseudo-inverses of the B B^T blocks: (BBt) Q (BBt) = BBt, Q BBt Q = Q.
@@ -248,7 +252,8 @@ void checkStructure(const tfeti::StructuredRectangle& rect, int dpn,
       std::vector<double> Z(std::size_t(m) * m, 0.0);
       for (int j = 0; j < m; ++j)
         for (int k = 0; k < m; ++k)
-          for (int i = 0; i < m; ++i) Z[std::size_t(j) * m + i] += X[std::size_t(k) * m + i] * Y[std::size_t(j) * m + k];
+          for (int i = 0; i < m; ++i)
+            Z[std::size_t(j) * m + i] += X[std::size_t(k) * m + i] * Y[std::size_t(j) * m + k];
       return Z;
     };
     const auto AQA = mul(mul(A, Q), A), QAQ = mul(mul(Q, A), Q);
@@ -288,8 +293,8 @@ TEUCHOS_UNIT_TEST(Tearing, PaperTableThroughFetiSolver) {
                                tfeti_test::localSubdomains(rect, *comm, tfeti_test::poisson()),
                                params);
       const GO dual = form == "FETI" ? pc.feti : pc.tfeti;
-      out << "H = 1/" << pc.subs << ", h = 1/" << pc.subs * pc.elems << ", " << form
-          << ": primal " << solver.primalDimension() << ", dual " << solver.dualDimension() << "\n";
+      out << "H = 1/" << pc.subs << ", h = 1/" << pc.subs * pc.elems << ", " << form << ": primal "
+          << solver.primalDimension() << ", dual " << solver.dualDimension() << "\n";
       TEST_EQUALITY(solver.primalDimension(), pc.primal);
       TEST_EQUALITY(solver.dualDimension(), dual);
       TEST_EQUALITY(static_cast<GO>(solver.tearing().primalMap->getGlobalNumElements()), pc.primal);

@@ -27,7 +27,9 @@ struct Physics {
 };
 
 // -Laplace u = 1.
-inline Physics poisson() { return Physics{}; }
+inline Physics poisson() {
+  return Physics{};
+}
 
 // Plane strain, E = 1, nu = 0.3, body force (0, -1).
 inline Physics elasticity() {
@@ -57,8 +59,8 @@ inline tfeti::SubdomainData subdomainData(const tfeti::SubdomainMesh& mesh, cons
 
 // The subdomains of this rank, in increasing id order.
 inline std::vector<tfeti::SubdomainData> localSubdomains(const tfeti::StructuredRectangle& rect,
-                                                          const tfeti::Comm& comm,
-                                                          const Physics& ph) {
+                                                         const tfeti::Comm& comm,
+                                                         const Physics& ph) {
   std::vector<tfeti::SubdomainData> local;
   for (int s : tfeti::subdomainsOfRank(comm.getRank(), rect.numSubdomains(), comm.getSize()))
     local.push_back(subdomainData(rect.subdomain(s), ph));
