@@ -243,6 +243,9 @@ Result solveMueLuCg(const Problem& p, const System& s, double rtol) {
   params.set("repartition: min rows per proc", 2000);
   params.set("repartition: target rows per proc", 1000000000);
   params.set("repartition: max imbalance", 1e9);
+  // At least one coarsening, or a small enough problem would be its own coarse level and be
+  // factored where it lies, spread over all ranks.
+  params.set("coarse: max size", static_cast<int>(std::min<GO>(2000, p.numDofs() - 1)));
   // Zoltan2 never runs for a single part, but the repartitioning setup requires its input.
   params.sublist("user data").set("Coordinates", nodeCoordinates(p, s.A->getRowMap()));
   if (p.field == plasticity::Field::Elasticity) {
