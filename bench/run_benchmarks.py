@@ -8,7 +8,7 @@ solved by Belos CG + MueLu and by Amesos2 KLU2 (tfeti_baseline) in the same run.
 sweep:      2D elasticity, 64k, 256k, 1M and 4M unknowns, subdomains of 32x32 elements
 reference:  Poisson 1000x500 cells and elasticity 600x300 cells, with 2 subdomains (one per
             rank) and with the fastest subdomain count found
-solvers:    the local solver choice (cholmod, klu2) on the Poisson reference case
+solvers:    the local solver choice (cholmod, klu2, tacho) on the Poisson reference case
 
 Prints markdown tables (for docs/benchmarks.md) and writes every summary.json under --out.
 """
@@ -131,14 +131,23 @@ def reference(o):
         if runs:
             best = min(runs, key=lambda s: s["timings"]["setup_s"] + s["timings"]["solve_s"])
             print(f"| fastest: {best['subdomains']} subdomains | | | | | | | | | | |")
+        print("\n" + BASE_HEADER)
         for solver in ("muelu", "klu2"):
-            print("  baseline:", json.dumps(baseline(o, problem, nx, ny, solver)))
+            b = baseline(o, problem, nx, ny, solver)
+            line = base_row(f"{problem} {nx}x{ny}", b)
+            if b and runs:
+                tb = b["setup_s"] + b["solve_s"]
+                for s in (runs[0], best):
+                    tf = s["timings"]["setup_s"] + s["timings"]["solve_s"]
+                    line += f" TFETI {s['subdomains']} subdomains / {b['solver']}: {tf / tb:.2f}x;"
+            print(line, flush=True)
+        print("\n" + HEADER)
 
 
 def solvers(o):
     print("\n## Local solver choice (Poisson 1000x500, 20x10 subdomains of 50x50 elements)\n")
     print(HEADER)
-    for solver in ("cholmod", "klu2"):
+    for solver in ("cholmod", "klu2", "tacho"):
         s = feti(o, "poisson", 1000, 500, 20, 10, solver=solver)
         if s:
             print(row(f"local solver {solver}", s), flush=True)

@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 
 #include "contact_Driver.hpp"
 
@@ -54,7 +55,12 @@ int main(int argc, char** argv) {
       throw std::runtime_error(input + ": not a valid ParameterList XML file: " + e.what());
     }
     contact::validateDriverParameters(*params, input);
-    code = contact::runDriver(comm, *params, output);
+    try {
+      code = contact::runDriver(comm, *params, output);
+    } catch (const std::invalid_argument& e) {
+      // Inconsistent parameters found while setting the problem up: name the input file.
+      throw std::invalid_argument(input + ": " + e.what());
+    }
   } catch (const std::exception& e) {
     if (root) std::cerr << "tfeti_contact: error: " << e.what() << "\n";
     return 1;

@@ -4,8 +4,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 
-#include <sys/resource.h>
-
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,8 +12,10 @@
 #include <iostream>
 #include <sstream>
 
+#include "contact_DriverCommon.hpp"
 #include "contact_Json.hpp"
 #include "contact_StructuredProblem.hpp"
+#include "contact_TwoMembranes.hpp"
 #include "contact_VtuWriter.hpp"
 #include "tfeti_FetiSolver.hpp"
 
@@ -66,61 +67,6 @@ StructuredProblem problemFrom(const ParameterList& p, const std::string& field) 
   return sp;
 }
 
-Json timingsJson(const tfeti::FetiTimings& t, int iterations) {
-  Json j = Json::object();
-  j["factorization_s"] = t.factorization;
-  j["tearing_s"] = t.tearing;
-  j["coarse_s"] = t.coarse;
-  j["preconditioner_s"] = t.preconditioner;
-  j["dual_rhs_s"] = t.dualRhs;
-  j["setup_s"] = t.setup();
-  j["solve_s"] = t.solve;
-  j["recovery_s"] = t.recovery;
-  j["per_iteration_s"] = iterations > 0 ? t.solve / iterations : 0.0;
-  return j;
-}
-
-void writeSummary(const tfeti::Comm& comm, const std::string& dir, const Json& summary) {
-  if (comm.getRank() != 0) return;
-  const std::string path = dir + "/summary.json";
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
-  out << summary.dump();
-}
-
-// Largest resident set size over the ranks, in MiB.
-double peakRssMb(const tfeti::Comm& comm) {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  double mine = usage.ru_maxrss / 1024.0, all = 0.0;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &mine, &all);
-  return all;
-}
-
-VtuPiece vtuPiece(const tfeti::FetiSolver& solver) {
-  VtuPiece piece;
-  VtuField u{"u", 1, {}}, sub{"subdomain", 1, {}};
-  const bool vec = !solver.data().empty() && solver.data().front().dofsPerNode == 2;
-  if (vec) u = VtuField{"displacement", 3, {}};
-  for (std::size_t i = 0; i < solver.data().size(); ++i) {
-    const auto& mesh = solver.data()[i].mesh;
-    const int base = static_cast<int>(piece.points.size() / 2);
-    piece.points.insert(piece.points.end(), mesh.coords.begin(), mesh.coords.end());
-    for (int q : mesh.quads) piece.quads.push_back(base + q);
-    const auto& us = solver.solution(i);
-    for (int n = 0; n < mesh.numNodes(); ++n) {
-      if (vec)
-        u.values.insert(u.values.end(), {us[2 * n], us[2 * n + 1], 0.0});
-      else
-        u.values.push_back(us[n]);
-    }
-    sub.values.insert(sub.values.end(), mesh.numElements(), static_cast<double>(mesh.id));
-  }
-  piece.pointData.push_back(std::move(u));
-  piece.cellData.push_back(std::move(sub));
-  return piece;
-}
-
 int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
               const std::string& dir) {
   const bool root = comm->getRank() == 0;
@@ -131,7 +77,7 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
 
   tfeti::FetiSolver solver(comm, sp.subdomainsX * sp.subdomainsY, buildLocalSubdomains(sp, *comm),
                            params.sublist("FETI"));
-  const tfeti::PcpgResult result = solver.solve();
+  const tfeti::DualResult result = solver.solve();
 
   Json s = Json::object();
   s["study"] = "single";
@@ -295,8 +241,10 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
   pl = Teuchos::rcp(new ParameterList("tfeti_contact"));
   pl->set("Study", "single", "single: one problem; scalability: the paper's table",
           choice({"single", "scalability"}));
-  pl->set("Problem", "poisson", "the model problem (Study = single)",
-          choice({"poisson", "elasticity"}));
+  pl->set("Problem", "poisson",
+          "poisson, elasticity: the reference paper's linear model problems; two_membranes: "
+          "Dostál's scalar contact benchmark (Mesh: subdomains and elements of each membrane)",
+          choice({"poisson", "elasticity", "two_membranes"}));
   auto& mesh = pl->sublist("Mesh", false, "structured Q1 mesh of a rectangle, torn into a grid");
   mesh.set("Domain", arr<double>({0.0, 1.0, 0.0, 1.0}), "{x0, x1, y0, y1}");
   mesh.set("Subdomains", arr<int>({4, 4}), "subdomains in x and y (1/H)");
@@ -317,10 +265,13 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
   out.set("Time dual operator", false,
           "time 10 extra applications of F and report the bandwidth they achieve (benchmarks)");
   auto& sc = pl->sublist("Scalability", false, "Study = scalability");
-  sc.set("Problems", arr<std::string>({"poisson"}), "poisson and/or elasticity");
+  sc.set("Problems", arr<std::string>({"poisson"}),
+         "poisson and/or elasticity, or two_membranes alone");
   sc.set("Subdomains per side", arr<int>({2, 4, 8, 16}), "values of 1/H");
   sc.set("H over h", arr<int>({2, 4, 8}), "elements per subdomain side");
   sc.set("Preconditioners", arr<std::string>({"none", "lumped", "dirichlet"}), "columns");
+  sc.set("Dual solvers", arr<std::string>({"SMALBE", "penalty"}),
+         "two_membranes: the QP solvers compared (SMALBE, penalty)");
   return pl;
 }
 
@@ -328,10 +279,20 @@ void validateDriverParameters(ParameterList& params, const std::string& source) 
   try {
     params.validateParametersAndSetDefaults(*validDriverParameters());
     const auto& sc = params.sublist("Scalability");
-    for (const auto& p : sc.get<Array<std::string>>("Problems"))
-      if (p != "poisson" && p != "elasticity")
+    const auto problems = sc.get<Array<std::string>>("Problems");
+    for (const auto& p : problems)
+      if (p != "poisson" && p != "elasticity" && p != "two_membranes")
         throw std::invalid_argument("Scalability: \"Problems\" has \"" + p +
-                                    "\"; valid: poisson, elasticity");
+                                    "\"; valid: poisson, elasticity, two_membranes");
+    if (problems.size() > 1 &&
+        std::find(problems.begin(), problems.end(), "two_membranes") != problems.end())
+      throw std::invalid_argument(
+          "Scalability: \"Problems\": two_membranes is a study of its own, not combined with "
+          "poisson or elasticity");
+    for (const auto& p : sc.get<Array<std::string>>("Dual solvers"))
+      if (p != "SMALBE" && p != "penalty")
+        throw std::invalid_argument("Scalability: \"Dual solvers\" has \"" + p +
+                                    "\"; valid: SMALBE, penalty");
     for (const auto& p : sc.get<Array<std::string>>("Preconditioners"))
       if (p != "none" && p != "lumped" && p != "dirichlet")
         throw std::invalid_argument("Scalability: \"Preconditioners\" has \"" + p +
@@ -345,8 +306,13 @@ int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
               const std::string& outputDirectory) {
   if (comm->getRank() == 0) std::filesystem::create_directories(outputDirectory);
   comm->barrier();
-  if (params.get<std::string>("Study") == "scalability")
+  if (params.get<std::string>("Study") == "scalability") {
+    if (params.sublist("Scalability").get<Array<std::string>>("Problems")[0] == "two_membranes")
+      return runTwoMembranesScalability(comm, params, outputDirectory);
     return runScalability(comm, params, outputDirectory);
+  }
+  if (params.get<std::string>("Problem") == "two_membranes")
+    return runTwoMembranes(comm, params, outputDirectory);
   return runSingle(comm, params, outputDirectory);
 }
 

@@ -3,7 +3,9 @@
 // summary.json (and VTU) into the output directory.
 //   Study = "single":      one problem (Problem, Mesh, Material, Load, FETI), with VTU output
 //   Study = "scalability": the reference paper's table (dimensions and iteration counts of FETI
-//                          and TFETI for every preconditioner over H and H/h)
+//                          and TFETI for every preconditioner over H and H/h), or for
+//                          two_membranes the QP solvers' Hessian multiplications over H and H/h
+//   Problem = two_membranes: the contact benchmark (contact_TwoMembranes.hpp)
 #include <Teuchos_ParameterList.hpp>
 
 #include <string>

@@ -151,8 +151,19 @@ tfeti::CsrMatrix assembleStiffness(const QuadMesh& mesh, Field field, const Elas
 }
 
 std::vector<double> assembleBodyLoad(const QuadMesh& mesh, Field field, const double* source) {
+  const int dpn = dofsPerNode(field);
+  std::vector<double> perElement(static_cast<std::size_t>(mesh.numElements()) * dpn);
+  for (std::size_t k = 0; k < perElement.size(); ++k) perElement[k] = source[k % dpn];
+  return assembleBodyLoad(mesh, field, perElement);
+}
+
+std::vector<double> assembleBodyLoad(const QuadMesh& mesh, Field field,
+                                     const std::vector<double>& elementSource) {
   const int ne = mesh.numElements();
   const int dpn = dofsPerNode(field);
+  if (elementSource.size() != static_cast<std::size_t>(ne) * dpn)
+    throw std::invalid_argument("assembleBodyLoad: " + std::to_string(elementSource.size()) +
+                                " source values for " + std::to_string(ne) + " elements");
   auto xe = elementCoords(mesh);
   Kokkos::View<double*, Kokkos::HostSpace> w("nodalWeights", 4 * ne);
   Kokkos::parallel_for(
@@ -169,7 +180,8 @@ std::vector<double> assembleBodyLoad(const QuadMesh& mesh, Field field, const do
   std::vector<double> f(static_cast<std::size_t>(mesh.numNodes()) * dpn, 0.0);
   for (int e = 0; e < ne; ++e)
     for (int a = 0; a < 4; ++a)
-      for (int c = 0; c < dpn; ++c) f[mesh.quads[4 * e + a] * dpn + c] += w(4 * e + a) * source[c];
+      for (int c = 0; c < dpn; ++c)
+        f[mesh.quads[4 * e + a] * dpn + c] += w(4 * e + a) * elementSource[e * dpn + c];
   return f;
 }
 

@@ -31,5 +31,9 @@ tfeti::CsrMatrix assembleStiffness(const QuadMesh& mesh, Field field, const Elas
 
 // Consistent load vector of a uniform volume source: f (scalar) or the body force (bx, by).
 std::vector<double> assembleBodyLoad(const QuadMesh& mesh, Field field, const double* source);
+// The same with a source constant on each element: elementSource holds dofs-per-node values per
+// element (piecewise loads such as the two-membrane benchmark's).
+std::vector<double> assembleBodyLoad(const QuadMesh& mesh, Field field,
+                                     const std::vector<double>& elementSource);
 
 }  // namespace plasticity

@@ -10,6 +10,64 @@
 
 namespace tfeti {
 
+std::unique_ptr<LocalSolver> CoarseSpace::factorizeGramian(const CrsMatrix& G,
+                                                           const std::string& localSolver) const {
+  auto comm = G.getRowMap()->getComm();
+  CrsMatrix GGt(coarseMap_, 0);
+  Tpetra::MatrixMatrix::Multiply(G, false, G, true, GGt);
+
+  // Gather G G^T to every rank and factorize it there: the coarse problem is small, and a
+  // replicated factor makes every coarse solve communication-free after one Import.
+  std::vector<long long> ij;
+  std::vector<double> vals;
+  for (std::size_t l = 0; l < coarseMap_->getNodeNumElements(); ++l) {
+    const GO g = coarseMap_->getGlobalElement(static_cast<LO>(l));
+    Teuchos::ArrayView<const LO> cols;
+    Teuchos::ArrayView<const double> v;
+    GGt.getLocalRowView(static_cast<LO>(l), cols, v);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(cols.size()); ++k) {
+      ij.insert(ij.end(), {g, GGt.getColMap()->getGlobalElement(cols[k])});
+      vals.push_back(v[k]);
+    }
+  }
+  const auto allIj = allGather(*comm, ij);
+  const auto allVals = allGather(*comm, vals);
+  std::vector<int> ri, ci;
+  for (std::size_t k = 0; k < allVals.size(); ++k) {
+    ri.push_back(static_cast<int>(allIj[2 * k]));
+    ci.push_back(static_cast<int>(allIj[2 * k + 1]));
+  }
+  const int nc = static_cast<int>(dimension_);
+  auto factor = createLocalSolver(localSolver);
+  factor->factorize(csrFromTriplets(nc, nc, ri, ci, allVals));
+  return factor;
+}
+
+void CoarseSpace::leastSquaresOnRows(const Vector& x, const Vector& rowMask, Vector& alpha,
+                                     const std::string& localSolver) const {
+  if (dimension_ == 0) return;
+  // G_A = G diag(mask): the kernel coefficients that satisfy the selected rows best.
+  CrsMatrix GA(*G_, Teuchos::Copy);
+  GA.rightScale(rowMask);
+  std::unique_ptr<LocalSolver> factor;
+  try {
+    factor = factorizeGramian(GA, localSolver);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(
+        std::string("the active constraints do not fix every rigid body mode (G_A G_A^T is "
+                    "singular): a body held only by contact has no active contact (") +
+        e.what() + ")");
+  }
+  GA.apply(x, *c_);
+  replicated_->doImport(*c_, *replicate_, Tpetra::INSERT);
+  auto r = replicated_->getData();
+  for (GO g = 0; g < dimension_; ++g) rhs_[g] = r[g];
+  factor->solve(rhs_.data(), sol_.data());
+  auto a = alpha.getDataNonConst();
+  const auto& map = *coarseMap_;
+  for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) a[l] = sol_[map.getGlobalElement(l)];
+}
+
 CoarseSpace::CoarseSpace(const Tearing& tearing, const SubdomainList& subdomains,
                          const std::string& localSolver)
     : subdomains_(subdomains) {
@@ -59,40 +117,15 @@ CoarseSpace::CoarseSpace(const Tearing& tearing, const SubdomainList& subdomains
   G_->fillComplete(tearing.multiplierMap, coarseMap_);
   if (dimension_ == 0) return;
 
-  CrsMatrix GGt(coarseMap_, 0);
-  Tpetra::MatrixMatrix::Multiply(*G_, false, *G_, true, GGt);
-
-  // Gather G G^T to every rank and factorize it there.
-  std::vector<long long> ij;
-  std::vector<double> vals;
-  for (std::size_t l = 0; l < coarseMap_->getNodeNumElements(); ++l) {
-    const GO g = coarseMap_->getGlobalElement(static_cast<LO>(l));
-    Teuchos::ArrayView<const LO> cols;
-    Teuchos::ArrayView<const double> v;
-    GGt.getLocalRowView(static_cast<LO>(l), cols, v);
-    for (std::size_t k = 0; k < static_cast<std::size_t>(cols.size()); ++k) {
-      ij.insert(ij.end(), {g, GGt.getColMap()->getGlobalElement(cols[k])});
-      vals.push_back(v[k]);
-    }
-  }
-  const auto allIj = allGather(*comm, ij);
-  const auto allVals = allGather(*comm, vals);
-  std::vector<int> ri, ci;
-  for (std::size_t k = 0; k < allVals.size(); ++k) {
-    ri.push_back(static_cast<int>(allIj[2 * k]));
-    ci.push_back(static_cast<int>(allIj[2 * k + 1]));
-  }
-  const std::vector<double>& v = allVals;
-  const int nc = static_cast<int>(dimension_);
-  factor_ = createLocalSolver(localSolver);
   try {
-    factor_->factorize(csrFromTriplets(nc, nc, ri, ci, v));
+    factor_ = factorizeGramian(*G_, localSolver);
   } catch (const std::exception& e) {
     throw std::runtime_error(
         std::string("coarse problem G G^T is singular: the constraints do not remove every "
                     "rigid body mode (") +
         e.what() + ")");
   }
+  const int nc = static_cast<int>(dimension_);
   // Coarse right-hand sides reach every rank through an Import onto a replicated map.
   std::vector<GO> all(dimension_);
   for (GO g = 0; g < dimension_; ++g) all[g] = g;

@@ -23,6 +23,11 @@ class CoarseSpace {
 
   // alpha = (G G^T)^{-1} G x   (alpha on the coarse map)
   void leastSquaresCoefficients(const Vector& x, Vector& alpha) const;
+  // alpha = (G_A G_A^T)^{-1} G_A x with G_A = G diag(rowMask), rowMask 1 on the selected rows and
+  // 0 elsewhere: the rigid body coefficients of a contact solution, where only the equality
+  // rows and the active inequality rows hold with equality. Factorizes G_A G_A^T (once per call).
+  void leastSquaresOnRows(const Vector& x, const Vector& rowMask, Vector& alpha,
+                          const std::string& localSolver) const;
   // alpha = (G G^T)^{-1} c
   void coarseSolve(const Vector& c, Vector& alpha) const;
   // y = P x (y may alias x)
@@ -37,6 +42,8 @@ class CoarseSpace {
   std::size_t factorBytes() const { return factor_ ? factor_->factorBytes() : 0; }
 
  private:
+  std::unique_ptr<LocalSolver> factorizeGramian(const CrsMatrix& G,
+                                                const std::string& localSolver) const;
   GO dimension_ = 0;
   SubdomainList subdomains_;
   std::vector<GO> coarseOffset_;  // per local subdomain: first coarse id

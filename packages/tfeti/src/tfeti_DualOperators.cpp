@@ -9,20 +9,15 @@ namespace {
 void ensure(Teuchos::RCP<MultiVector>& v, const Teuchos::RCP<const Map>& map, std::size_t cols) {
   if (v.is_null() || v->getNumVectors() != cols) v = Teuchos::rcp(new MultiVector(map, cols));
 }
-
-void checkMode(Teuchos::ETransp mode) {
-  // All three operators are symmetric, so the transposed apply is the apply.
-  (void)mode;
-}
 }  // namespace
 
 PseudoInverseOperator::PseudoInverseOperator(Teuchos::RCP<const Map> primalMap,
                                              SubdomainList subdomains)
     : map_(std::move(primalMap)), subdomains_(std::move(subdomains)) {}
 
-void PseudoInverseOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode,
-                                  Scalar alpha, Scalar beta) const {
-  checkMode(mode);
+void PseudoInverseOperator::apply(const MultiVector& X, MultiVector& Y,
+                                  Teuchos::ETransp /*mode: symmetric*/, Scalar alpha,
+                                  Scalar beta) const {
   for (std::size_t j = 0; j < X.getNumVectors(); ++j) {
     auto x = X.getData(j);
     auto y = Y.getDataNonConst(j);
@@ -41,9 +36,8 @@ void PseudoInverseOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos:
 DualOperator::DualOperator(Teuchos::RCP<const CrsMatrix> B, Teuchos::RCP<const Operator> Kplus)
     : B_(std::move(B)), Kplus_(std::move(Kplus)) {}
 
-void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode, Scalar alpha,
-                         Scalar beta) const {
-  checkMode(mode);
+void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp /*mode: symmetric*/,
+                         Scalar alpha, Scalar beta) const {
   ensure(p1_, B_->getDomainMap(), X.getNumVectors());
   ensure(p2_, B_->getDomainMap(), X.getNumVectors());
   B_->apply(X, *p1_, Teuchos::TRANS);
@@ -74,9 +68,9 @@ void DualPreconditioner::scale(MultiVector& X) const {
   }
 }
 
-void DualPreconditioner::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode,
-                               Scalar alpha, Scalar beta) const {
-  checkMode(mode);
+void DualPreconditioner::apply(const MultiVector& X, MultiVector& Y,
+                               Teuchos::ETransp /*mode: symmetric*/, Scalar alpha,
+                               Scalar beta) const {
   const std::size_t nv = X.getNumVectors();
   ensure(q_, B_->getRangeMap(), nv);
   ensure(p1_, B_->getDomainMap(), nv);

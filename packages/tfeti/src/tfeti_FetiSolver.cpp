@@ -4,6 +4,13 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <chrono>
+#include <iostream>
+#include <limits>
+
+#include "tfeti_MprgpSolMgr_decl.hpp"
+#include "tfeti_OperatorSum.hpp"
+#include "tfeti_ProjectedOperators.hpp"
+#include "tfeti_SmalbeSolMgr_decl.hpp"
 
 namespace tfeti {
 
@@ -62,13 +69,35 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
     std::vector<std::string> solvers = localSolverTypes();
     pl->set("Local solver", "cholmod", "sparse direct solver of the subdomain problems",
             choice(solvers));
+    pl->set("Dual solver", "auto",
+            "auto: PCPG without inequality rows, SMALBE with them; PCPG: projected CG "
+            "(equality constraints only); SMALBE: augmented Lagrangian with MPRGP inner solves; "
+            "penalty: MPRGP on P F P + rho Q (the reference paper's choice)",
+            choice({"auto", "PCPG", "SMALBE", "penalty"}));
     pl->sublist("PCPG").setParameters(*Pcpg::validParameters());
+    pl->sublist("MPRGP").setParameters(
+        *MprgpSolMgr<Scalar, MultiVector, Operator>::getValidParameters());
+    auto& smalbe = pl->sublist("SMALBE");
+    smalbe.setParameters(*SmalbeSolMgr<Scalar, MultiVector, Operator>::getValidParameters());
+    // Measured on the two-membrane benchmark (docs/benchmarks.md): with rho = ||P F P|| the
+    // outer iterations grow with the number of subdomains; with 100 ||P F P|| they stay at 2-4.
+    smalbe.set("Penalty", 100.0,
+               "rho = value * ||P F P|| (FETI default 100; the component's default is 1)");
+    auto& pen = pl->sublist("Penalty", false, "Dual solver = penalty");
+    pen.set("Penalty", 1e4,
+            "rho relative to the estimate of ||P F P||; the constraint error G lambda falls like "
+            "1/rho (about 1e-5 relative at the default)");
+    pen.set("Power iterations", 20, "power iterations for the estimate of ||P F P||");
+    pl->set("Preconditioning in face", true,
+            "SMALBE / penalty: precondition MPRGP's conjugate gradient steps by P M P (M the "
+            "chosen dual preconditioner) restricted to the free set");
   }
   return pl;
 }
 
 FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
-                       std::vector<SubdomainData> local, const Teuchos::ParameterList& params)
+                       std::vector<SubdomainData> local, const Teuchos::ParameterList& params,
+                       const std::vector<InequalityRow>& inequalities)
     : comm_(comm), params_(params), data_(std::move(local)) {
   params_.validateParametersAndSetDefaults(*validParameters());
   const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
@@ -113,7 +142,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       }
       input.push_back(std::move(in));
     }
-    tearing_ = buildTearing(comm_, numSubdomains, input, dpn, opts);
+    tearing_ = buildTearing(comm_, numSubdomains, input, dpn, opts, inequalities);
   }
   {
     PhaseTimer t(*comm_, timings_.coarse);
@@ -148,6 +177,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     Kplus_->apply(*f_, Kf);
     d_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
     tearing_.B->apply(Kf, *d_);
+    d_->update(-1.0, *tearing_.rhs, 1.0);  // d = B K+ f - c
     lambda0_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
     if (coarse_->dimension() > 0) {
       Vector e(coarse_->coarseMap());
@@ -157,27 +187,53 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   }
 }
 
-PcpgResult FetiSolver::solve() {
-  Vector lambda(tearing_.multiplierMap), g(tearing_.multiplierMap);
-  PcpgResult result;
-  {
+DualResult FetiSolver::solve() {
+  std::string method = params_.get<std::string>("Dual solver");
+  if (method == "auto") method = tearing_.numInequalityRows > 0 ? "SMALBE" : "PCPG";
+  if (method == "PCPG" && tearing_.numInequalityRows > 0)
+    throw std::invalid_argument(
+        "FETI: \"Dual solver\" = PCPG handles equality constraints only, but the problem has " +
+        std::to_string(tearing_.numInequalityRows) +
+        " inequality (contact) rows: choose SMALBE or penalty");
+  lambda_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  Vector g(tearing_.multiplierMap);
+  DualResult result;
+  if (method == "PCPG") {
     PhaseTimer t(*comm_, timings_.solve);
-    Tpetra::deep_copy(lambda, *lambda0_);
+    Tpetra::deep_copy(*lambda_, *lambda0_);
     Pcpg pcpg(F_, *coarse_, M_, params_.sublist("PCPG"));
-    result = pcpg.solve(*d_, lambda, g);
+    static_cast<PcpgResult&>(result) = pcpg.solve(*d_, *lambda_, g);
+    result.method = "PCPG";
+  } else {
+    result = solveQp(method);
   }
   {
     PhaseTimer t(*comm_, timings_.recovery);
-    // u = K+ (f - B^T lambda) + R alpha, alpha = (G G^T)^{-1} G (F lambda - d)
-    MultiVector rhs(tearing_.primalMap, 1), u(tearing_.primalMap, 1);
+    // u = K+ (f - B^T lambda) + R alpha, alpha fitted on the rows that hold with equality.
+    MultiVector rhs(tearing_.primalMap, 1);
+    u_vec_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
+    MultiVector& u = *u_vec_;
     Tpetra::deep_copy(rhs, *f_);
-    tearing_.B->apply(lambda, rhs, Teuchos::TRANS, -1.0, 1.0);
+    tearing_.B->apply(*lambda_, rhs, Teuchos::TRANS, -1.0, 1.0);
     Kplus_->apply(rhs, u);
     if (coarse_->dimension() > 0) {
-      F_->apply(lambda, g);
+      F_->apply(*lambda_, g);
       g.update(-1.0, *d_, 1.0);
       Vector alpha(coarse_->coarseMap());
-      coarse_->leastSquaresCoefficients(g, alpha);
+      if (tearing_.numInequalityRows == 0) {
+        coarse_->leastSquaresCoefficients(g, alpha);
+      } else {
+        // Inactive inequality rows (lambda_i = 0) have a gap: they must not enter the fit.
+        Vector mask(tearing_.multiplierMap);
+        auto m = mask.getDataNonConst();
+        auto l = lambda_->getData();
+        const auto& map = *tearing_.multiplierMap;
+        for (std::size_t i = 0; i < map.getNodeNumElements(); ++i)
+          m[i] = !tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i))) || l[i] > 0.0
+                     ? 1.0
+                     : 0.0;
+        coarse_->leastSquaresOnRows(g, mask, alpha, params_.get<std::string>("Local solver"));
+      }
       coarse_->addKernelCombination(alpha, u);
     }
     auto uv = u.getData(0);
@@ -190,6 +246,150 @@ PcpgResult FetiSolver::solve() {
     }
   }
   return result;
+}
+
+DualResult FetiSolver::solveQp(const std::string& method) {
+  using MV = MultiVector;
+  using Qp = BoundConstrainedQp<Scalar, MV, Operator>;
+  DualResult result;
+  result.method = method;
+  PhaseTimer t(*comm_, timings_.solve);
+  const auto map = tearing_.multiplierMap;
+  // lambda = lambda~ + mu: b = P (d - F lambda~), bounds mu_I >= -lambda~_I.
+  auto b = Teuchos::rcp(new Vector(map));
+  F_->apply(*lambda0_, *b);
+  b->update(1.0, *d_, -1.0);
+  coarse_->project(*b, *b);
+  auto lower = Teuchos::rcp(new Vector(map));
+  {
+    auto lo = lower->getDataNonConst();
+    auto l0 = lambda0_->getData();
+    for (std::size_t i = 0; i < map->getNodeNumElements(); ++i)
+      lo[i] = tearing_.isInequality(map->getGlobalElement(static_cast<LO>(i)))
+                  ? -l0[i]
+                  : -std::numeric_limits<double>::infinity();
+  }
+  auto mu = Teuchos::rcp(new Vector(map));  // 0, projected onto the bounds by MPRGP
+  auto PFP = Teuchos::rcp(new ProjectedDualOperator(F_, *coarse_));
+  auto Q = Teuchos::rcp(new ComplementProjector(map, *coarse_));
+  using Mgr = MprgpSolMgr<Scalar, MV, Operator>;
+  const long long before = F_->numApplies();
+  // ||P F P|| sets the scale of rho (both methods) and of MPRGP's step length; estimated once.
+  const bool smalbe = method == "SMALBE";
+  Teuchos::ParameterList sp = params_.sublist("SMALBE"), mp = params_.sublist("MPRGP");
+  const Teuchos::ParameterList& pen = params_.sublist("Penalty");
+  double norm = smalbe ? sp.get<double>("Norm of A") : 0.0;
+  if (norm <= 0.0) {
+    const int its = smalbe ? sp.get<int>("Power iterations") : pen.get<int>("Power iterations");
+    norm = Mgr::estimateNorm(*PFP, *b, its);
+  }
+  result.rho = (smalbe ? sp.get<double>("Penalty") : pen.get<double>("Penalty")) * norm;
+  // Preconditioning in face: P M P acts on range(P), where the Hessian is P F P; on range(Q) the
+  // Hessian is rho I, so the preconditioner is P M P + Q / rho (singular without the Q part).
+  Teuchos::RCP<const Operator> prec;
+  if (params_.get<bool>("Preconditioning in face") && !M_.is_null())
+    prec = OperatorSum<Scalar, MV, Operator>::build(
+        Teuchos::rcp(new ProjectedDualOperator(M_, *coarse_)), 1.0, Q, 1.0 / result.rho);
+
+  Qp qp;
+  qp.b = b;
+  qp.lower = lower;
+  qp.x = mu;
+  Belos::ReturnType ret;
+  if (smalbe) {
+    qp.A = PFP;
+    sp.set("Norm of A", norm);
+    if (!prec.is_null()) sp.sublist("MPRGP").set("Preconditioning in face", true);
+    SmalbeSolMgr<Scalar, MV, Operator> solver(qp, Q, sp, prec);
+    ret = solver.solve();
+    result.qp = solver.counters();
+  } else {
+    qp.A = OperatorSum<Scalar, MV, Operator>::build(PFP, 1.0, Q, result.rho);
+    // ||P F P + rho Q|| = max(||P F P||, rho): P and Q are complementary orthogonal projectors.
+    if (mp.get<double>("Norm of A") == 0.0) mp.set("Norm of A", std::max(norm, result.rho));
+    if (!prec.is_null()) mp.set("Preconditioning in face", true);
+    Mgr solver(qp, mp, prec);
+    ret = solver.solve();
+    result.qp = solver.counters();
+    Vector qmu(map);
+    Q->apply(*mu, qmu);
+    result.qp.equalityResidualNorm = qmu.norm2();
+  }
+  // Every application of the Hessian is one of F (the projections are coarse solves): count
+  // them all, the norm estimate's included.
+  result.qp.hessianMultiplications = F_->numApplies() - before;
+  result.converged = ret == Belos::Converged && result.qp.converged;
+  result.iterations =
+      static_cast<int>(result.qp.cgSteps + result.qp.expansionSteps + result.qp.proportioningSteps);
+  result.projectedGradientNorm = result.qp.projectedGradientNorm;
+  result.relativeResidual =
+      result.qp.rhsNorm > 0.0 ? result.qp.projectedGradientNorm / result.qp.rhsNorm : 0.0;
+  result.history = result.qp.history;
+  Tpetra::deep_copy(*lambda_, *lambda0_);
+  lambda_->update(1.0, *mu, 1.0);
+  return result;
+}
+
+ConstraintReport FetiSolver::constraintReport() const {
+  ConstraintReport r;
+  r.inequalityRows = tearing_.numInequalityRows;
+  if (u_vec_.is_null()) return r;
+  Vector bu(tearing_.multiplierMap);
+  tearing_.B->apply(*u_vec_, bu);
+  bu.update(-1.0, *tearing_.rhs, 1.0);  // B u - c
+  auto v = bu.getData();
+  auto l = lambda_->getData();
+  const auto& map = *tearing_.multiplierMap;
+  double mx[4] = {-std::numeric_limits<double>::infinity(), 0.0, 0.0,
+                  -std::numeric_limits<double>::infinity()};  // penetration, compl, eq, -min l
+  double sums[2] = {0.0, 0.0};                                // force, active rows
+  for (std::size_t i = 0; i < map.getNodeNumElements(); ++i) {
+    if (tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i)))) {
+      mx[0] = std::max(mx[0], v[i]);
+      mx[1] = std::max(mx[1], std::abs(l[i] * v[i]));
+      mx[3] = std::max(mx[3], -l[i]);
+      sums[0] += l[i];
+      sums[1] += l[i] > 0.0 ? 1.0 : 0.0;
+    } else {
+      mx[2] = std::max(mx[2], std::abs(v[i]));
+    }
+  }
+  double gmx[4], gsums[2];
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 4, mx, gmx);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, sums, gsums);
+  if (r.inequalityRows > 0) {
+    r.maxPenetration = gmx[0];
+    r.maxComplementarity = gmx[1];
+    r.minMultiplier = -gmx[3];
+  }
+  r.equalityResidual = gmx[2];
+  r.force = gsums[0];
+  r.activeRows = static_cast<GO>(gsums[1]);
+  return r;
+}
+
+std::vector<std::vector<FetiSolver::InequalityOnDof>>
+FetiSolver::inequalityMultipliersOnSubdomains() const {
+  std::vector<std::vector<InequalityOnDof>> out(subdomains_.size());
+  if (lambda_.is_null() || tearing_.numInequalityRows == 0) return out;
+  // The rows touching a local subdomain may be owned elsewhere: bring them here.
+  std::vector<GO> rows;
+  for (const auto& list : tearing_.subdomainRows)
+    for (const auto& e : list)
+      if (tearing_.isInequality(e.row)) rows.push_back(e.row);
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  auto here = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                   Teuchos::ArrayView<const GO>(rows), 0, comm_));
+  Vector local(here);
+  local.doImport(*lambda_, Tpetra::Import<LO, GO, Node>(tearing_.multiplierMap, here),
+                 Tpetra::INSERT);
+  auto lv = local.getData();
+  for (std::size_t i = 0; i < subdomains_.size(); ++i)
+    for (const auto& e : tearing_.subdomainRows[i])
+      if (tearing_.isInequality(e.row))
+        out[i].push_back({e.dof, e.coef, lv[here->getLocalElement(e.row)]});
+  return out;
 }
 
 double FetiSolver::timeDualApply(int repeats) const {

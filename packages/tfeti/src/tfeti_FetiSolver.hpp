@@ -1,10 +1,15 @@
 #pragma once
-// (T)FETI for a linear problem with equality constraints only: from subdomain matrices to the
-// primal solution.
-//   setup:  factorize K_s (K+), tear (B), coarse space (G, G G^T), preconditioner,
-//           d = B K+ f,  e = R^T f,  lambda0 = G^T (G G^T)^{-1} e
-//   solve:  PCPG on the dual problem
-//   recover: alpha = (G G^T)^{-1} G (F lambda - d),  u = K+ (f - B^T lambda) + R alpha
+// (T)FETI from subdomain matrices to the primal solution, for equality constraints (gluing,
+// Dirichlet) and, optionally, non-penetration inequality rows B_I u <= c_I (contact).
+//   setup:  factorize K_s (K+), tear (B, c), coarse space (G, G G^T), preconditioner,
+//           d = B K+ f - c,  e = R^T f,  lambda~ = G^T (G G^T)^{-1} e
+//   solve:  equality rows only: PCPG on the dual problem;
+//           with inequality rows: lambda = lambda~ + mu and the dual QP (reference paper,
+//           "FETI domain decomposition method (III), (IV)")
+//             min 1/2 mu^T P F P mu - mu^T P (d - F lambda~)  s.t.  Q mu = 0,  mu_I >= -lambda~_I
+//           by SMALBE (MPRGP inner solver) or by MPRGP on the penalized P F P + rho Q
+//   recover: alpha from the rows that hold with equality (equality rows and active inequality
+//           rows): alpha = (G_A G_A^T)^{-1} G_A (F lambda - d),  u = K+ (f - B^T lambda) + R alpha
 #include <Teuchos_ParameterList.hpp>
 
 #include <memory>
@@ -13,6 +18,7 @@
 #include "tfeti_CoarseSpace.hpp"
 #include "tfeti_DualOperators.hpp"
 #include "tfeti_Pcpg.hpp"
+#include "tfeti_QpProblem.hpp"
 #include "tfeti_SubdomainMesh.hpp"
 
 namespace tfeti {
@@ -23,6 +29,22 @@ struct SubdomainData {
   int dofsPerNode = 1;
   CsrMatrix K;
   std::vector<double> f;
+};
+
+struct DualResult : PcpgResult {
+  std::string method;  // PCPG | SMALBE | penalty
+  QpCounters qp;       // SMALBE and penalty: the QP solver's counters
+  double rho = 0.0;    // SMALBE and penalty: the penalty parameter used
+};
+
+// How well the recovered primal solution meets the constraints (after solve()).
+struct ConstraintReport {
+  GO inequalityRows = 0, activeRows = 0;  // active: lambda_i > 0
+  double force = 0.0;                     // sum of the inequality multipliers
+  double minMultiplier = 0.0;             // min lambda_I: >= 0
+  double maxPenetration = 0.0;            // max (B_I u - c_I): <= 0 when feasible
+  double maxComplementarity = 0.0;        // max |lambda_i (B_I u - c_I)_i|
+  double equalityResidual = 0.0;          // max |B_E u - c_E|
 };
 
 struct FetiTimings {
@@ -40,14 +62,27 @@ class FetiSolver {
  public:
   // "Formulation" (TFETI | FETI), "Gluing" (nonredundant | redundant), "Gluing at Dirichlet
   // nodes" (true), "Preconditioner" (none | lumped | dirichlet), "Local solver" (cholmod |
-  // klu2 | tacho), and the sublist "PCPG" (see Pcpg::validParameters).
+  // klu2 | tacho), "Dual solver" (auto | PCPG | SMALBE | penalty) and the sublists "PCPG",
+  // "MPRGP", "SMALBE" and "Penalty".
   static Teuchos::RCP<const Teuchos::ParameterList> validParameters();
 
   // local: the subdomains assigned to this rank (see subdomainsOfRank), in increasing id order.
+  // inequalities: the non-penetration rows this rank contributes (see buildTearing).
   FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
-             std::vector<SubdomainData> local, const Teuchos::ParameterList& params);
+             std::vector<SubdomainData> local, const Teuchos::ParameterList& params,
+             const std::vector<InequalityRow>& inequalities = {});
 
-  PcpgResult solve();
+  DualResult solve();
+
+  ConstraintReport constraintReport() const;
+  // For each local subdomain: every inequality row touching it, as (local dof, the row's
+  // coefficient there, lambda); the constraint's force on that dof is -coef * lambda.
+  struct InequalityOnDof {
+    int dof;
+    double coef, lambda;
+  };
+  std::vector<std::vector<InequalityOnDof>> inequalityMultipliersOnSubdomains() const;
+  const Vector& multipliers() const { return *lambda_; }
 
   // Mean wall time of one application of F over `repeats` applications (slowest rank).
   double timeDualApply(int repeats) const;
@@ -61,6 +96,7 @@ class FetiSolver {
   GO dualDimension() const { return tearing_.numRows; }
   GO gluingRows() const { return tearing_.numGluingRows; }
   GO dirichletRows() const { return tearing_.numDirichletRows; }
+  GO inequalityRows() const { return tearing_.numInequalityRows; }
   GO coarseDimension() const { return coarse_->dimension(); }
   long long dualOperatorApplies() const { return F_->numApplies(); }
   const FetiTimings& timings() const { return timings_; }
@@ -82,8 +118,9 @@ class FetiSolver {
   Teuchos::RCP<PseudoInverseOperator> Kplus_;
   Teuchos::RCP<DualOperator> F_;
   Teuchos::RCP<DualPreconditioner> M_;
-  Teuchos::RCP<Vector> d_, lambda0_;
-  Teuchos::RCP<MultiVector> f_;
+  DualResult solveQp(const std::string& method);
+  Teuchos::RCP<Vector> d_, lambda0_, lambda_;
+  Teuchos::RCP<MultiVector> f_, u_vec_;
   std::vector<std::vector<double>> u_;
   FetiTimings timings_;
 };

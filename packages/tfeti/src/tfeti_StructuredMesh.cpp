@@ -1,5 +1,6 @@
 #include "tfeti_StructuredMesh.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -30,7 +31,7 @@ SubdomainMesh StructuredRectangle::block(int i0, int j0, int nx, int ny) const {
       m.coords[2 * n] = x0_ + (x1_ - x0_) * gi / NX;
       m.coords[2 * n + 1] = y0_ + (y1_ - y0_) * gj / NY;
       m.globalNode[n] = static_cast<GO>(gj) * (NX + 1) + gi;
-      if (gi == 0) m.dirichletNodes.push_back(n);
+      if (gi == 0 && dirichletAtX0_) m.dirichletNodes.push_back(n);
     }
   m.quads.reserve(4 * nx * ny);
   for (int j = 0; j < ny; ++j)
@@ -47,6 +48,17 @@ SubdomainMesh StructuredRectangle::subdomain(int s) const {
   SubdomainMesh m = block((s % sx_) * ex_, (s / sx_) * ey_, ex_, ey_);
   m.id = s;
   return m;
+}
+
+std::pair<int, int> StructuredRectangle::copyOfNode(int gi, int gj) const {
+  if (gi < 0 || gi > elementsX() || gj < 0 || gj > elementsY())
+    throw std::out_of_range("structured mesh: no node (" + std::to_string(gi) + ", " +
+                            std::to_string(gj) + ")");
+  // The lowest subdomain id holding the node: the lowest block row, then the lowest column.
+  const int bi = gi > 0 && gi % ex_ == 0 ? gi / ex_ - 1 : std::min(gi / ex_, sx_ - 1);
+  const int bj = gj > 0 && gj % ey_ == 0 ? gj / ey_ - 1 : std::min(gj / ey_, sy_ - 1);
+  const int li = gi - bi * ex_, lj = gj - bj * ey_;
+  return {bj * sx_ + bi, lj * (ex_ + 1) + li};
 }
 
 SubdomainMesh StructuredRectangle::wholeMesh() const {

@@ -2,6 +2,8 @@
 // A rectangle meshed by Q1 elements and torn into a grid of rectangular subdomains: the
 // decomposition the reference paper's scalability study uses (H the subdomain size, h the
 // element size). Dirichlet nodes are those on the side x = x0.
+#include <utility>
+
 #include "tfeti_SubdomainMesh.hpp"
 
 namespace tfeti {
@@ -19,11 +21,17 @@ class StructuredRectangle {
   SubdomainMesh subdomain(int s) const;
   // The untorn mesh as one "subdomain" (id -1): for reference solves of the whole problem.
   SubdomainMesh wholeMesh() const;
+  // Without Dirichlet nodes the whole rectangle floats (a body held only by contact).
+  void setDirichletAtX0(bool on) { dirichletAtX0_ = on; }
+  // One copy of the untorn node (gi, gj) (0 <= gi <= elementsX()): the subdomain with the lowest
+  // id that holds it, and its local node there.
+  std::pair<int, int> copyOfNode(int gi, int gj) const;
 
  private:
   SubdomainMesh block(int i0, int j0, int nx, int ny) const;
   double x0_, x1_, y0_, y1_;
   int sx_, sy_, ex_, ey_;
+  bool dirichletAtX0_ = true;
 };
 
 }  // namespace tfeti

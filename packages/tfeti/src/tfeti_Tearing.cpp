@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <stdexcept>
+#include <string>
+#include <tuple>
 
 #include "tfeti_DenseUtils.hpp"
 #include "tfeti_Gather.hpp"
@@ -29,9 +32,42 @@ struct Row {
 
 }  // namespace
 
+// Every rank's inequality rows, in a canonical order (by their entries, then gap) so that the
+// numbering does not depend on which rank contributed a row.
+std::vector<InequalityRow> gatherInequalities(const Comm& comm,
+                                              const std::vector<InequalityRow>& mine) {
+  std::vector<double> packed;
+  for (const auto& row : mine) {
+    packed.insert(packed.end(), {static_cast<double>(row.entries.size()), row.gap});
+    for (const auto& e : row.entries)
+      packed.insert(packed.end(),
+                    {static_cast<double>(e.subdomain), static_cast<double>(e.dof), e.coef});
+  }
+  const std::vector<double> all = allGather(comm, packed);
+  std::vector<InequalityRow> rows;
+  for (std::size_t k = 0; k < all.size();) {
+    InequalityRow row;
+    const int n = static_cast<int>(all[k]);
+    row.gap = all[k + 1];
+    k += 2;
+    for (int i = 0; i < n; ++i, k += 3)
+      row.entries.push_back({static_cast<int>(all[k]), static_cast<int>(all[k + 1]), all[k + 2]});
+    rows.push_back(std::move(row));
+  }
+  auto key = [](const InequalityRow& r) {
+    std::vector<std::tuple<int, int, double>> k;
+    for (const auto& e : r.entries) k.emplace_back(e.subdomain, e.dof, e.coef);
+    return std::make_pair(k, r.gap);
+  };
+  std::sort(rows.begin(), rows.end(),
+            [&](const InequalityRow& a, const InequalityRow& b) { return key(a) < key(b); });
+  return rows;
+}
+
 Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                      const std::vector<TearingInput>& local, int dofsPerNode,
-                     const TearingOptions& options) {
+                     const TearingOptions& options,
+                     const std::vector<InequalityRow>& inequalities) {
   Tearing t;
   const int P = comm->getSize();
 
@@ -96,23 +132,63 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     }
     first = last;
   }
-  t.numRows = static_cast<GO>(rows.size());
+  // Inequality rows follow the equality rows, each its own group, owned with its first entry.
+  const std::vector<InequalityRow> ineq = gatherInequalities(*comm, inequalities);
+  const GO numEq = static_cast<GO>(rows.size());
+  t.firstInequalityRow = numEq;
+  t.numInequalityRows = static_cast<GO>(ineq.size());
+  t.numRows = numEq + t.numInequalityRows;
+  std::size_t maxEntries = 2;
+  for (const auto& row : ineq) {
+    for (const auto& e : row.entries)
+      if (e.subdomain < 0 || e.subdomain >= numSubdomains || e.dof < 0 ||
+          e.dof >= allSizes[e.subdomain])
+        throw std::invalid_argument("tearing: an inequality row refers to dof " +
+                                    std::to_string(e.dof) + " of subdomain " +
+                                    std::to_string(e.subdomain) + ", which does not exist");
+    if (row.entries.empty())
+      throw std::invalid_argument("tearing: an inequality row has no entries");
+    maxEntries = std::max(maxEntries, row.entries.size());
+  }
 
   // The multiplier map: rows of groups owned here.
   const int me = comm->getRank();
   std::vector<GO> myRows;
   for (std::size_t r = 0; r < rows.size(); ++r)
     if (groupOwner[rows[r].group] == me) myRows.push_back(static_cast<GO>(r));
+  for (std::size_t r = 0; r < ineq.size(); ++r)
+    if (ownerOfSubdomain(ineq[r].entries.front().subdomain, numSubdomains, P) == me)
+      myRows.push_back(numEq + static_cast<GO>(r));
   t.multiplierMap = Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(t.numRows),
                                          Teuchos::ArrayView<const GO>(myRows), 0, comm));
 
-  t.B = Teuchos::rcp(new CrsMatrix(t.multiplierMap, 2, Tpetra::StaticProfile));
-  for (GO r : myRows) {
-    const Row& row = rows[r];
-    GO cols[2];
-    for (int k = 0; k < row.n; ++k) cols[k] = t.dofOffset[row.sub[k]] + row.dof[k];
-    t.B->insertGlobalValues(r, Teuchos::ArrayView<const GO>(cols, row.n),
-                            Teuchos::ArrayView<const double>(row.coef.data(), row.n));
+  t.B = Teuchos::rcp(new CrsMatrix(t.multiplierMap, maxEntries, Tpetra::StaticProfile));
+  t.rhs = Teuchos::rcp(new Vector(t.multiplierMap));
+  {
+    auto c = t.rhs->getDataNonConst();
+    std::vector<GO> cols(maxEntries);
+    std::vector<double> vals(maxEntries);
+    for (std::size_t l = 0; l < myRows.size(); ++l) {
+      const GO r = myRows[l];
+      int n = 0;
+      if (r < numEq) {
+        const Row& row = rows[r];
+        for (n = 0; n < row.n; ++n) {
+          cols[n] = t.dofOffset[row.sub[n]] + row.dof[n];
+          vals[n] = row.coef[n];
+        }
+      } else {
+        const InequalityRow& row = ineq[r - numEq];
+        // Entries on the same dof are summed: Tpetra would sum them at fillComplete anyway.
+        for (const auto& e : row.entries) {
+          cols[n] = t.dofOffset[e.subdomain] + e.dof;
+          vals[n++] = e.coef;
+        }
+        c[l] = row.gap;
+      }
+      t.B->insertGlobalValues(r, Teuchos::ArrayView<const GO>(cols.data(), n),
+                              Teuchos::ArrayView<const double>(vals.data(), n));
+    }
   }
   t.B->fillComplete(t.primalMap, t.multiplierMap);
 
@@ -127,12 +203,20 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
         t.subdomainRows[it->second].push_back(
             {static_cast<GO>(r), rows[r].dof[k], rows[r].coef[k]});
     }
+  for (std::size_t r = 0; r < ineq.size(); ++r)
+    for (const auto& e : ineq[r].entries) {
+      auto it = localIndex.find(e.subdomain);
+      if (it != localIndex.end())
+        t.subdomainRows[it->second].push_back({numEq + static_cast<GO>(r), e.dof, e.coef});
+    }
 
   // Owned groups and the pseudo-inverse of B B^T on each (rows of a group share its node's dofs).
-  for (std::size_t r = 0; r < myRows.size();) {
+  std::size_t numMyEq = 0;
+  while (numMyEq < myRows.size() && myRows[numMyEq] < numEq) ++numMyEq;
+  for (std::size_t r = 0; r < numMyEq;) {
     const int group = rows[myRows[r]].group;
     std::size_t e = r;
-    while (e < myRows.size() && rows[myRows[e]].group == group) ++e;
+    while (e < numMyEq && rows[myRows[e]].group == group) ++e;
     const int m = static_cast<int>(e - r);
     std::vector<double> BBt(m * m, 0.0);
     std::vector<LO> lids;
@@ -150,6 +234,15 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     t.groupRows.push_back(std::move(lids));
     t.groupScaling.push_back(dense::pseudoInverseSpd(m, BBt));
     r = e;
+  }
+  for (std::size_t l = numMyEq; l < myRows.size(); ++l) {
+    // Entries on one dof add up before the row norm is taken.
+    std::map<std::pair<int, int>, double> coefs;
+    for (const auto& e : ineq[myRows[l] - numEq].entries) coefs[{e.subdomain, e.dof}] += e.coef;
+    double norm2 = 0.0;
+    for (const auto& [key, v] : coefs) norm2 += v * v;
+    t.groupRows.push_back({static_cast<LO>(l)});
+    t.groupScaling.push_back({norm2 > 0.0 ? 1.0 / norm2 : 0.0});
   }
   return t;
 }

@@ -34,6 +34,19 @@ struct TearingInput {
   std::vector<char> boundaryDirichlet;
 };
 
+// One term of a constraint row: coefficient times a dof of a subdomain (global subdomain id).
+struct ConstraintEntry {
+  int subdomain;
+  int dof;
+  double coef;
+};
+
+// A non-penetration row  sum coef * u <= gap  (contact): its multiplier is bounded below by 0.
+struct InequalityRow {
+  std::vector<ConstraintEntry> entries;
+  double gap = 0.0;
+};
+
 struct RowEntry {
   GO row;       // multiplier id
   int dof;      // local dof of the subdomain
@@ -51,10 +64,18 @@ struct Tearing {
   std::vector<std::vector<LO>> groupRows;
   std::vector<std::vector<double>> groupScaling;
   GO numRows = 0, numGluingRows = 0, numDirichletRows = 0;
+  // Inequality rows come last: global rows [firstInequalityRow, numRows).
+  GO numInequalityRows = 0, firstInequalityRow = 0;
+  // Right-hand side c of B u = c (equality) and B u <= c (inequality), on multiplierMap.
+  Teuchos::RCP<Vector> rhs;
+  bool isInequality(GO row) const { return row >= firstInequalityRow; }
 };
 
+// inequalities: the non-penetration rows this rank contributes (any rank may contribute any
+// row; they are gathered and numbered in a canonical order independent of the rank count).
 Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                      const std::vector<TearingInput>& local, int dofsPerNode,
-                     const TearingOptions& options);
+                     const TearingOptions& options,
+                     const std::vector<InequalityRow>& inequalities = {});
 
 }  // namespace tfeti

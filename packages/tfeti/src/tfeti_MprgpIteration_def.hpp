@@ -1,0 +1,251 @@
+#pragma once
+#include <Teuchos_Assert.hpp>
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "tfeti_BoundTraits.hpp"
+#include "tfeti_MprgpIteration_decl.hpp"
+
+namespace tfeti {
+
+template <class S, class MV, class OP>
+MprgpIteration<S, MV, OP>::MprgpIteration(const BoundConstrainedQp<S, MV, OP>& qp,
+                                          Teuchos::RCP<const OP> M,
+                                          Teuchos::RCP<Belos::StatusTest<S, MV, OP>> tester,
+                                          const Options& options)
+    : qp_(qp), M_(std::move(M)), tester_(std::move(tester)), opts_(options) {
+  TEUCHOS_TEST_FOR_EXCEPTION(
+      qp_.A.is_null() || qp_.b.is_null() || qp_.lower.is_null() || qp_.x.is_null(),
+      std::invalid_argument, "MprgpIteration: A, b, lower and x of the problem must all be set");
+  TEUCHOS_TEST_FOR_EXCEPTION(tester_.is_null(), std::invalid_argument,
+                             "MprgpIteration: a status test is required");
+  TEUCHOS_TEST_FOR_EXCEPTION(!(opts_.alphaBar > S(0)) || !(opts_.gamma > S(0)),
+                             std::invalid_argument,
+                             "MprgpIteration: the step length alphaBar and Gamma must be > 0");
+  TEUCHOS_TEST_FOR_EXCEPTION(MVT::GetNumberVecs(*qp_.x) != 1 || MVT::GetNumberVecs(*qp_.b) != 1 ||
+                                 MVT::GetNumberVecs(*qp_.lower) != 1,
+                             std::invalid_argument,
+                             "MprgpIteration: x, b and lower must be single vectors");
+  // Built directly, not through setProblem, which would compute residuals and shuffle columns
+  // for Belos' block solvers; status tests only need A, b and the iterate.
+  problem_ = Teuchos::rcp(new Belos::LinearProblem<S, MV, OP>(qp_.A, qp_.x, qp_.b));
+  g_ = MVT::Clone(*qp_.x, 1);
+  p_ = MVT::Clone(*qp_.x, 1);
+  Ap_ = MVT::Clone(*qp_.x, 1);
+  phi_ = MVT::Clone(*qp_.x, 1);
+  beta_ = MVT::Clone(*qp_.x, 1);
+  if (!M_.is_null()) z_ = MVT::Clone(*qp_.x, 1);
+  root_ = BoundTraits<S, MV>::commRank(*qp_.x) == 0;
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::setBlockSize(int blockSize) {
+  TEUCHOS_TEST_FOR_EXCEPTION(blockSize != 1, std::invalid_argument,
+                             "MprgpIteration: the block size is always 1");
+}
+
+template <class S, class MV, class OP>
+Teuchos::RCP<const MV> MprgpIteration<S, MV, OP>::getNativeResiduals(
+    std::vector<magnitude_type>* norms) const {
+  if (norms != nullptr) {
+    if (norms->size() < 1) norms->resize(1);
+    (*norms)[0] = gpNorm_;
+  }
+  return Teuchos::null;
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::applyA(const MV& in, MV& out) {
+  OPT::Apply(*qp_.A, in, out);
+  ++counters_.hessianMultiplications;
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::updateGradientSplit() {
+  using BT = BoundTraits<S, MV>;
+  BT::freeGradient(*qp_.x, *qp_.lower, *g_, *phi_);
+  BT::choppedGradient(*qp_.x, *qp_.lower, *g_, *beta_);
+  std::vector<magnitude_type> n(1);
+  MVT::MvNorm(*phi_, n);
+  const magnitude_type phiNorm = n[0];
+  MVT::MvNorm(*beta_, n);
+  betaNorm2_ = n[0] * n[0];
+  gpNorm_ = std::sqrt(phiNorm * phiNorm + betaNorm2_);
+  phiTildePhi_ = BT::reducedFreeGradientDot(*qp_.x, *qp_.lower, *phi_, opts_.alphaBar);
+  if (!std::isfinite(gpNorm_))
+    throw std::runtime_error(
+        "MPRGP: the gradient A x - b contains NaN or Inf (the operator A produced a non-finite "
+        "value)");
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::precondition(MV& z) {
+  if (M_.is_null()) {
+    MVT::Assign(*phi_, z);
+    return;
+  }
+  OPT::Apply(*M_, *phi_, z);
+  BoundTraits<S, MV>::restrictToFree(*qp_.x, *qp_.lower, z);
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::checkProblemData(const BoundConstrainedQp<S, MV, OP>& qp) {
+  using BT = BoundTraits<S, MV>;
+  if (!BT::allFinite(*qp.b))
+    throw std::runtime_error("MPRGP: the right-hand side b contains NaN or Inf");
+  if (!BT::allFinite(*qp.lower, true))
+    throw std::runtime_error(
+        "MPRGP: the lower bounds contain NaN or +Inf (use -Inf for an unconstrained component)");
+  if (!BT::allFinite(*qp.x))
+    throw std::runtime_error("MPRGP: the initial guess x contains NaN or Inf");
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::initialize() {
+  using BT = BoundTraits<S, MV>;
+  checkProblemData(qp_);
+  BT::project(*qp_.x, *qp_.lower);
+  applyA(*qp_.x, *g_);
+  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  if (!BT::allFinite(*g_))
+    throw std::runtime_error("MPRGP: A x contains NaN or Inf for the initial guess x");
+  updateGradientSplit();
+  precondition(*p_);
+  iter_ = 0;
+  stationary_ = false;
+  stalled_ = false;
+  initialized_ = true;
+  counters_.history.assign(1, gpNorm_);
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::iterate() {
+  if (!initialized_) initialize();
+  while (tester_->checkStatus(this) != Belos::Passed) {
+    if (gpNorm_ == magnitude_type(0)) {
+      // x is the exact solution: every step below would divide by zero.
+      stationary_ = true;
+      break;
+    }
+    if (betaNorm2_ <= opts_.gamma * opts_.gamma * phiTildePhi_) {
+      applyA(*p_, *Ap_);
+      std::vector<S> d(1);
+      MVT::MvDot(*p_, *Ap_, d);
+      const S pAp = d[0];
+      if (!(pAp > S(0))) {
+        std::vector<magnitude_type> n(1);
+        MVT::MvNorm(*p_, n);
+        // A curvature at the level of rounding in A p (|p^T A p| ~ eps ||A|| ||p||^2) means the
+        // direction is numerically zero: x is as stationary as floating point can tell.
+        const magnitude_type normA = opts_.alphaBar > 0 ? magnitude_type(2) / opts_.alphaBar : 0;
+        if (std::isfinite(pAp) && n[0] > 0 &&
+            -pAp <= magnitude_type(1e3) * std::numeric_limits<magnitude_type>::epsilon() * normA *
+                        n[0] * n[0]) {
+          stalled_ = true;
+          break;
+        }
+        std::ostringstream os;
+        if (!std::isfinite(pAp))
+          os << "MPRGP: p^T A p is " << pAp << " (A produced NaN or Inf)";
+        else if (n[0] == magnitude_type(0))
+          os << "MPRGP: the preconditioner in face returned a zero direction for a non-zero "
+                "free gradient (it is singular on the free set)";
+        else
+          os << "MPRGP: the Hessian is not positive definite on the free set (p^T A p = " << pAp
+             << " for a non-zero direction p at step " << iter_ << ")";
+        throw std::runtime_error(os.str());
+      }
+      MVT::MvDot(*g_, *p_, d);
+      const S alphaCg = d[0] / pAp;
+      const S alphaF = BoundTraits<S, MV>::maxFeasibleStep(*qp_.x, *qp_.lower, *p_);
+      if (alphaCg <= alphaF) {
+        cgStep(alphaCg);
+        record("CG");
+      } else {
+        expansionStep(alphaF);
+        record("expansion");
+      }
+    } else {
+      proportioningStep();
+      record("proportioning");
+    }
+    ++iter_;
+  }
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::cgStep(S alphaCg) {
+  MVT::MvAddMv(S(1), *qp_.x, -alphaCg, *p_, *qp_.x);
+  // Mathematically feasible; the projection only removes rounding below the bounds.
+  BoundTraits<S, MV>::project(*qp_.x, *qp_.lower);
+  MVT::MvAddMv(S(1), *g_, -alphaCg, *Ap_, *g_);
+  updateGradientSplit();
+  // p = z - (z^T A p / p^T A p) p keeps the new direction A-conjugate to the previous one.
+  MV& z = M_.is_null() ? *phi_ : *z_;
+  if (!M_.is_null()) precondition(z);
+  std::vector<S> zAp(1), pAp(1);
+  MVT::MvDot(z, *Ap_, zAp);
+  MVT::MvDot(*p_, *Ap_, pAp);
+  MVT::MvAddMv(S(1), z, -zAp[0] / pAp[0], *p_, *p_);
+  ++counters_.cgSteps;
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible) {
+  using BT = BoundTraits<S, MV>;
+  MVT::MvAddMv(S(1), *qp_.x, -alphaFeasible, *p_, *qp_.x);
+  BT::project(*qp_.x, *qp_.lower);
+  MVT::MvAddMv(S(1), *g_, -alphaFeasible, *Ap_, *g_);
+  BT::freeGradient(*qp_.x, *qp_.lower, *g_, *phi_);
+  MVT::MvAddMv(S(1), *qp_.x, -opts_.alphaBar, *phi_, *qp_.x);
+  BT::project(*qp_.x, *qp_.lower);
+  // The projection changed x non-linearly: recompute the gradient, which also stops the
+  // recursive update from drifting.
+  applyA(*qp_.x, *g_);
+  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  updateGradientSplit();
+  precondition(*p_);
+  ++counters_.expansionSteps;
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::proportioningStep() {
+  // d = beta <= 0 lives on the active set, so x - alpha d (alpha > 0) only moves components
+  // up from their bounds: always feasible. g^T d = ||beta||^2 > 0.
+  applyA(*beta_, *Ap_);
+  std::vector<S> dAd(1);
+  MVT::MvDot(*beta_, *Ap_, dAd);
+  if (!(dAd[0] > S(0))) {
+    std::ostringstream os;
+    if (!std::isfinite(dAd[0]))
+      os << "MPRGP: d^T A d is " << dAd[0] << " (A produced NaN or Inf)";
+    else
+      os << "MPRGP: the Hessian is not positive definite on the free set (d^T A d = " << dAd[0]
+         << " along the chopped gradient at step " << iter_ << ")";
+    throw std::runtime_error(os.str());
+  }
+  const S alpha = betaNorm2_ / dAd[0];
+  MVT::MvAddMv(S(1), *qp_.x, -alpha, *beta_, *qp_.x);
+  MVT::MvAddMv(S(1), *g_, -alpha, *Ap_, *g_);
+  updateGradientSplit();
+  precondition(*p_);
+  ++counters_.proportioningSteps;
+}
+
+template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::record(const char* kind) {
+  counters_.history.push_back(gpNorm_);
+  if (opts_.verbosity >= 2 && root_) {
+    std::ostream& os = opts_.out != nullptr ? *opts_.out : std::cout;
+    os << "  MPRGP " << std::setw(5) << iter_ + 1 << "  " << std::left << std::setw(13) << kind
+       << std::right << " ||g^P||/||b|| = " << std::scientific << std::setprecision(3)
+       << gpNorm_ / opts_.printScale << std::defaultfloat << "\n";
+  }
+}
+
+}  // namespace tfeti

@@ -1,0 +1,208 @@
+#pragma once
+#include <BelosStatusTestCombo.hpp>
+#include <BelosStatusTestMaxIters.hpp>
+#include <Teuchos_Assert.hpp>
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "tfeti_BoundTraits.hpp"
+#include "tfeti_MprgpIteration_def.hpp"
+#include "tfeti_MprgpSolMgr_decl.hpp"
+#include "tfeti_QpStatusTests.hpp"
+
+namespace tfeti {
+
+template <class S, class MV, class OP>
+Teuchos::RCP<const Teuchos::ParameterList> MprgpSolMgr<S, MV, OP>::getValidParameters() {
+  static Teuchos::RCP<Teuchos::ParameterList> pl;
+  if (pl.is_null()) {
+    pl = Teuchos::rcp(new Teuchos::ParameterList("MPRGP"));
+    pl->set("Relative tolerance", 1e-6, "stop when ||g^P|| <= tolerance * ||b||");
+    pl->set("Maximum iterations", 10000, "limit on MPRGP steps; reaching it is Unconverged");
+    pl->set("Gamma", 1.0, "proportioning: proportional when ||beta||^2 <= Gamma^2 phi~^T phi");
+    pl->set("Step length factor", 1.9, "alphaBar = factor / ||A||, in (0, 2]");
+    pl->set("Norm of A", 0.0, "||A||; 0: estimate by power iterations");
+    pl->set("Power iterations", 20, "power iterations for estimating ||A||");
+    pl->set("Preconditioning in face", false,
+            "CG directions from the preconditioner restricted to the free set");
+    pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every step (rank 0)");
+  }
+  return pl;
+}
+
+template <class S, class MV, class OP>
+MprgpSolMgr<S, MV, OP>::MprgpSolMgr(const BoundConstrainedQp<S, MV, OP>& qp,
+                                    const Teuchos::ParameterList& params,
+                                    Teuchos::RCP<const OP> preconditioner)
+    : qp_(qp), M_(std::move(preconditioner)), params_(params) {
+  params_.validateParametersAndSetDefaults(*getValidParameters());
+  auto fail = [](bool bad, const std::string& what) {
+    TEUCHOS_TEST_FOR_EXCEPTION(bad, std::invalid_argument, "MPRGP: parameter " << what);
+  };
+  const double tol = params_.get<double>("Relative tolerance");
+  const double factor = params_.get<double>("Step length factor");
+  fail(!(tol >= 0.0), "\"Relative tolerance\" must be >= 0");
+  fail(params_.get<int>("Maximum iterations") < 1, "\"Maximum iterations\" must be >= 1");
+  fail(!(params_.get<double>("Gamma") > 0.0), "\"Gamma\" must be > 0");
+  fail(!(factor > 0.0 && factor <= 2.0), "\"Step length factor\" must be in (0, 2]");
+  fail(!(params_.get<double>("Norm of A") >= 0.0), "\"Norm of A\" must be >= 0 (0: estimate)");
+  fail(params_.get<int>("Power iterations") < 1, "\"Power iterations\" must be >= 1");
+  const int verbosity = params_.get<int>("Verbosity");
+  fail(verbosity < 0 || verbosity > 2, "\"Verbosity\" must be 0, 1 or 2");
+  fail(params_.get<bool>("Preconditioning in face") && M_.is_null(),
+       "\"Preconditioning in face\" = true needs a preconditioner");
+  TEUCHOS_TEST_FOR_EXCEPTION(
+      qp_.A.is_null() || qp_.b.is_null() || qp_.lower.is_null() || qp_.x.is_null(),
+      std::invalid_argument, "MPRGP: A, b, lower and x of the problem must all be set");
+  if (params_.get<double>("Norm of A") > 0.0) {
+    normA_ = params_.get<double>("Norm of A");
+    normGiven_ = true;
+  }
+}
+
+template <class S, class MV, class OP>
+void MprgpSolMgr<S, MV, OP>::setConvergenceTest(Teuchos::RCP<Belos::StatusTest<S, MV, OP>> test,
+                                                bool replaceDefault) {
+  userTest_ = std::move(test);
+  replaceDefault_ = replaceDefault && !userTest_.is_null();
+}
+
+template <class S, class MV, class OP>
+void MprgpSolMgr<S, MV, OP>::setNormOfA(magnitude_type normA) {
+  TEUCHOS_TEST_FOR_EXCEPTION(!(normA > 0) || !std::isfinite(normA), std::invalid_argument,
+                             "MPRGP: ||A|| must be positive and finite, got " << normA);
+  normA_ = normA;
+  normGiven_ = true;
+}
+
+template <class S, class MV, class OP>
+typename MprgpSolMgr<S, MV, OP>::magnitude_type MprgpSolMgr<S, MV, OP>::estimateNorm(
+    const OP& A, const MV& like, int iterations, long long* multiplications) {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  auto v = MVT::Clone(like, 1);
+  auto w = MVT::Clone(like, 1);
+  BoundTraits<S, MV>::fillDeterministic(*v);
+  std::vector<magnitude_type> n(1);
+  MVT::MvNorm(*v, n);
+  MVT::MvScale(*v, S(1) / n[0]);
+  magnitude_type est = 0;
+  for (int k = 0; k < iterations; ++k) {
+    Belos::OperatorTraits<S, MV, OP>::Apply(A, *v, *w);
+    if (multiplications != nullptr) ++*multiplications;
+    MVT::MvNorm(*w, n);
+    est = n[0];
+    if (!std::isfinite(est))
+      throw std::runtime_error("MPRGP: A produced NaN or Inf while estimating ||A||");
+    if (est == magnitude_type(0)) break;
+    MVT::MvAddMv(S(1) / est, *w, S(0), *w, *v);
+  }
+  if (!(est > magnitude_type(0)))
+    throw std::runtime_error("MPRGP: the estimate of ||A|| is zero (A = 0 on the start vector)");
+  return magnitude_type(1.05) * est;
+}
+
+template <class S, class MV, class OP>
+Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using BT = BoundTraits<S, MV>;
+  counters_ = QpCounters{};
+  MprgpIteration<S, MV, OP>::checkProblemData(qp_);
+  const int verbosity = params_.get<int>("Verbosity");
+  const bool root = BT::commRank(*qp_.x) == 0;
+
+  if (!normGiven_)
+    normA_ = estimateNorm(*qp_.A, *qp_.x, params_.get<int>("Power iterations"),
+                          &counters_.hessianMultiplications);
+  std::vector<magnitude_type> n(1);
+  MVT::MvNorm(*qp_.b, n);
+  counters_.rhsNorm = n[0];
+  magnitude_type scale = n[0];
+  if (scale == magnitude_type(0) && !replaceDefault_) {
+    // b = 0: ||b|| gives no scale, the gradient at P(0) does (non-zero unless P(0) solves it).
+    auto y = MVT::Clone(*qp_.x, 1);
+    auto Ay = MVT::Clone(*qp_.x, 1);
+    MVT::MvInit(*y, S(0));
+    BT::project(*y, *qp_.lower);
+    Belos::OperatorTraits<S, MV, OP>::Apply(*qp_.A, *y, *Ay);
+    ++counters_.hessianMultiplications;
+    MVT::MvNorm(*Ay, n);
+    scale = n[0];
+  }
+  if (scale == magnitude_type(0)) scale = 1;
+
+  auto maxIters = Teuchos::rcp(
+      new Belos::StatusTestMaxIters<S, MV, OP>(params_.get<int>("Maximum iterations")));
+  auto gradTest = Teuchos::rcp(new StatusTestProjectedGradient<S, MV, OP>());
+  gradTest->setRelativeTolerance(params_.get<double>("Relative tolerance"), scale);
+  Teuchos::RCP<Belos::StatusTest<S, MV, OP>> convTest;
+  if (userTest_.is_null())
+    convTest = gradTest;
+  else if (replaceDefault_)
+    convTest = userTest_;
+  else
+    convTest = Teuchos::rcp(new Belos::StatusTestCombo<S, MV, OP>(
+        Belos::StatusTestCombo<S, MV, OP>::OR, gradTest, userTest_));
+  convTest->reset();
+  auto combo = Teuchos::rcp(new Belos::StatusTestCombo<S, MV, OP>(
+      Belos::StatusTestCombo<S, MV, OP>::OR, maxIters, convTest));
+
+  typename MprgpIteration<S, MV, OP>::Options opts;
+  opts.gamma = params_.get<double>("Gamma");
+  opts.alphaBar = params_.get<double>("Step length factor") / normA_;
+  opts.printScale = scale;
+  opts.verbosity = verbosity;
+  const Teuchos::RCP<const OP> M =
+      params_.get<bool>("Preconditioning in face") ? M_ : Teuchos::RCP<const OP>();
+  MprgpIteration<S, MV, OP> iteration(qp_, M, combo, opts);
+  iteration.initialize();
+  iteration.iterate();
+
+  const QpCounters& ic = iteration.counters();
+  counters_.hessianMultiplications += ic.hessianMultiplications;
+  counters_.cgSteps = ic.cgSteps;
+  counters_.expansionSteps = ic.expansionSteps;
+  counters_.proportioningSteps = ic.proportioningSteps;
+  counters_.history = ic.history;
+  for (double& h : counters_.history) h /= scale;
+  counters_.projectedGradientNorm = iteration.projectedGradientNorm();
+  numIters_ = iteration.getNumIters();
+  g_ = iteration.getGradient();
+  // Every step ends with a projection or only moves up from the bounds: this cannot fail.
+  TEUCHOS_TEST_FOR_EXCEPTION(!BT::isFeasible(*qp_.x, *qp_.lower), std::logic_error,
+                             "MPRGP: internal error, the solution violates the bounds");
+
+  const bool converged =
+      iteration.reachedStationaryPoint() || convTest->getStatus() == Belos::Passed;
+  counters_.converged = converged;
+  std::ostringstream msg;
+  msg << std::scientific << std::setprecision(3);
+  if (iteration.reachedStationaryPoint())
+    msg << "converged: the projected gradient is exactly zero after " << numIters_ << " steps";
+  else if (!converged && iteration.stalledAtRounding())
+    msg << "not converged: stopped after " << numIters_
+        << " steps, the search direction's curvature is at rounding level, with ||g^P|| = "
+        << counters_.projectedGradientNorm << " (" << counters_.projectedGradientNorm / scale
+        << " relative, tolerance " << params_.get<double>("Relative tolerance") << ")";
+  else if (converged)
+    msg << "converged after " << numIters_
+        << " steps: ||g^P|| = " << counters_.projectedGradientNorm << " ("
+        << counters_.projectedGradientNorm / scale << " relative)";
+  else
+    msg << "not converged: the limit of " << params_.get<int>("Maximum iterations")
+        << " steps was reached with ||g^P|| = " << counters_.projectedGradientNorm << " ("
+        << counters_.projectedGradientNorm / scale << " relative, tolerance "
+        << params_.get<double>("Relative tolerance") << ")";
+  counters_.message = msg.str();
+  if (verbosity >= 1 && root)
+    std::cout << "MPRGP: " << counters_.message << "; " << counters_.cgSteps << " CG, "
+              << counters_.expansionSteps << " expansion, " << counters_.proportioningSteps
+              << " proportioning steps, " << counters_.hessianMultiplications
+              << " multiplications by A, ||A|| = " << normA_ << std::endl;
+  return converged ? Belos::Converged : Belos::Unconverged;
+}
+
+}  // namespace tfeti

@@ -1,0 +1,35 @@
+#pragma once
+// The bound-constrained quadratic program of the MPRGP and SMALBE solvers,
+//   min 1/2 x^T A x - b^T x  subject to  x >= lower,
+// (SMALBE adds Q x = 0 with Q an orthogonal projector, given to its solver manager), and the
+// work counters both solvers report.
+#include <Teuchos_RCP.hpp>
+
+#include <string>
+#include <vector>
+
+namespace tfeti {
+
+template <class S, class MV, class OP>
+struct BoundConstrainedQp {
+  Teuchos::RCP<const OP> A;      // symmetric, positive definite on the free sets visited
+  Teuchos::RCP<const MV> b;      // linear term
+  Teuchos::RCP<const MV> lower;  // lower bounds; -infinity: unconstrained component
+  Teuchos::RCP<MV> x;            // initial guess in (projected onto the bounds), solution out
+};
+
+struct QpCounters {
+  bool converged = false;
+  int outerIterations = 0;               // SMALBE outer iterations (MPRGP: 0)
+  long long hessianMultiplications = 0;  // every application of the Hessian, power iterations too
+  long long cgSteps = 0;                 // MPRGP conjugate gradient steps
+  long long expansionSteps = 0;          // MPRGP expansion steps (feasible + projected step)
+  long long proportioningSteps = 0;      // MPRGP proportioning steps (along the chopped gradient)
+  double projectedGradientNorm = 0;      // final ||g^P||
+  double equalityResidualNorm = 0;       // final ||Q x|| (SMALBE)
+  double rhsNorm = 0;                    // ||b||, the scale of the relative tolerances
+  std::vector<double> history;           // ||g^P|| / ||b|| per MPRGP step (first: initial guess)
+  std::string message;                   // why the solver stopped
+};
+
+}  // namespace tfeti
