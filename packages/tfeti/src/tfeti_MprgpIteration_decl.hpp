@@ -44,8 +44,13 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   using magnitude_type = typename Teuchos::ScalarTraits<S>::magnitudeType;
 
   struct Options {
-    S gamma = 1;                  // proportioning parameter Gamma > 0
-    S alphaBar = 0;               // fixed step length of the expansion step, in (0, 2 / ||A||]
+    S gamma = 1;     // proportioning parameter Gamma > 0
+    S alphaBar = 0;  // fixed step length of the expansion step, in (0, 2 / ||A||]
+    // Expansion along the free gradient with the step that minimizes f before the projection
+    // (one more multiplication), falling back to alphaBar when the projected step does not
+    // decrease f. Helps when ||A|| is dominated by a part of A the bounds do not touch (the
+    // penalized dual Hessian P F P + rho Q, where alphaBar ~ 2/rho hardly moves x).
+    bool optimalExpansion = false;
     S printScale = 1;             // verbosity 2 prints ||g^P|| / printScale
     int verbosity = 0;            // >= 2: one line per step on rank 0
     std::ostream* out = nullptr;  // std::cout when null
@@ -103,6 +108,8 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   void precondition(MV& z);
   void cgStep(S alphaCg);
   void expansionStep(S alphaFeasible);
+  bool tryOptimalExpansion();
+  S energy() const;
   void proportioningStep();
   void record(const char* kind);
 
@@ -111,7 +118,7 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   Teuchos::RCP<Belos::StatusTest<S, MV, OP>> tester_;
   Options opts_;
   Teuchos::RCP<Belos::LinearProblem<S, MV, OP>> problem_;
-  Teuchos::RCP<MV> g_, p_, Ap_, phi_, beta_, z_;
+  Teuchos::RCP<MV> g_, p_, Ap_, phi_, beta_, z_, xHalf_;
   magnitude_type gpNorm_ = 0, betaNorm2_ = 0;
   S phiTildePhi_ = 0;
   int iter_ = 0;

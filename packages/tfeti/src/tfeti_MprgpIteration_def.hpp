@@ -40,6 +40,7 @@ MprgpIteration<S, MV, OP>::MprgpIteration(const BoundConstrainedQp<S, MV, OP>& q
   phi_ = MVT::Clone(*qp_.x, 1);
   beta_ = MVT::Clone(*qp_.x, 1);
   if (!M_.is_null()) z_ = MVT::Clone(*qp_.x, 1);
+  if (opts_.optimalExpansion) xHalf_ = MVT::Clone(*qp_.x, 1);
   root_ = BoundTraits<S, MV>::commRank(*qp_.x) == 0;
 }
 
@@ -196,12 +197,51 @@ void MprgpIteration<S, MV, OP>::cgStep(S alphaCg) {
 }
 
 template <class S, class MV, class OP>
+S MprgpIteration<S, MV, OP>::energy() const {
+  // f(x) = 1/2 x^T A x - b^T x = 1/2 x^T (g - b) with g = A x - b: no multiplication.
+  std::vector<S> xg(1), xb(1);
+  MVT::MvDot(*qp_.x, *g_, xg);
+  MVT::MvDot(*qp_.x, *qp_.b, xb);
+  return S(0.5) * (xg[0] - xb[0]);
+}
+
+template <class S, class MV, class OP>
+bool MprgpIteration<S, MV, OP>::tryOptimalExpansion() {
+  using BT = BoundTraits<S, MV>;
+  // phi holds the free gradient at the half step x; phi^T g = phi^T phi.
+  applyA(*phi_, *Ap_);
+  std::vector<S> phiAphi(1), phiPhi(1);
+  MVT::MvDot(*phi_, *Ap_, phiAphi);
+  MVT::MvDot(*phi_, *phi_, phiPhi);
+  if (!(phiAphi[0] > S(0))) return false;
+  const S fHalf = energy();
+  MVT::Assign(*qp_.x, *xHalf_);
+  MVT::MvAddMv(S(1), *qp_.x, -phiPhi[0] / phiAphi[0], *phi_, *qp_.x);
+  BT::project(*qp_.x, *qp_.lower);
+  applyA(*qp_.x, *g_);
+  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  if (energy() <= fHalf) {
+    updateGradientSplit();
+    precondition(*p_);
+    return true;
+  }
+  // The projection spoiled the step: back to the half step, whose gradient is recomputed by
+  // the fixed-length step that follows.
+  MVT::Assign(*xHalf_, *qp_.x);
+  return false;
+}
+
+template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible) {
   using BT = BoundTraits<S, MV>;
   MVT::MvAddMv(S(1), *qp_.x, -alphaFeasible, *p_, *qp_.x);
   BT::project(*qp_.x, *qp_.lower);
   MVT::MvAddMv(S(1), *g_, -alphaFeasible, *Ap_, *g_);
   BT::freeGradient(*qp_.x, *qp_.lower, *g_, *phi_);
+  if (opts_.optimalExpansion && tryOptimalExpansion()) {
+    ++counters_.expansionSteps;
+    return;
+  }
   MVT::MvAddMv(S(1), *qp_.x, -opts_.alphaBar, *phi_, *qp_.x);
   BT::project(*qp_.x, *qp_.lower);
   // The projection changed x non-linearly: recompute the gradient, which also stops the

@@ -2,6 +2,7 @@
 #include <BelosStatusTestCombo.hpp>
 #include <BelosStatusTestMaxIters.hpp>
 #include <Teuchos_Assert.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <cmath>
 #include <iomanip>
@@ -25,6 +26,12 @@ Teuchos::RCP<const Teuchos::ParameterList> MprgpSolMgr<S, MV, OP>::getValidParam
     pl->set("Maximum iterations", 10000, "limit on MPRGP steps; reaching it is Unconverged");
     pl->set("Gamma", 1.0, "proportioning: proportional when ||beta||^2 <= Gamma^2 phi~^T phi");
     pl->set("Step length factor", 1.9, "alphaBar = factor / ||A||, in (0, 2]");
+    pl->set("Expansion step", "fixed",
+            "fixed: x = P(x - alphaBar phi) (Dostál-Schöberl); optimal: the step minimizing f "
+            "along -phi before the projection, alphaBar when that does not decrease f (one more "
+            "multiplication; for Hessians whose norm the bounds do not see, e.g. P F P + rho Q)",
+            Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+                Teuchos::tuple<std::string>("fixed", "optimal"), "Expansion step")));
     pl->set("Norm of A", 0.0, "||A||; 0: estimate by power iterations");
     pl->set("Power iterations", 20, "power iterations for estimating ||A||");
     pl->set("Preconditioning in face", false,
@@ -153,6 +160,7 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
   typename MprgpIteration<S, MV, OP>::Options opts;
   opts.gamma = params_.get<double>("Gamma");
   opts.alphaBar = params_.get<double>("Step length factor") / normA_;
+  opts.optimalExpansion = params_.get<std::string>("Expansion step") == "optimal";
   opts.printScale = scale;
   opts.verbosity = verbosity;
   const Teuchos::RCP<const OP> M =
