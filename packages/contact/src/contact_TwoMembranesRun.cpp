@@ -109,6 +109,14 @@ VtuPiece membranePiece(const tfeti::FetiSolver& solver) {
   return piece;
 }
 
+double maxAbsSolution(const tfeti::Comm& comm, const tfeti::FetiSolver& solver) {
+  double mine = 0.0, all = 0.0;
+  for (std::size_t i = 0; i < solver.data().size(); ++i)
+    for (double v : solver.solution(i)) mine = std::max(mine, std::abs(v));
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &mine, &all);
+  return all;
+}
+
 struct MembraneRun {
   tfeti::DualResult result;
   tfeti::ConstraintReport contact;
@@ -240,6 +248,7 @@ int runTwoMembranesScalability(const Teuchos::RCP<const tfeti::Comm>& comm, Para
         j["contact"] = contactJson(contact, tm.expectedContactForce());
         j["setup_s"] = solver.timings().setup();
         j["solve_s"] = solver.timings().solve;
+        j["max_abs_u"] = maxAbsSolution(*comm, solver);
         bySolver[method] = std::move(j);
         primal = solver.primalDimension();
         dual = solver.dualDimension();
