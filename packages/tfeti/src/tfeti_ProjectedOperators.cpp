@@ -42,4 +42,23 @@ void ComplementProjector::apply(const MultiVector& X, MultiVector& Y,
   }
 }
 
+void ProjectedPlusComplement::apply(const MultiVector& X, MultiVector& Y,
+                                    Teuchos::ETransp /*mode: symmetric*/, Scalar alpha,
+                                    Scalar beta) const {
+  ensureColumns(px_, X.getMap(), 1);
+  ensureColumns(apx_, X.getMap(), 1);
+  for (std::size_t j = 0; j < X.getNumVectors(); ++j) {
+    auto px = px_->getVectorNonConst(0);
+    auto apx = apx_->getVectorNonConst(0);
+    const auto x = X.getVector(j);
+    coarse_.project(*x, *px);
+    A_->apply(*px, *apx);
+    coarse_.project(*apx, *apx);
+    // y = alpha (P A P x + c (x - P x)) + beta y
+    auto y = Y.getVectorNonConst(j);
+    y->update(alpha, *apx, alpha * c_, *x, beta);
+    y->update(-alpha * c_, *px, 1.0);
+  }
+}
+
 }  // namespace tfeti

@@ -22,6 +22,25 @@ class ProjectedDualOperator : public Operator {
   mutable Teuchos::RCP<MultiVector> px_, fpx_;
 };
 
+// P A P + c Q with two coarse projections instead of three (P x is shared): the penalized or
+// augmented dual Hessian P F P + rho Q (A = F, c = rho), and its in-face preconditioner
+// P M P + Q / rho (A = M, c = 1/rho).
+class ProjectedPlusComplement : public Operator {
+ public:
+  ProjectedPlusComplement(Teuchos::RCP<const Operator> A, const CoarseSpace& coarse, double c)
+      : A_(std::move(A)), coarse_(coarse), c_(c) {}
+  Teuchos::RCP<const Map> getDomainMap() const override { return A_->getDomainMap(); }
+  Teuchos::RCP<const Map> getRangeMap() const override { return A_->getRangeMap(); }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode = Teuchos::NO_TRANS,
+             Scalar alpha = 1.0, Scalar beta = 0.0) const override;
+
+ private:
+  Teuchos::RCP<const Operator> A_;
+  const CoarseSpace& coarse_;
+  double c_;
+  mutable Teuchos::RCP<MultiVector> px_, apx_;
+};
+
 class ComplementProjector : public Operator {
  public:
   ComplementProjector(Teuchos::RCP<const Map> map, const CoarseSpace& coarse)

@@ -57,6 +57,10 @@ class SmalbeSolMgr {
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
   const Teuchos::ParameterList& getCurrentParameters() const { return params_; }
 
+  // The augmented Hessian A + rho Q applied by the caller's own operator (e.g. one that shares
+  // work between A and Q) instead of the OperatorSum of the two; its rho must be
+  // penaltyFor(||A||), the "Penalty" parameter times the "Norm of A" given.
+  void setAugmentedHessian(Teuchos::RCP<const OP> H) { augmented_ = std::move(H); }
   // Starting multiplier (in range(Q); default zero).
   void setInitialMultiplier(Teuchos::RCP<const MV> mu0) { mu0_ = std::move(mu0); }
 
@@ -74,7 +78,7 @@ class SmalbeSolMgr {
 
  private:
   BoundConstrainedQp<S, MV, OP> qp_;
-  Teuchos::RCP<const OP> Q_, P_;
+  Teuchos::RCP<const OP> Q_, P_, augmented_;
   Teuchos::ParameterList params_;
   Teuchos::RCP<const MV> mu0_;
   Teuchos::RCP<MV> mu_;

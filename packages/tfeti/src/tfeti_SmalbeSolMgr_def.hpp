@@ -109,7 +109,8 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
     MVT::Assign(*mu0_, *mu_);
   auto bInner = MVT::Clone(*qp_.x, 1);
   auto Qx = MVT::Clone(*qp_.x, 1);
-  const Teuchos::RCP<const OP> H = OperatorSum<S, MV, OP>::build(qp_.A, S(1), Q_, S(rho_));
+  const Teuchos::RCP<const OP> H =
+      augmented_.is_null() ? OperatorSum<S, MV, OP>::build(qp_.A, S(1), Q_, S(rho_)) : augmented_;
   BoundConstrainedQp<S, MV, OP> inner{H, bInner, qp_.lower, qp_.x};
   Teuchos::ParameterList innerParams = params_.sublist("MPRGP");
   auto innerTest = Teuchos::rcp(new StatusTestSmalbeInner<S, MV, OP>(Q_, M_, eta, gTol, eTol));
