@@ -9,6 +9,8 @@ find_package(MPI REQUIRED COMPONENTS CXX)
 find_package(Trilinos 13.2 REQUIRED
              COMPONENTS Teuchos Kokkos KokkosKernels Tpetra Belos Amesos2 Zoltan2)
 find_package(METIS REQUIRED)
+# Unstructured meshes (contact package): .geo meshing and .msh reading through the C++ API.
+find_package(Gmsh 4.8 REQUIRED)
 find_package(CHOLMOD REQUIRED)
 
 if(NOT TARGET TfetiDeps::Trilinos)

@@ -13,6 +13,8 @@ packages=(
   libmetis-dev libopenmpi-dev openmpi-bin
   # local subdomain factorization (CHOLMOD) and its siblings
   libsuitesparse-dev
+  # unstructured meshes: the Gmsh C++ API (gmsh.h) meshes .geo files and reads .msh files
+  libgmsh-dev
   # output checks and plot scripts
   python3 clang-format
 )

@@ -1,0 +1,252 @@
+#include "contact_Partition.hpp"
+
+#include <metis.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+namespace contact {
+
+static_assert(sizeof(long long) == 8, "globalNode must hold tfeti::GO values");
+
+namespace {
+
+std::uint64_t edgeKey(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+}  // namespace
+
+std::vector<int> UnstructuredSubdomain::boundaryNodes() const {
+  const int npe = nodesPerElement(), nc = numCorners(type);
+  std::unordered_map<std::uint64_t, int> edgeCount;
+  for (int e = 0; e < numElements(); ++e)
+    for (int k = 0; k < nc; ++k) {
+      const int* el = &connectivity[static_cast<std::size_t>(e) * npe];
+      ++edgeCount[edgeKey(el[k], el[(k + 1) % nc])];
+    }
+  std::vector<char> onBoundary(numNodes(), 0);
+  for (int e = 0; e < numElements(); ++e)
+    for (int k = 0; k < nc; ++k) {
+      const int* el = &connectivity[static_cast<std::size_t>(e) * npe];
+      if (edgeCount[edgeKey(el[k], el[(k + 1) % nc])] != 1) continue;
+      for (int a : elementEdgeNodes(type, k)) onBoundary[el[a]] = 1;
+    }
+  std::vector<int> nodes;
+  for (int n = 0; n < numNodes(); ++n)
+    if (onBoundary[n]) nodes.push_back(n);
+  return nodes;
+}
+
+DualGraph edgeDualGraph(const GmshBody& body) {
+  const int ne = body.numElements(), npe = body.nodesPerElement(), nc = numCorners(body.type);
+  if (static_cast<long long>(body.connectivity.size()) != static_cast<long long>(ne) * npe)
+    throw std::invalid_argument("edgeDualGraph: body \"" + body.name +
+                                "\": connectivity size does not match its element count");
+  // Elements per edge; in a valid 2D mesh at most two, but a third one is kept rather than
+  // dropped so that a non-manifold input cannot silently lose adjacency.
+  std::unordered_map<std::uint64_t, std::vector<int>> byEdge;
+  byEdge.reserve(static_cast<std::size_t>(ne) * 2);
+  for (int e = 0; e < ne; ++e)
+    for (int k = 0; k < nc; ++k) {
+      const int* el = &body.connectivity[static_cast<std::size_t>(e) * npe];
+      byEdge[edgeKey(el[k], el[(k + 1) % nc])].push_back(e);
+    }
+  std::vector<std::vector<int>> adj(ne);
+  for (const auto& [key, els] : byEdge)
+    for (int a : els)
+      for (int b : els)
+        if (a != b) adj[a].push_back(b);
+  DualGraph g;
+  g.offsets.assign(ne + 1, 0);
+  for (int e = 0; e < ne; ++e) {
+    // Sorted for a result independent of the hash map's iteration order (METIS sees the same
+    // graph on every rank).
+    std::sort(adj[e].begin(), adj[e].end());
+    adj[e].erase(std::unique(adj[e].begin(), adj[e].end()), adj[e].end());
+    g.offsets[e + 1] = g.offsets[e] + static_cast<int>(adj[e].size());
+  }
+  g.neighbors.reserve(g.offsets[ne]);
+  for (int e = 0; e < ne; ++e) g.neighbors.insert(g.neighbors.end(), adj[e].begin(), adj[e].end());
+  return g;
+}
+
+namespace {
+
+// METIS can leave parts empty when there are few elements per part. Each empty part takes one
+// element of the currently largest part, the one with the fewest neighbours in it: removing an
+// element with a single neighbour cannot disconnect the donor, and anything that does get
+// disconnected is split into subdomains later anyway.
+void fillEmptyParts(const DualGraph& g, int numParts, std::vector<int>& part) {
+  std::vector<int> size(numParts, 0);
+  for (int p : part) ++size[p];
+  for (int empty = 0; empty < numParts; ++empty) {
+    if (size[empty] > 0) continue;
+    const int donor = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+    int best = -1, bestDegree = 0;
+    for (int e = 0; e < g.numElements(); ++e) {
+      if (part[e] != donor) continue;
+      int degree = 0;
+      for (int k = g.offsets[e]; k < g.offsets[e + 1]; ++k) degree += part[g.neighbors[k]] == donor;
+      if (best < 0 || degree < bestDegree) {
+        best = e;
+        bestDegree = degree;
+      }
+    }
+    part[best] = empty;
+    --size[donor];
+    ++size[empty];
+  }
+}
+
+}  // namespace
+
+std::vector<int> partitionElements(const GmshBody& body, int numParts) {
+  const int ne = body.numElements();
+  if (numParts < 1 || numParts > ne)
+    throw std::invalid_argument("partitionElements: body \"" + body.name + "\" has " +
+                                std::to_string(ne) + " elements; cannot cut it into " +
+                                std::to_string(numParts) + " parts");
+  std::vector<int> part(ne, 0);
+  if (numParts == 1) return part;
+
+  const DualGraph g = edgeDualGraph(body);
+  std::vector<idx_t> xadj(g.offsets.begin(), g.offsets.end());
+  std::vector<idx_t> adjncy(g.neighbors.begin(), g.neighbors.end());
+  std::vector<idx_t> where(ne, 0);
+  idx_t nvtxs = ne, ncon = 1, nparts = numParts, objval = 0;
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_NUMBERING] = 0;
+  // METIS randomizes its matching and refinement: a fixed seed makes every rank (and every run)
+  // cut the body identically, which the subdomain numbering across ranks relies on.
+  options[METIS_OPTION_SEED] = 20240611;
+  // Plain k-way cuts small meshes into many disconnected pieces (each would become a subdomain);
+  // contiguous parts avoid that. METIS cannot honour it on a disconnected graph (a body made of
+  // separate pieces) and says so on stdout, so it is only asked for on a connected one.
+  const std::vector<int> pieces = componentsWithinParts(g, part);
+  if (*std::max_element(pieces.begin(), pieces.end()) == 0) options[METIS_OPTION_CONTIG] = 1;
+  // An empty adjacency array is legal for METIS but a null pointer from an empty vector is not.
+  idx_t dummy = 0;
+  const int rc = METIS_PartGraphKway(
+      &nvtxs, &ncon, xadj.data(), adjncy.empty() ? &dummy : adjncy.data(), nullptr, nullptr,
+      nullptr, &nparts, nullptr, nullptr, options, &objval, where.data());
+  if (rc != METIS_OK)
+    throw std::runtime_error("partitionElements: METIS_PartGraphKway failed on body \"" +
+                             body.name + "\" (code " + std::to_string(rc) + ")");
+  for (int e = 0; e < ne; ++e) part[e] = static_cast<int>(where[e]);
+  fillEmptyParts(g, numParts, part);
+  return part;
+}
+
+std::vector<int> componentsWithinParts(const DualGraph& graph, const std::vector<int>& part) {
+  const int ne = graph.numElements();
+  if (static_cast<int>(part.size()) != ne)
+    throw std::invalid_argument("componentsWithinParts: partition size " +
+                                std::to_string(part.size()) + " != number of elements " +
+                                std::to_string(ne));
+  std::vector<int> component(ne, -1);
+  std::map<int, int> nextOfPart;
+  std::vector<int> stack;
+  for (int seed = 0; seed < ne; ++seed) {
+    if (component[seed] >= 0) continue;
+    const int c = nextOfPart[part[seed]]++;
+    component[seed] = c;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const int e = stack.back();
+      stack.pop_back();
+      for (int k = graph.offsets[e]; k < graph.offsets[e + 1]; ++k) {
+        const int n = graph.neighbors[k];
+        if (component[n] < 0 && part[n] == part[e]) {
+          component[n] = c;
+          stack.push_back(n);
+        }
+      }
+    }
+  }
+  return component;
+}
+
+BodyPartition splitIntoSubdomains(const GmshMesh& mesh, const GmshBody& body,
+                                  const std::vector<int>& part, int numParts, int firstId) {
+  const int ne = body.numElements(), npe = body.nodesPerElement();
+  if (numParts < 1)
+    throw std::invalid_argument("splitIntoSubdomains: numParts = " + std::to_string(numParts));
+  if (static_cast<int>(part.size()) != ne)
+    throw std::invalid_argument("splitIntoSubdomains: body \"" + body.name + "\" has " +
+                                std::to_string(ne) + " elements but the partition " +
+                                std::to_string(part.size()) + " entries");
+  for (int e = 0; e < ne; ++e)
+    if (part[e] < 0 || part[e] >= numParts)
+      throw std::invalid_argument("splitIntoSubdomains: element " + std::to_string(e) +
+                                  " is in part " + std::to_string(part[e]) + ", not in [0, " +
+                                  std::to_string(numParts) + ")");
+
+  const std::vector<int> component = componentsWithinParts(edgeDualGraph(body), part);
+  std::vector<int> componentsOfPart(numParts, 0);
+  for (int e = 0; e < ne; ++e)
+    componentsOfPart[part[e]] = std::max(componentsOfPart[part[e]], component[e] + 1);
+
+  BodyPartition out;
+  out.numParts = numParts;
+  // Subdomain of each (part, component): parts in order, components in order within a part.
+  std::vector<int> firstOfPart(numParts + 1, 0);
+  for (int p = 0; p < numParts; ++p) {
+    firstOfPart[p + 1] = firstOfPart[p] + componentsOfPart[p];
+    if (componentsOfPart[p] == 0) ++out.emptyParts;
+    if (componentsOfPart[p] > 1) {
+      ++out.splitParts;
+      out.extraSubdomains += componentsOfPart[p] - 1;
+    }
+  }
+  out.subdomains.resize(firstOfPart[numParts]);
+  for (int p = 0; p < numParts; ++p)
+    for (int c = 0; c < componentsOfPart[p]; ++c) {
+      UnstructuredSubdomain& s = out.subdomains[firstOfPart[p] + c];
+      s.id = firstId + firstOfPart[p] + c;
+      s.part = p;
+      s.type = body.type;
+    }
+  for (int e = 0; e < ne; ++e)
+    out.subdomains[firstOfPart[part[e]] + component[e]].elements.push_back(e);
+
+  for (UnstructuredSubdomain& s : out.subdomains) {
+    for (int e : s.elements)
+      for (int a = 0; a < npe; ++a)
+        s.globalNode.push_back(body.connectivity[static_cast<std::size_t>(e) * npe + a]);
+    std::sort(s.globalNode.begin(), s.globalNode.end());
+    s.globalNode.erase(std::unique(s.globalNode.begin(), s.globalNode.end()), s.globalNode.end());
+    std::unordered_map<long long, int> local;
+    local.reserve(s.globalNode.size());
+    s.coords.resize(2 * s.globalNode.size());
+    for (int i = 0; i < s.numNodes(); ++i) {
+      const long long g = s.globalNode[i];
+      if (g < 0 || g >= mesh.numNodes())
+        throw std::invalid_argument("splitIntoSubdomains: body \"" + body.name +
+                                    "\" refers to node " + std::to_string(g) + " outside the mesh");
+      local[g] = i;
+      s.coords[2 * i] = mesh.coords[2 * g];
+      s.coords[2 * i + 1] = mesh.coords[2 * g + 1];
+    }
+    s.connectivity.reserve(s.elements.size() * npe);
+    for (int e : s.elements)
+      for (int a = 0; a < npe; ++a)
+        s.connectivity.push_back(
+            local.at(body.connectivity[static_cast<std::size_t>(e) * npe + a]));
+  }
+  return out;
+}
+
+BodyPartition partitionBody(const GmshMesh& mesh, const GmshBody& body, int numParts, int firstId) {
+  return splitIntoSubdomains(mesh, body, partitionElements(body, numParts), numParts, firstId);
+}
+
+}  // namespace contact

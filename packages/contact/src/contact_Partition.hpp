@@ -1,0 +1,72 @@
+#pragma once
+// Decomposition of one unstructured body into TFETI subdomains: METIS parts of the element dual
+// graph, each split into its edge-connected components. A component is its own subdomain because
+// the kernel of a subdomain's stiffness matrix has one set of rigid body modes per rigidly
+// connected piece; pieces that touch only at a node are not rigidly connected for elasticity
+// (they can rotate about it), so connectivity is through shared element edges, never nodes.
+#include <vector>
+
+#include "contact_GmshMesh.hpp"
+
+namespace contact {
+
+// The unstructured counterpart of tfeti::SubdomainMesh: a subdomain's own copy of every node it
+// touches and the untorn node id of each, from which the gluing rows are built.
+struct UnstructuredSubdomain {
+  int id = -1;    // subdomain id (see partitionBody's firstId)
+  int part = -1;  // the METIS part it was cut from
+  ElementType type = ElementType::Tri3;
+  std::vector<int> elements;          // element ids within the body, increasing
+  std::vector<int> connectivity;      // numNodes(type) local nodes per element, Gmsh node order
+  std::vector<double> coords;         // x, y per local node
+  std::vector<long long> globalNode;  // untorn (GmshMesh) node id per local node, increasing;
+                                      // long long as tfeti::GO
+  int numNodes() const { return static_cast<int>(globalNode.size()); }
+  int numElements() const { return static_cast<int>(elements.size()); }
+  int nodesPerElement() const { return contact::numNodes(type); }
+  // Local nodes on an element edge that no other element of the subdomain has (midside nodes
+  // included): the only nodes that can be shared with another subdomain.
+  std::vector<int> boundaryNodes() const;
+};
+
+// Element adjacency through shared edges (CSR): elements i and j are neighbours iff they have an
+// edge with the same two end nodes.
+struct DualGraph {
+  std::vector<int> offsets;    // numElements + 1
+  std::vector<int> neighbors;  // increasing within each element
+  int numElements() const { return static_cast<int>(offsets.size()) - 1; }
+};
+DualGraph edgeDualGraph(const GmshBody& body);
+
+// The METIS part (0 .. numParts-1) of every element of the body: k-way partitioning of the edge
+// dual graph with a fixed seed, so every rank computes the same parts, asking METIS for
+// contiguous parts when the body is connected. No part is empty (METIS may leave some empty on
+// tiny meshes; they get an element of the largest part). numParts == 1 does not call METIS.
+// Throws std::invalid_argument unless 1 <= numParts <= number of elements.
+std::vector<int> partitionElements(const GmshBody& body, int numParts);
+
+// Component of every element within its part (graph restricted to same-part edges), numbered
+// 0, 1, ... per part in the order of each component's smallest element.
+std::vector<int> componentsWithinParts(const DualGraph& graph, const std::vector<int>& part);
+
+struct BodyPartition {
+  std::vector<UnstructuredSubdomain> subdomains;  // ordered by part, then by smallest element
+  int numParts = 0;                               // requested
+  int emptyParts = 0;       // parts METIS left without elements (no subdomain)
+  int splitParts = 0;       // parts that were not edge-connected
+  int extraSubdomains = 0;  // subdomains added by splitting: subdomains.size() ==
+                            // numParts - emptyParts + extraSubdomains
+  int numSubdomains() const { return static_cast<int>(subdomains.size()); }
+};
+
+// Subdomains from a given element partition (part[e] in 0 .. numParts-1), each part split into its
+// edge-connected components. Subdomain ids are firstId, firstId + 1, ... so that the subdomains of
+// several bodies can be numbered consecutively.
+BodyPartition splitIntoSubdomains(const GmshMesh& mesh, const GmshBody& body,
+                                  const std::vector<int>& part, int numParts, int firstId = 0);
+
+// partitionElements followed by splitIntoSubdomains.
+BodyPartition partitionBody(const GmshMesh& mesh, const GmshBody& body, int numParts,
+                            int firstId = 0);
+
+}  // namespace contact

@@ -1,0 +1,12 @@
+// A square in the plane z = 1: not a 2D mesh in the xy plane, which the loader must reject.
+Point(1) = {0, 0, 1, 0.5};
+Point(2) = {1, 0, 1, 0.5};
+Point(3) = {1, 1, 1, 0.5};
+Point(4) = {0, 1, 1, 0.5};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Surface("square") = {1};
