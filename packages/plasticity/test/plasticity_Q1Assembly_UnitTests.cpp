@@ -12,10 +12,13 @@
 
 #include "plasticity_ElasticLaw.hpp"
 #include "plasticity_Q1Assembly.hpp"
+#include "plasticity_TestUtils.hpp"
 #include "tfeti_CsrMatrix.hpp"
 #include "tfeti_DenseUtils.hpp"
 
 namespace {
+// The shared measures: dot, norm2, maxAbs, asymmetry, multiply, eigenvalues.
+using namespace plasticity_test;  // NOLINT(build/namespaces)
 
 using plasticity::ElasticLaw;
 using plasticity::Field;
@@ -72,51 +75,6 @@ bool isInteriorPatchNode(int n) {
   return i > 0 && i < 3 && j > 0 && j < 3;
 }
 
-std::vector<double> multiply(const tfeti::CsrMatrix& K, const std::vector<double>& x) {
-  std::vector<double> y(K.rows);
-  K.multiply(x.data(), y.data());
-  return y;
-}
-
-double dot(const std::vector<double>& a, const std::vector<double>& b) {
-  double s = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
-  return s;
-}
-
-double norm2(const std::vector<double>& v) {
-  return std::sqrt(dot(v, v));
-}
-
-double maxAbs(const std::vector<double>& v) {
-  double m = 0.0;
-  for (double x : v) m = std::max(m, std::abs(x));
-  return m;
-}
-
-// max |K_ij - K_ji| / max |K_ij|, over the full pattern.
-double asymmetry(const tfeti::CsrMatrix& K) {
-  double worst = 0.0;
-  for (int i = 0; i < K.rows; ++i)
-    for (int k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k) {
-      const long t = K.find(K.colInd[k], i);
-      const double vt = t < 0 ? 0.0 : K.values[t];
-      worst = std::max(worst, std::abs(K.values[k] - vt));
-    }
-  return worst / K.maxAbs();
-}
-
-// Eigenvalues of the (small) matrix, ascending.
-std::vector<double> eigenvalues(const tfeti::CsrMatrix& K) {
-  std::vector<double> A(static_cast<std::size_t>(K.rows) * K.rows, 0.0);
-  for (int i = 0; i < K.rows; ++i)
-    for (int k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k) A[K.colInd[k] * K.rows + i] = K.values[k];
-  std::vector<double> w, V;
-  tfeti::dense::symmetricEigen(K.rows, A, w, V);
-  std::sort(w.begin(), w.end());
-  return w;
-}
-
 // Nodal values of the linear scalar field a + b x + c y.
 std::vector<double> linearScalar(const QuadMesh& m, double a, double b, double c) {
   std::vector<double> u(m.numNodes());
@@ -144,18 +102,6 @@ double strainEnergy(const ElasticLaw& law, const double A[4], const double B[4])
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) s += ea[i] * D[3 * i + j] * eb[j];
   return s;
-}
-
-// Rigid body modes of plane elasticity: 2 translations and the rotation (-y, x).
-std::vector<std::vector<double>> rigidModes(const QuadMesh& m) {
-  std::vector<std::vector<double>> R(3, std::vector<double>(2 * m.numNodes(), 0.0));
-  for (int n = 0; n < m.numNodes(); ++n) {
-    R[0][2 * n] = 1.0;
-    R[1][2 * n + 1] = 1.0;
-    R[2][2 * n] = -m.coords[2 * n + 1];
-    R[2][2 * n + 1] = m.coords[2 * n];
-  }
-  return R;
 }
 
 std::string thrownMessage(const QuadMesh& m, Field field) {
@@ -223,7 +169,7 @@ TEUCHOS_UNIT_TEST(Q1Elasticity, DistortedElementSymmetricWithRigidBodyKernelOfRa
   TEST_EQUALITY(K.rows, 8);
   TEST_EQUALITY(static_cast<int>(K.nnz()), 64);
   TEST_COMPARE(asymmetry(K), <=, 1e-14);
-  for (const auto& r : rigidModes(m))
+  for (const auto& r : rigidModes(m.coords))
     TEST_COMPARE(norm2(multiply(K, r)) / (K.frobeniusNorm() * norm2(r)), <, 1e-12);
   // Full 2x2 integration: exactly the 3 rigid body modes are zero-energy, no hourglass modes.
   const std::vector<double> w = eigenvalues(K);
@@ -286,7 +232,7 @@ TEUCHOS_UNIT_TEST(Q1Elasticity, PatchTestOnDistortedMesh) {
   const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, Field::Elasticity, law);
   TEST_EQUALITY(K.rows, 32);
   TEST_COMPARE(asymmetry(K), <=, 1e-14);
-  for (const auto& r : rigidModes(m))
+  for (const auto& r : rigidModes(m.coords))
     TEST_COMPARE(norm2(multiply(K, r)) / (K.frobeniusNorm() * norm2(r)), <, 1e-12);
   const double t[2] = {0.2, -0.1}, A[4] = {0.3, -0.7, 0.4, -0.2};
   const std::vector<double> u = linearDisplacement(m, t, A);
