@@ -16,7 +16,7 @@ packages=(
   # unstructured meshes: the Gmsh C++ API (gmsh.h) meshes .geo files and reads .msh files
   libgmsh-dev
   # output checks and plot scripts
-  python3 clang-format
+  python3 python3-matplotlib clang-format
 )
 
 missing=()

@@ -17,6 +17,10 @@
                                           the same outer iterations and Hessian multiplications
                                           to 10 % (unless --solution-only) and the same solution
                                           along the contact side (contact.csv)
+  check_summary.py hertz DIR [DIR2 ...]   elastic contact against Hertz: p_max within 3 %, the
+                                          half-width within 5 %, the force balances the load to
+                                          1e-6, the contact conditions hold; further DIRs (other
+                                          rank counts) give the same p_max and half-width
   check_summary.py membranes_scaling DIR [DIR2 ...]
                                           all converged; for each H/h the Hessian
                                           multiplications of SMALBE stay below MEMBRANE_GROWTH
@@ -255,6 +259,39 @@ def membranes_scaling(dirs):
           (f", the same on ranks {[load(d)['ranks'] for d in dirs]}" if len(dirs) > 1 else ""))
 
 
+HERTZ_TOL = {"p_max": 0.03, "half_width": 0.05}
+
+
+def hertz(dirs):
+    s = load(dirs[0])
+    if not s["converged"]:
+        fail("did not converge: " + s["qp"].get("message", ""))
+    c = s["contact"]
+    for key, tol in HERTZ_TOL.items():
+        if c["relative_error"][key] > tol:
+            fail(f"{key} {c[key]:.6e} differs from Hertz's {c['hertz'][key]:.6e} by "
+                 f"{100 * c['relative_error'][key]:.2f} % > {100 * tol:.0f} %")
+    if c["force_relative_error"] > 1e-6:
+        fail(f"contact force {c['force']} against the applied {c['applied_force']}: "
+             f"{c['force_relative_error']:.1e} relative")
+    u = s["max_abs_u"]
+    if c["max_penetration"] > KKT_TOL * u or c["equality_residual"] > KKT_TOL * u:
+        fail(f"penetration {c['max_penetration']:.2e} or gluing residual "
+             f"{c['equality_residual']:.2e} above {KKT_TOL} x max|u| = {KKT_TOL * u:.2e}")
+    if c["min_multiplier"] < 0 or c["max_complementarity"] > KKT_TOL * u * c["force"]:
+        fail(f"multiplier sign or complementarity: {c['min_multiplier']}, "
+             f"{c['max_complementarity']:.2e}")
+    for d in dirs[1:]:
+        o = load(d)["contact"]
+        for key in ("p_max", "half_width"):
+            if abs(o[key] - c[key]) > 1e-5 * abs(c[key]):
+                fail(f"{d}: {key} {o[key]} differs from {c[key]} ({dirs[0]})")
+    print(f"OK: p_max {c['p_max']:.5e} (Hertz {c['hertz']['p_max']:.5e}, "
+          f"{100 * c['relative_error']['p_max']:.2f} %), half-width {c['half_width']:.5e} "
+          f"(Hertz {c['hertz']['half_width']:.5e}, {100 * c['relative_error']['half_width']:.2f} %),"
+          f" force error {c['force_relative_error']:.1e}")
+
+
 if __name__ == "__main__":
     mode, args = sys.argv[1], sys.argv[2:]
     if mode == "scalability":
@@ -276,6 +313,8 @@ if __name__ == "__main__":
     elif mode == "same_contact":
         only = "--solution-only" in args
         same_contact([a for a in args if a != "--solution-only"], only)
+    elif mode == "hertz":
+        hertz(args)
     elif mode == "membranes_scaling":
         membranes_scaling(args)
     else:

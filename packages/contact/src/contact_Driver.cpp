@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "contact_DriverCommon.hpp"
+#include "contact_ElasticContactRun.hpp"
 #include "contact_Json.hpp"
 #include "contact_StructuredProblem.hpp"
 #include "contact_TwoMembranes.hpp"
@@ -243,8 +244,9 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
           choice({"single", "scalability"}));
   pl->set("Problem", "poisson",
           "poisson, elasticity: the reference paper's linear model problems; two_membranes: "
-          "Dostál's scalar contact benchmark (Mesh: subdomains and elements of each membrane)",
-          choice({"poisson", "elasticity", "two_membranes"}));
+          "Dostál's scalar contact benchmark (Mesh: subdomains and elements of each membrane); "
+          "elastic_contact: bodies on a Gmsh mesh in contact (Contact problem)",
+          choice({"poisson", "elasticity", "two_membranes", "elastic_contact"}));
   auto& mesh = pl->sublist("Mesh", false, "structured Q1 mesh of a rectangle, torn into a grid");
   mesh.set("Domain", arr<double>({0.0, 1.0, 0.0, 1.0}), "{x0, x1, y0, y1}");
   mesh.set("Subdomains", arr<int>({4, 4}), "subdomains in x and y (1/H)");
@@ -256,6 +258,7 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
   load.set("Source", 1.0, "right-hand side of -Δu = source (poisson)");
   load.set("Body force", arr<double>({0.0, -1.0}), "{bx, by} per unit volume (elasticity)");
   pl->sublist("FETI").setParameters(*tfeti::FetiSolver::validParameters());
+  addElasticContactParameters(*pl);
   auto& out = pl->sublist("Output");
   out.set("VTU", true, "write solution.pvtu (u and subdomain id)");
   out.set("Compare with direct solve", false,
@@ -300,6 +303,14 @@ void validateDriverParameters(ParameterList& params, const std::string& source) 
   } catch (const std::exception& e) {
     throw std::invalid_argument(source + ": invalid parameters:\n" + e.what());
   }
+  // A relative mesh file is looked up next to the input file first, then in the working
+  // directory, so that inputs and their meshes can travel together.
+  auto& cp = params.sublist("Contact problem");
+  const std::string mesh = cp.get<std::string>("Mesh file");
+  if (!mesh.empty() && std::filesystem::path(mesh).is_relative()) {
+    const auto beside = std::filesystem::path(source).parent_path() / mesh;
+    if (std::filesystem::exists(beside)) cp.set("Mesh file", beside.string());
+  }
 }
 
 int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
@@ -313,6 +324,8 @@ int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   }
   if (params.get<std::string>("Problem") == "two_membranes")
     return runTwoMembranes(comm, params, outputDirectory);
+  if (params.get<std::string>("Problem") == "elastic_contact")
+    return runElasticContact(comm, params, outputDirectory);
   return runSingle(comm, params, outputDirectory);
 }
 

@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <stdexcept>
+#include <string>
 
 namespace contact {
 
@@ -22,6 +23,20 @@ void declareArrays(std::ofstream& out, const std::vector<VtuField>& fields) {
 }
 }  // namespace
 
+int vtkCellSize(int vtkType) {
+  switch (vtkType) {
+    case kVtkTriangle:
+      return 3;
+    case kVtkQuad:
+      return 4;
+    case kVtkQuadraticTriangle:
+      return 6;
+    case kVtkBiquadraticQuad:
+      return 9;
+  }
+  throw std::invalid_argument("VTU output: unsupported VTK cell type " + std::to_string(vtkType));
+}
+
 std::string writeVtu(const tfeti::Comm& comm, const std::string& directory,
                      const std::string& basename, const VtuPiece& piece) {
   const int rank = comm.getRank();
@@ -30,7 +45,14 @@ std::string writeVtu(const tfeti::Comm& comm, const std::string& directory,
   {
     std::ofstream out(path);
     if (!out) throw std::runtime_error("cannot write " + path);
-    const std::size_t np = piece.points.size() / 2, nc = piece.quads.size() / 4;
+    std::size_t generalPoints = 0;
+    for (int t : piece.cellTypes) generalPoints += vtkCellSize(t);
+    if (generalPoints != piece.cellPoints.size())
+      throw std::invalid_argument("VTU output: " + std::to_string(piece.cellPoints.size()) +
+                                  " cell points for cells needing " +
+                                  std::to_string(generalPoints));
+    const std::size_t np = piece.points.size() / 2,
+                      nc = piece.quads.size() / 4 + piece.cellTypes.size();
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
            "byte_order=\"LittleEndian\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
         << np << "\" NumberOfCells=\"" << nc << "\">\n      <Points>\n";
@@ -41,14 +63,21 @@ std::string writeVtu(const tfeti::Comm& comm, const std::string& directory,
     writeArray(out, xyz);
     out << "      </Points>\n      <Cells>\n"
         << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-    for (std::size_t k = 0; k < piece.quads.size(); ++k)
-      out << piece.quads[k] << ((k + 1) % 16 ? ' ' : '\n');
+    std::vector<int> types(piece.quads.size() / 4, kVtkQuad);
+    types.insert(types.end(), piece.cellTypes.begin(), piece.cellTypes.end());
+    std::vector<int> points = piece.quads;
+    points.insert(points.end(), piece.cellPoints.begin(), piece.cellPoints.end());
+    for (std::size_t k = 0; k < points.size(); ++k) out << points[k] << ((k + 1) % 16 ? ' ' : '\n');
     out << "\n        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
            "format=\"ascii\">\n";
-    for (std::size_t c = 0; c < nc; ++c) out << 4 * (c + 1) << ((c + 1) % 16 ? ' ' : '\n');
+    std::size_t offset = 0;
+    for (std::size_t c = 0; c < nc; ++c) {
+      offset += vtkCellSize(types[c]);
+      out << offset << ((c + 1) % 16 ? ' ' : '\n');
+    }
     out << "\n        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" "
            "format=\"ascii\">\n";
-    for (std::size_t c = 0; c < nc; ++c) out << "9" << ((c + 1) % 32 ? ' ' : '\n');  // VTK_QUAD
+    for (std::size_t c = 0; c < nc; ++c) out << types[c] << ((c + 1) % 32 ? ' ' : '\n');
     out << "\n        </DataArray>\n      </Cells>\n      <PointData>\n";
     for (const auto& f : piece.pointData) writeArray(out, f);
     out << "      </PointData>\n      <CellData>\n";

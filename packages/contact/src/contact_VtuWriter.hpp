@@ -15,9 +15,22 @@ struct VtuField {
   std::vector<double> values;  // components per point (or per cell)
 };
 
+// VTK cell types of the plane elements; the node order of each equals Gmsh's (corners
+// counter-clockwise, then the edge midpoints from edge 0-1, then the centre).
+enum VtkCellType {
+  kVtkTriangle = 5,
+  kVtkQuad = 9,
+  kVtkQuadraticTriangle = 22,
+  kVtkBiquadraticQuad = 28
+};
+int vtkCellSize(int vtkType);  // points per cell; throws for other types
+
 struct VtuPiece {
   std::vector<double> points;  // x, y per point (z = 0)
-  std::vector<int> quads;      // 4 point indices per cell
+  std::vector<int> quads;      // 4 point indices per cell (VTK_QUAD), written first
+  // Any other cells, written after the quads: a VTK type per cell and its points.
+  std::vector<int> cellTypes;
+  std::vector<int> cellPoints;
   std::vector<VtuField> pointData;
   std::vector<VtuField> cellData;
 };

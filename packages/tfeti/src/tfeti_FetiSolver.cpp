@@ -7,6 +7,7 @@
 #include <iostream>
 #include <limits>
 
+#include "tfeti_Gather.hpp"
 #include "tfeti_MprgpSolMgr_decl.hpp"
 #include "tfeti_ProjectedOperators.hpp"
 #include "tfeti_SmalbeSolMgr_decl.hpp"
@@ -110,9 +111,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   {
     PhaseTimer t(*comm_, timings_.factorization);
     for (auto& sd : data_) {
-      std::vector<int> dirichletDofs;
-      for (int n : sd.mesh.dirichletNodes)
-        for (int c = 0; c < sd.dofsPerNode; ++c) dirichletDofs.push_back(n * sd.dofsPerNode + c);
+      const std::vector<int> dirichletDofs = sd.mesh.dirichletDofs(sd.dofsPerNode);
       subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, sd.mesh.coords,
                                                         sd.K, sd.f, dirichletDofs, formulation,
                                                         solver));
@@ -133,8 +132,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       in.id = sd.mesh.id;
       in.numDofs = sd.mesh.numNodes() * sd.dofsPerNode;
       in.boundaryNodes = sd.mesh.boundaryNodes();
-      std::vector<char> dir(sd.mesh.numNodes(), 0);
-      for (int n : sd.mesh.dirichletNodes) dir[n] = 1;
+      const std::vector<int> dir = sd.mesh.dirichletMasks(sd.dofsPerNode);
       for (int n : in.boundaryNodes) {
         in.boundaryGlobal.push_back(sd.mesh.globalNode[n]);
         in.boundaryDirichlet.push_back(dir[n]);
@@ -367,6 +365,24 @@ ConstraintReport FetiSolver::constraintReport() const {
   r.force = gsums[0];
   r.activeRows = static_cast<GO>(gsums[1]);
   return r;
+}
+
+std::vector<double> FetiSolver::inequalityMultipliers() const {
+  std::vector<double> mine;  // (row - first inequality row, lambda) pairs
+  if (!lambda_.is_null()) {
+    auto l = lambda_->getData();
+    const auto& map = *tearing_.multiplierMap;
+    for (std::size_t i = 0; i < map.getNodeNumElements(); ++i) {
+      const GO row = map.getGlobalElement(static_cast<LO>(i));
+      if (tearing_.isInequality(row))
+        mine.insert(mine.end(), {static_cast<double>(row - tearing_.firstInequalityRow), l[i]});
+    }
+  }
+  const std::vector<double> all = allGather(*comm_, mine);
+  std::vector<double> out(tearing_.numInequalityRows, 0.0);
+  for (std::size_t k = 0; k + 1 < all.size(); k += 2)
+    out[static_cast<std::size_t>(all[k])] = all[k + 1];
+  return out;
 }
 
 std::vector<std::vector<FetiSolver::InequalityOnDof>>

@@ -83,6 +83,8 @@ class FetiSolver {
   };
   std::vector<std::vector<InequalityOnDof>> inequalityMultipliersOnSubdomains() const;
   const Vector& multipliers() const { return *lambda_; }
+  // The inequality multipliers on every rank, in the order of tearing().inequalityRows.
+  std::vector<double> inequalityMultipliers() const;
 
   // Mean wall time of one application of F over `repeats` applications (slowest rank).
   double timeDualApply(int repeats) const;

@@ -2,11 +2,19 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace tfeti {
 
 std::vector<int> SubdomainMesh::boundaryNodes() const {
+  if (quads.empty()) {
+    std::vector<int> nodes = interfaceCandidates;
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    return nodes;
+  }
   std::map<std::pair<int, int>, int> edgeCount;
   for (int e = 0; e < numElements(); ++e)
     for (int a = 0; a < 4; ++a) {
@@ -20,6 +28,28 @@ std::vector<int> SubdomainMesh::boundaryNodes() const {
   for (int n = 0; n < numNodes(); ++n)
     if (onBoundary[n]) nodes.push_back(n);
   return nodes;
+}
+
+std::vector<int> SubdomainMesh::dirichletMasks(int dofsPerNode) const {
+  std::vector<int> mask(numNodes(), 0);
+  for (int n : dirichletNodes) mask[n] = (1 << dofsPerNode) - 1;
+  for (const auto& [n, c] : fixedComponents) {
+    if (n < 0 || n >= numNodes() || c < 0 || c >= dofsPerNode)
+      throw std::invalid_argument("subdomain " + std::to_string(id) + ": fixed component (" +
+                                  std::to_string(n) + ", " + std::to_string(c) +
+                                  ") is not a node/component of the subdomain");
+    mask[n] |= 1 << c;
+  }
+  return mask;
+}
+
+std::vector<int> SubdomainMesh::dirichletDofs(int dofsPerNode) const {
+  const std::vector<int> mask = dirichletMasks(dofsPerNode);
+  std::vector<int> dofs;
+  for (int n = 0; n < numNodes(); ++n)
+    for (int c = 0; c < dofsPerNode; ++c)
+      if (mask[n] & (1 << c)) dofs.push_back(n * dofsPerNode + c);
+  return dofs;
 }
 
 int ownerOfSubdomain(int subdomain, int numSubdomains, int numRanks) {

@@ -19,7 +19,7 @@ struct Copy {
   GO node;
   int sub;
   int localNode;
-  bool dirichlet;
+  int dirichletMask;  // bit c: component c prescribed
 };
 
 struct Row {
@@ -88,12 +88,12 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   for (const auto& s : local)
     for (std::size_t k = 0; k < s.boundaryNodes.size(); ++k)
       mine.insert(mine.end(),
-                  {s.boundaryGlobal[k], s.id, s.boundaryNodes[k], s.boundaryDirichlet[k] ? 1 : 0});
+                  {s.boundaryGlobal[k], s.id, s.boundaryNodes[k], s.boundaryDirichlet[k]});
   const std::vector<long long> all = allGather(*comm, mine);
   std::vector<Copy> copies(all.size() / 4);
   for (std::size_t k = 0; k < copies.size(); ++k)
     copies[k] = {all[4 * k], static_cast<int>(all[4 * k + 1]), static_cast<int>(all[4 * k + 2]),
-                 all[4 * k + 3] != 0};
+                 static_cast<int>(all[4 * k + 3])};
   std::sort(copies.begin(), copies.end(), [](const Copy& a, const Copy& b) {
     return a.node != b.node ? a.node < b.node : a.sub < b.sub;
   });
@@ -103,13 +103,15 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   std::vector<int> groupOwner;
   for (std::size_t first = 0; first < copies.size();) {
     std::size_t last = first;
-    bool dirichlet = false;
+    int mask = 0;
     while (last < copies.size() && copies[last].node == copies[first].node)
-      dirichlet |= copies[last++].dirichlet;
+      mask |= copies[last++].dirichletMask;
     const int m = static_cast<int>(last - first);
-    const bool tfetiDirichlet = dirichlet && options.formulation == Formulation::TFETI;
-    const bool glue = m > 1 && (!dirichlet || options.gluingAtDirichletNodes);
     for (int c = 0; c < dofsPerNode; ++c) {
+      // Dirichlet and symmetry conditions hold component by component.
+      const bool dirichlet = (mask >> c) & 1;
+      const bool tfetiDirichlet = dirichlet && options.formulation == Formulation::TFETI;
+      const bool glue = m > 1 && (!dirichlet || options.gluingAtDirichletNodes);
       const int group = static_cast<int>(groupOwner.size());
       const std::size_t before = rows.size();
       auto dofOf = [&](std::size_t k) { return copies[k].localNode * dofsPerNode + c; };
@@ -244,6 +246,7 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     t.groupRows.push_back({static_cast<LO>(l)});
     t.groupScaling.push_back({norm2 > 0.0 ? 1.0 / norm2 : 0.0});
   }
+  t.inequalityRows = ineq;
   return t;
 }
 

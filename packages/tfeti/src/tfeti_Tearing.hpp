@@ -29,9 +29,9 @@ struct TearingOptions {
 struct TearingInput {
   int id;
   int numDofs;
-  std::vector<int> boundaryNodes;  // local nodes that may be shared
-  std::vector<GO> boundaryGlobal;  // their untorn ids
-  std::vector<char> boundaryDirichlet;
+  std::vector<int> boundaryNodes;      // local nodes that may be shared
+  std::vector<GO> boundaryGlobal;      // their untorn ids
+  std::vector<int> boundaryDirichlet;  // per boundary node: bit c set if component c is prescribed
 };
 
 // One term of a constraint row: coefficient times a dof of a subdomain (global subdomain id).
@@ -66,6 +66,8 @@ struct Tearing {
   GO numRows = 0, numGluingRows = 0, numDirichletRows = 0;
   // Inequality rows come last: global rows [firstInequalityRow, numRows).
   GO numInequalityRows = 0, firstInequalityRow = 0;
+  // Every inequality row (all ranks), in the canonical order of their multipliers.
+  std::vector<InequalityRow> inequalityRows;
   // Right-hand side c of B u = c (equality) and B u <= c (inequality), on multiplierMap.
   Teuchos::RCP<Vector> rhs;
   bool isInequality(GO row) const { return row >= firstInequalityRow; }

@@ -25,6 +25,7 @@ struct Options {
   std::string localSolver = "cholmod";
   std::string gluing = "nonredundant";
   bool gluingAtDirichlet = true;
+  void (*constrain)(tfeti::SubdomainMesh&) = nullptr;  // other Dirichlet conditions
 };
 
 std::string describe(const Physics& ph, const Options& o) {
@@ -62,8 +63,8 @@ Outcome solveAndCompare(const tfeti::StructuredRectangle& rect, const Physics& p
   pcpg.set("Relative tolerance", kTolerance);
   pcpg.set("Maximum iterations", 200);
   pcpg.set("Verbosity", 0);
-  tfeti::FetiSolver solver(comm, rect.numSubdomains(), tfeti_test::localSubdomains(rect, *comm, ph),
-                           params);
+  tfeti::FetiSolver solver(comm, rect.numSubdomains(),
+                           tfeti_test::localSubdomains(rect, *comm, ph, o.constrain), params);
   Outcome out;
   minMax(*comm, solver.dualDimension(), out.dualMin, out.dualMax);
   minMax(*comm, solver.primalDimension(), out.primalMin, out.primalMax);
@@ -85,8 +86,7 @@ Outcome solveAndCompare(const tfeti::StructuredRectangle& rect, const Physics& p
         err = std::max(err, std::abs(us[n * dpn + c] - ref));
         ud[off++] = us[n * dpn + c];
       }
-    for (int n : mesh.dirichletNodes)
-      for (int c = 0; c < dpn; ++c) dir = std::max(dir, std::abs(us[n * dpn + c]));
+    for (int d : mesh.dirichletDofs(dpn)) dir = std::max(dir, std::abs(us[d]));
   }
   ud = Teuchos::null;
   out.solutionError = tfeti_test::globalMax(*comm, err) / scale;
@@ -154,6 +154,37 @@ TEUCHOS_UNIT_TEST(FetiSolver, PoissonAllFormulationsAndPreconditioners) {
 
 TEUCHOS_UNIT_TEST(FetiSolver, ElasticityAllFormulationsAndPreconditioners) {
   runMatrix(tfeti_test::elasticity(), out, success);
+}
+
+// Rollers instead of the clamp: u_x = 0 on x = 0 and u_y = 0 on y = 0 (the symmetry conditions of
+// a quarter model). They are single-component conditions: Dirichlet rows (TFETI) or eliminated
+// dofs (FETI) per component, and gluing of the free component at the same nodes.
+void rollers(tfeti::SubdomainMesh& mesh) {
+  mesh.dirichletNodes.clear();
+  for (int n = 0; n < mesh.numNodes(); ++n) {
+    if (mesh.coords[2 * n] == 0.0) mesh.fixedComponents.push_back({n, 0});
+    if (mesh.coords[2 * n + 1] == 0.0) mesh.fixedComponents.push_back({n, 1});
+  }
+}
+
+TEUCHOS_UNIT_TEST(FetiSolver, SingleComponentDirichletConditions) {
+  const auto rect = square();
+  const Physics ph = tfeti_test::elasticity();
+  const auto reference = tfeti_test::referenceSolution(rect, ph, rollers);
+  // The rollers let the square slide: the reference differs from the clamped solution.
+  const auto clamped = tfeti_test::referenceSolution(rect, ph);
+  double diff = 0.0;
+  for (std::size_t i = 0; i < reference.size(); ++i)
+    diff = std::max(diff, std::abs(reference[i] - clamped[i]));
+  TEST_COMPARE(diff, >, 0.1 * tfeti_test::maxAbs(reference));
+  for (const char* formulation : {"TFETI", "FETI"})
+    for (bool atDirichlet : {true, false}) {
+      Options o;
+      o.formulation = formulation;
+      o.gluingAtDirichlet = atDirichlet;
+      o.constrain = rollers;
+      check(rect, ph, o, reference, out, success);
+    }
 }
 
 TEUCHOS_UNIT_TEST(FetiSolver, EveryLocalSolver) {

@@ -46,8 +46,7 @@ tfeti::TearingInput tearingInput(const tfeti::SubdomainMesh& mesh, int dpn) {
   in.id = mesh.id;
   in.numDofs = mesh.numNodes() * dpn;
   in.boundaryNodes = mesh.boundaryNodes();
-  std::vector<char> dir(mesh.numNodes(), 0);
-  for (int n : mesh.dirichletNodes) dir[n] = 1;
+  const std::vector<int> dir = mesh.dirichletMasks(dpn);
   for (int n : in.boundaryNodes) {
     in.boundaryGlobal.push_back(mesh.globalNode[n]);
     in.boundaryDirichlet.push_back(dir[n]);

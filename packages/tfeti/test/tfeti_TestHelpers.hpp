@@ -58,28 +58,31 @@ inline tfeti::SubdomainData subdomainData(const tfeti::SubdomainMesh& mesh, cons
 }
 
 // The subdomains of this rank, in increasing id order.
-inline std::vector<tfeti::SubdomainData> localSubdomains(const tfeti::StructuredRectangle& rect,
-                                                         const tfeti::Comm& comm,
-                                                         const Physics& ph) {
+// constrain (optional) replaces the subdomain's Dirichlet conditions (x = x0 clamped).
+inline std::vector<tfeti::SubdomainData> localSubdomains(
+    const tfeti::StructuredRectangle& rect, const tfeti::Comm& comm, const Physics& ph,
+    void (*constrain)(tfeti::SubdomainMesh&) = nullptr) {
   std::vector<tfeti::SubdomainData> local;
-  for (int s : tfeti::subdomainsOfRank(comm.getRank(), rect.numSubdomains(), comm.getSize()))
-    local.push_back(subdomainData(rect.subdomain(s), ph));
+  for (int s : tfeti::subdomainsOfRank(comm.getRank(), rect.numSubdomains(), comm.getSize())) {
+    tfeti::SubdomainMesh mesh = rect.subdomain(s);
+    if (constrain) constrain(mesh);
+    local.push_back(subdomainData(mesh, ph));
+  }
   return local;
 }
 
 inline std::vector<int> dirichletDofs(const tfeti::SubdomainMesh& mesh, int dpn) {
-  std::vector<int> dofs;
-  for (int n : mesh.dirichletNodes)
-    for (int c = 0; c < dpn; ++c) dofs.push_back(n * dpn + c);
-  return dofs;
+  return mesh.dirichletDofs(dpn);
 }
 
 // Direct solve of the undecomposed problem: the whole mesh assembled with the same kernels, the
 // Dirichlet dofs (x = x0) replaced by identity rows and columns, factorized by CHOLMOD. Indexed
 // by untorn dof (dofsPerNode * global node + component).
 inline std::vector<double> referenceSolution(const tfeti::StructuredRectangle& rect,
-                                             const Physics& ph) {
-  const tfeti::SubdomainMesh whole = rect.wholeMesh();
+                                             const Physics& ph,
+                                             void (*constrain)(tfeti::SubdomainMesh&) = nullptr) {
+  tfeti::SubdomainMesh whole = rect.wholeMesh();
+  if (constrain) constrain(whole);
   const int dpn = ph.dofsPerNode();
   tfeti::CsrMatrix K = plasticity::assembleStiffness(quadMesh(whole), ph.field, ph.law);
   std::vector<double> f = plasticity::assembleBodyLoad(quadMesh(whole), ph.field, ph.source);

@@ -1,0 +1,206 @@
+#include "contact_ElasticContactProblem.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "tfeti_SubdomainMesh.hpp"
+
+namespace contact {
+
+plasticity::ElementType toPlasticityType(ElementType type) {
+  switch (type) {
+    case ElementType::Tri3:
+      return plasticity::ElementType::Tri3;
+    case ElementType::Quad4:
+      return plasticity::ElementType::Quad4;
+    case ElementType::Tri6:
+      return plasticity::ElementType::Tri6;
+    case ElementType::Quad9:
+      return plasticity::ElementType::Quad9;
+  }
+  throw std::invalid_argument("unsupported element type");
+}
+
+namespace {
+
+const GmshBoundary& boundaryNamed(const GmshMesh& mesh, const std::string& name,
+                                  const std::string& role) {
+  try {
+    return mesh.boundary(name);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(role + ": " + e.what());
+  }
+}
+
+std::set<int> nodesOf(const GmshBoundary& b) {
+  return std::set<int>(b.edges.begin(), b.edges.end());
+}
+
+int localIndex(const UnstructuredSubdomain& s, int globalNode) {
+  auto it = std::lower_bound(s.globalNode.begin(), s.globalNode.end(), globalNode);
+  return it != s.globalNode.end() && *it == globalNode ? static_cast<int>(it - s.globalNode.begin())
+                                                       : -1;
+}
+
+double edgeLength(const GmshMesh& mesh, const int* nodes, int nodesPerEdge) {
+  auto dist = [&](int a, int b) {
+    return std::hypot(mesh.coords[2 * a] - mesh.coords[2 * b],
+                      mesh.coords[2 * a + 1] - mesh.coords[2 * b + 1]);
+  };
+  // A quadratic edge as the polyline through its middle node: second-order accurate, enough
+  // for the lumping weights of the contact pressure.
+  return nodesPerEdge == 3 ? dist(nodes[0], nodes[2]) + dist(nodes[2], nodes[1])
+                           : dist(nodes[0], nodes[1]);
+}
+
+}  // namespace
+
+ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
+                                                 const tfeti::Comm& comm) {
+  ElasticContactProblem p;
+  p.mesh = loadMesh(spec.meshFile, spec.meshOptions);
+  const GmshMesh& mesh = p.mesh;
+
+  // Subdomains, body by body, numbered consecutively.
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    const auto& body = spec.bodies[b];
+    if (body.subdomains < 1)
+      throw std::invalid_argument("body \"" + body.name + "\": the subdomain count must be >= 1");
+    const GmshBody* gb = nullptr;
+    try {
+      gb = &mesh.body(body.name);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(std::string("Bodies: ") + e.what());
+    }
+    BodyPartition part = partitionBody(mesh, *gb, body.subdomains, p.numSubdomains());
+    for (auto& s : part.subdomains) {
+      p.subdomains.push_back(std::move(s));
+      p.bodyOfSubdomain.push_back(static_cast<int>(b));
+    }
+  }
+  const int N = p.numSubdomains();
+
+  // Every untorn node's first copy (lowest subdomain id): where a contact row acts on it.
+  std::vector<std::pair<int, int>> copyOf(mesh.numNodes(), {-1, -1});
+  for (const auto& s : p.subdomains)
+    for (int n = 0; n < s.numNodes(); ++n)
+      if (copyOf[s.globalNode[n]].first < 0) copyOf[s.globalNode[n]] = {s.id, n};
+
+  std::set<int> fixedNodes;
+  for (const auto& name : spec.fixed) {
+    const auto nodes = nodesOf(boundaryNamed(mesh, name, "Fixed boundaries"));
+    fixedNodes.insert(nodes.begin(), nodes.end());
+  }
+  std::set<std::pair<int, int>> fixedComponents;
+  for (const auto& [name, c] : spec.symmetry) {
+    if (c < 0 || c > 1)
+      throw std::invalid_argument("Symmetry components: " + std::to_string(c) + " for boundary \"" +
+                                  name + "\" is not 0 (x) or 1 (y)");
+    for (int n : nodesOf(boundaryNamed(mesh, name, "Symmetry boundaries")))
+      fixedComponents.insert({n, c});
+  }
+
+  // This rank's subdomains: meshes for the tearing, stiffness and traction loads.
+  double force[2] = {0.0, 0.0};
+  for (int sid : tfeti::subdomainsOfRank(comm.getRank(), N, comm.getSize())) {
+    const UnstructuredSubdomain& s = p.subdomains[sid];
+    const int b = p.bodyOfSubdomain[sid];
+    plasticity::ElementMesh em{toPlasticityType(s.type), s.coords, s.connectivity};
+    tfeti::SubdomainData sd;
+    sd.dofsPerNode = 2;
+    sd.mesh.id = s.id;
+    sd.mesh.coords = s.coords;
+    sd.mesh.globalNode.assign(s.globalNode.begin(), s.globalNode.end());
+    sd.mesh.interfaceCandidates = s.boundaryNodes();
+    for (int n = 0; n < s.numNodes(); ++n) {
+      if (fixedNodes.count(static_cast<int>(s.globalNode[n]))) sd.mesh.dirichletNodes.push_back(n);
+      for (int c = 0; c < 2; ++c)
+        if (fixedComponents.count({static_cast<int>(s.globalNode[n]), c}))
+          sd.mesh.fixedComponents.push_back({n, c});
+    }
+    sd.K = plasticity::assembleStiffness(em, spec.bodies[b].law);
+    sd.f.assign(2 * s.numNodes(), 0.0);
+    const int bodyIndex = mesh.bodyIndex(spec.bodies[b].name);
+    for (const auto& [name, t] : spec.tractions) {
+      const GmshBoundary& gb = boundaryNamed(mesh, name, "Traction boundaries");
+      std::vector<int> edges;
+      for (int e = 0; e < gb.numEdges(); ++e) {
+        if (gb.edgeBody[e] != bodyIndex ||
+            !std::binary_search(s.elements.begin(), s.elements.end(), gb.edgeElement[e]))
+          continue;
+        for (int k = 0; k < gb.nodesPerEdge; ++k)
+          edges.push_back(localIndex(s, gb.edges[e * gb.nodesPerEdge + k]));
+      }
+      if (edges.empty()) continue;
+      const double tv[2] = {t[0], t[1]};
+      const auto fe = plasticity::assembleEdgeTraction(em, edges, tv);
+      for (std::size_t i = 0; i < fe.size(); ++i) {
+        sd.f[i] += fe[i];
+        force[i % 2] += fe[i];
+      }
+    }
+    p.local.push_back(std::move(sd));
+    p.localElements.push_back(std::move(em));
+    p.localBody.push_back(b);
+  }
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 2, force, p.appliedForce);
+
+  // Contact: the slave boundary's nodes against the master boundary's segments, oriented by
+  // the master body's elements so that the normals point out of it.
+  const GmshBoundary& slave = boundaryNamed(mesh, spec.slave, "Slave");
+  const GmshBoundary& master = boundaryNamed(mesh, spec.master, "Master");
+  const std::set<int> slaveSet = nodesOf(slave);
+  p.slaveNodes.assign(slaveSet.begin(), slaveSet.end());
+  MasterSurface ms;
+  ms.nodesPerSegment = master.nodesPerEdge;
+  ms.segments = master.edges;
+  int masterBody = -1;
+  for (int e = 0; e < master.numEdges(); ++e)
+    if (master.edgeBody[e] >= 0) masterBody = master.edgeBody[e];
+  if (masterBody < 0)
+    throw std::invalid_argument("Master: boundary \"" + spec.master + "\" is on no body");
+  const GmshBody& mb = mesh.bodies[masterBody];
+  orientSegmentsByElements(ms, mesh.coords, mb.type, mb.connectivity);
+  NodeToSegmentOptions opts;
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    for (int c = 0; c < 2; ++c) {
+      lo[c] = std::min(lo[c], mesh.coords[2 * n + c]);
+      hi[c] = std::max(hi[c], mesh.coords[2 * n + c]);
+    }
+  opts.searchRadius =
+      spec.searchRadius > 0.0 ? spec.searchRadius : 0.1 * std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  p.contact = computeNodeToSegment(mesh.coords, p.slaveNodes, ms, opts);
+  if (p.contact.rows.empty())
+    throw std::invalid_argument("no slave node of \"" + spec.slave +
+                                "\" is within the search "
+                                "radius of \"" +
+                                spec.master + "\"");
+  auto dofOf = [&](int node, int component) {
+    return std::make_pair(copyOf[node].first, 2 * copyOf[node].second + component);
+  };
+  if (comm.getRank() == 0)
+    for (const auto& row : p.contact.rows) p.inequalities.push_back(toInequalityRow(row, dofOf));
+
+  // Lumping weights: a slave node's share of the slave boundary's length (the contact pressure
+  // is its multiplier, a force per unit thickness, divided by this length).
+  std::map<int, double> weight;
+  for (int e = 0; e < slave.numEdges(); ++e) {
+    const int* nodes = &slave.edges[e * slave.nodesPerEdge];
+    const double L = edgeLength(mesh, nodes, slave.nodesPerEdge);
+    if (slave.nodesPerEdge == 3) {
+      weight[nodes[0]] += L / 6, weight[nodes[1]] += L / 6, weight[nodes[2]] += 2 * L / 3;
+    } else {
+      weight[nodes[0]] += L / 2, weight[nodes[1]] += L / 2;
+    }
+  }
+  for (int n : p.slaveNodes) p.slaveWeights.push_back(weight[n]);
+  return p;
+}
+
+}  // namespace contact

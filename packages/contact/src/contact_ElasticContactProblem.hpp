@@ -1,0 +1,58 @@
+#pragma once
+// Elastic bodies in frictionless contact on an unstructured Gmsh mesh, torn for TFETI: every
+// body is partitioned by METIS into subdomains, Dirichlet and symmetry conditions are rows of B
+// (every subdomain floats, also a body held only by contact), and one slave/master pair of
+// named boundaries gives the node-to-segment non-penetration rows B_I.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "contact_GmshMesh.hpp"
+#include "contact_NodeToSegment.hpp"
+#include "contact_Partition.hpp"
+#include "plasticity_ElasticLaw.hpp"
+#include "plasticity_Elements.hpp"
+#include "tfeti_FetiSolver.hpp"
+
+namespace contact {
+
+struct ElasticContactSpec {
+  std::string meshFile;  // .geo (meshed now) or .msh
+  MeshOptions meshOptions;
+  struct Body {
+    std::string name;  // a 2D physical group
+    int subdomains = 1;
+    plasticity::ElasticLaw law;
+  };
+  std::vector<Body> bodies;
+  std::vector<std::string> fixed;                     // every component zero
+  std::vector<std::pair<std::string, int>> symmetry;  // (boundary, component) zero
+  std::vector<std::pair<std::string, std::array<double, 2>>> tractions;  // force / length
+  std::string slave, master;                                             // the contact pair
+  double searchRadius = 0.0;  // 0: a tenth of the mesh's extent
+};
+
+struct ElasticContactProblem {
+  GmshMesh mesh;
+  std::vector<UnstructuredSubdomain> subdomains;  // all of them (every rank)
+  int numSubdomains() const { return static_cast<int>(subdomains.size()); }
+  std::vector<int> bodyOfSubdomain;
+  // This rank's subdomains, their element meshes (local numbering) and materials.
+  std::vector<tfeti::SubdomainData> local;
+  std::vector<plasticity::ElementMesh> localElements;
+  std::vector<int> localBody;
+  // The contact rows (geometry for output) and their B_I form (rank 0 contributes them).
+  NodeToSegmentResult contact;
+  std::vector<tfeti::InequalityRow> inequalities;
+  std::vector<int> slaveNodes;          // global node ids of the slave boundary, as in contact
+  std::vector<double> slaveWeights;     // per slave node: its share of the slave boundary length
+  double appliedForce[2] = {0.0, 0.0};  // resultant of the tractions
+};
+
+// Throws std::invalid_argument naming the group or parameter that is wrong.
+ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
+                                                 const tfeti::Comm& comm);
+
+plasticity::ElementType toPlasticityType(ElementType type);
+
+}  // namespace contact

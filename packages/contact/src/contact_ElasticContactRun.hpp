@@ -1,0 +1,17 @@
+#pragma once
+// Problem = elastic_contact of the tfeti_contact driver (see contact_ElasticContactProblem.hpp).
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+
+#include "tfeti_Types.hpp"
+
+namespace contact {
+
+// Adds the "Contact problem" sublist to the driver's valid parameters.
+void addElasticContactParameters(Teuchos::ParameterList& valid);
+
+int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
+                      const std::string& dir);
+
+}  // namespace contact
