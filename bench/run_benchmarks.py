@@ -3,7 +3,7 @@
 solved by Belos CG + MueLu and by Amesos2 KLU2 (tfeti_baseline) in the same run.
 
   python3 bench/run_benchmarks.py [--build build] [--ranks 2]
-                                  [--sets sweep,reference,solvers,membranes]
+                                  [--sets sweep,reference,solvers,membranes,cylinders_convergence,cylinders]
                                   [--max-dofs 4.3e6] [--out bench-out]
 
 sweep:      2D elasticity, 64k, 256k, 1M and 4M unknowns, subdomains of 16x16 and 32x32 elements
@@ -12,6 +12,9 @@ reference:  Poisson 1000x500 cells and elasticity 600x300 cells, with 2 subdomai
 solvers:    the local solver choice (cholmod, klu2, tacho) on the Poisson reference case
 membranes:  the two-membrane contact benchmark, H/h = 8, 16, 32 up to about 4M unknowns,
             SMALBE versus the penalty method
+cylinders_convergence: the two-cylinder problem against Hertz on 4 refinements, linear and
+            quadratic elements
+cylinders:  the two-cylinder problem refined to about 100k, 1M and 4M unknowns
 
 Prints markdown tables (for docs/benchmarks.md) and writes every summary.json under --out.
 """
@@ -209,6 +212,75 @@ def membranes(o):
                   flush=True)
 
 
+def cylinders_run(o, name, sf, order, subdomains):
+    root = os.path.dirname(os.path.abspath(__file__))
+    with open(os.path.join(root, "..", "examples", "two_cylinders_elastic.xml")) as f:
+        xml = f.read()
+    xml = xml.replace('value="two_cylinders.geo"',
+                      'value="%s"' % os.path.join(root, "..", "examples", "two_cylinders.geo"))
+    xml = xml.replace('<Parameter name="Mesh size factor" type="double" value="0.5"/>',
+                      f'<Parameter name="Mesh size factor" type="double" value="{sf}"/>')
+    xml = xml.replace('<Parameter name="Element order" type="int" value="1"/>',
+                      f'<Parameter name="Element order" type="int" value="{order}"/>')
+    xml = xml.replace('value="{8, 8}"', f'value="{{{subdomains}, {subdomains}}}"')
+    xml = xml.replace('<ParameterList name="FETI">', '<ParameterList name="Output">\n'
+                      '    <Parameter name="VTU" type="bool" value="false"/>\n'
+                      '  </ParameterList>\n  <ParameterList name="FETI">')
+    d = os.path.join(o.out, name)
+    os.makedirs(d, exist_ok=True)
+    path = os.path.join(d, "input.xml")
+    with open(path, "w") as f:
+        f.write(xml)
+    res = mpirun([o.build + "/bin/tfeti_contact", "--input=" + path, "--output=" + d], o.ranks)
+    try:
+        with open(d + "/summary.json") as f:
+            return json.load(f)
+    except OSError:
+        return None
+
+
+def cylinders_convergence(o):
+    print("\n## Two cylinders against Hertz: mesh convergence (2 ranks, 8 + 8 subdomains)\n")
+    print("| elements | size factor | unknowns | p_max MPa | error | half-width mm | error | "
+          "max von Mises MPa | outer | Hessian mults | setup s | solve s |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for order in (1, 2):
+        for sf in (4, 2, 1, 0.5, 0.25):
+            s = cylinders_run(o, f"cylinders_p{order}_sf{sf}", sf, order, 8)
+            if s is None:
+                print(f"| P{order} | {sf} | failed |")
+                continue
+            c, q, t = s["contact"], s["qp"], s["timings"]
+            print(f"| {'linear' if order == 1 else 'quadratic'} | {sf} | {s['primal_dim']:,} | "
+                  f"{c['p_max'] / 1e6:.1f} | {100 * c['relative_error']['p_max']:.2f} % | "
+                  f"{1e3 * c['half_width']:.3f} | {100 * c['relative_error']['half_width']:.2f} % | "
+                  f"{s['max_von_mises'] / 1e6:.1f} | {q['outer_iterations']} | "
+                  f"{q['hessian_multiplications']} | {t['setup_s']:.2f} | {t['solve_s']:.2f} |",
+                  flush=True)
+    print("\nHertz: p_max 1182.9 MPa, half-width 21.528 mm, max von Mises about 0.557 p_max = "
+          "658.9 MPa")
+
+
+def cylinders(o):
+    print("\n## Two cylinders, refined (2 ranks, linear elements, SMALBE)\n")
+    print("| size factor | unknowns | subdomains | setup s | solve s | Hessian mults | "
+          "ms/mult | peak MiB/rank | p_max error | half-width error |\n"
+          "|---|---|---|---|---|---|---|---|---|---|")
+    for sf, subs in ((0.11, 16), (0.035, 128), (0.0175, 512)):
+        s = cylinders_run(o, f"cylinders_sf{sf}", sf, 1, subs)
+        if s is None:
+            print(f"| {sf} | failed |")
+            continue
+        c, q, t = s["contact"], s["qp"], s["timings"]
+        if s["primal_dim"] > o.max_dofs:
+            continue
+        m = q["hessian_multiplications"]
+        print(f"| {sf} | {s['primal_dim']:,} | {s['subdomains']} | {t['setup_s']:.2f} | "
+              f"{t['solve_s']:.2f} | {m} | {1e3 * t['solve_s'] / max(m, 1):.1f} | "
+              f"{s['peak_rss_mb']:.0f} | {100 * c['relative_error']['p_max']:.2f} % | "
+              f"{100 * c['relative_error']['half_width']:.2f} % |", flush=True)
+
+
 def solvers(o):
     print("\n## Local solver choice (Poisson 1000x500, 20x10 subdomains of 50x50 elements)\n")
     print(HEADER)
@@ -222,10 +294,11 @@ if __name__ == "__main__":
     p = argparse.ArgumentParser()
     p.add_argument("--build", default="build")
     p.add_argument("--ranks", type=int, default=2)
-    p.add_argument("--sets", default="solvers,reference,sweep,membranes")
+    p.add_argument("--sets",
+                   default="solvers,reference,sweep,membranes,cylinders_convergence,cylinders")
     p.add_argument("--max-dofs", type=float, default=4.3e6)
     p.add_argument("--out", default="bench-out")
     o = p.parse_args()
     for name in o.sets.split(","):
-        {"sweep": sweep, "reference": reference, "solvers": solvers,
-         "membranes": membranes}[name](o)
+        {"sweep": sweep, "reference": reference, "solvers": solvers, "membranes": membranes,
+         "cylinders_convergence": cylinders_convergence, "cylinders": cylinders}[name](o)

@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "tfeti_SubdomainDistribution.hpp"
 #include "tfeti_SubdomainMesh.hpp"
 
 namespace contact {
@@ -83,7 +84,6 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
       p.bodyOfSubdomain.push_back(static_cast<int>(b));
     }
   }
-  const int N = p.numSubdomains();
 
   // Every untorn node's first copy (lowest subdomain id): where a contact row acts on it.
   std::vector<std::pair<int, int>> copyOf(mesh.numNodes(), {-1, -1});
@@ -105,9 +105,29 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
       fixedComponents.insert({n, c});
   }
 
+  // Subdomains to ranks: balance the dofs and keep neighbours together (Zoltan2 on the graph
+  // whose edges join subdomains sharing interface nodes, weighted by their number).
+  {
+    std::vector<std::vector<int>> holders(mesh.numNodes());
+    for (const auto& s : p.subdomains)
+      for (long long g : s.globalNode) holders[g].push_back(s.id);
+    std::map<std::pair<int, int>, double> shared;
+    for (const auto& h : holders)
+      for (std::size_t i = 0; i < h.size(); ++i)
+        for (std::size_t j = i + 1; j < h.size(); ++j)
+          shared[{std::min(h[i], h[j]), std::max(h[i], h[j])}] += 1.0;
+    std::vector<tfeti::SubdomainEdge> edges;
+    for (const auto& [ab, w] : shared) edges.push_back({ab.first, ab.second, w});
+    std::vector<double> weights;
+    for (const auto& s : p.subdomains) weights.push_back(2.0 * s.numNodes());
+    p.ownerOfSubdomain =
+        tfeti::distributeSubdomains(comm, tfeti::makeSubdomainGraph(weights, edges),
+                                    tfeti::distributionMethodFromString(spec.distribution));
+  }
+
   // This rank's subdomains: meshes for the tearing, stiffness and traction loads.
   double force[2] = {0.0, 0.0};
-  for (int sid : tfeti::subdomainsOfRank(comm.getRank(), N, comm.getSize())) {
+  for (int sid : tfeti::subdomainsOfRank(p.ownerOfSubdomain, comm.getRank())) {
     const UnstructuredSubdomain& s = p.subdomains[sid];
     const int b = p.bodyOfSubdomain[sid];
     plasticity::ElementMesh em{toPlasticityType(s.type), s.coords, s.connectivity};

@@ -29,7 +29,8 @@ struct ElasticContactSpec {
   std::vector<std::pair<std::string, int>> symmetry;  // (boundary, component) zero
   std::vector<std::pair<std::string, std::array<double, 2>>> tractions;  // force / length
   std::string slave, master;                                             // the contact pair
-  double searchRadius = 0.0;  // 0: a tenth of the mesh's extent
+  double searchRadius = 0.0;           // 0: a tenth of the mesh's extent
+  std::string distribution = "graph";  // subdomains to ranks: graph (Zoltan2) or block
 };
 
 struct ElasticContactProblem {
@@ -37,6 +38,7 @@ struct ElasticContactProblem {
   std::vector<UnstructuredSubdomain> subdomains;  // all of them (every rank)
   int numSubdomains() const { return static_cast<int>(subdomains.size()); }
   std::vector<int> bodyOfSubdomain;
+  std::vector<int> ownerOfSubdomain;  // the rank of every subdomain
   // This rank's subdomains, their element meshes (local numbering) and materials.
   std::vector<tfeti::SubdomainData> local;
   std::vector<plasticity::ElementMesh> localElements;

@@ -2,6 +2,7 @@
 // contact, solved by TFETI with SMALBE (or the penalty method), compared with Hertz's line
 // contact when asked.
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -67,6 +68,7 @@ ElasticContactSpec specFrom(const ParameterList& params) {
   spec.slave = cp.get<std::string>("Slave");
   spec.master = cp.get<std::string>("Master");
   spec.searchRadius = cp.get<double>("Search radius");
+  spec.distribution = cp.get<std::string>("Subdomain distribution");
   return spec;
 }
 
@@ -97,6 +99,11 @@ void addElasticContactParameters(ParameterList& pl) {
   cp.set("Search radius", 0.0,
          "slave nodes farther from the master get no row; 0: a tenth of "
          "the mesh's extent");
+  cp.set("Subdomain distribution", "graph",
+         "graph: Zoltan2 (Scotch) on the subdomain adjacency, balancing dofs; block: contiguous "
+         "blocks of subdomain ids",
+         Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+             Teuchos::tuple<std::string>("graph", "block"), "Subdomain distribution")));
   auto& h = cp.sublist("Hertz", false, "compare with Hertz's line contact of two cylinders");
   h.set("Compare", false, "report Hertz's p_max and half-width and the errors");
   h.set("Radius 1", 1.0, "R1");

@@ -69,7 +69,6 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                      const TearingOptions& options,
                      const std::vector<InequalityRow>& inequalities) {
   Tearing t;
-  const int P = comm->getSize();
 
   // Global dof numbering: subdomain by subdomain.
   std::vector<long long> sizes(numSubdomains, 0), allSizes(numSubdomains, 0);
@@ -82,6 +81,23 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     for (int d = 0; d < s.numDofs; ++d) myDofs.push_back(t.dofOffset[s.id] + d);
   t.primalMap = Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(t.dofOffset.back()),
                                      Teuchos::ArrayView<const GO>(myDofs), 0, comm));
+
+  // Who owns which subdomain: whatever distribution the caller chose (block rule, Zoltan2).
+  std::vector<long long> owned;
+  for (const auto& sd : local) owned.insert(owned.end(), {sd.id, comm->getRank()});
+  const std::vector<long long> allOwned = allGather(*comm, owned);
+  std::vector<int> owner(numSubdomains, -1);
+  for (std::size_t k = 0; k < allOwned.size(); k += 2) {
+    const auto id = allOwned[k];
+    if (id < 0 || id >= numSubdomains || owner[id] >= 0)
+      throw std::invalid_argument(
+          "tearing: subdomain " + std::to_string(id) +
+          (id < 0 || id >= numSubdomains ? " is out of range" : " is held by two ranks"));
+    owner[id] = static_cast<int>(allOwned[k + 1]);
+  }
+  for (int sd = 0; sd < numSubdomains; ++sd)
+    if (owner[sd] < 0)
+      throw std::invalid_argument("tearing: no rank holds subdomain " + std::to_string(sd));
 
   // Gather every subdomain's boundary nodes: (untorn node, subdomain, local node, Dirichlet).
   std::vector<long long> mine;
@@ -129,8 +145,7 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
             static_cast<GO>(rows.size() - before) - (tfetiDirichlet ? static_cast<GO>(m) : 0);
       }
       if (tfetiDirichlet) t.numDirichletRows += m;
-      if (rows.size() > before)
-        groupOwner.push_back(ownerOfSubdomain(copies[first].sub, numSubdomains, P));
+      if (rows.size() > before) groupOwner.push_back(owner[copies[first].sub]);
     }
     first = last;
   }
@@ -159,7 +174,7 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   for (std::size_t r = 0; r < rows.size(); ++r)
     if (groupOwner[rows[r].group] == me) myRows.push_back(static_cast<GO>(r));
   for (std::size_t r = 0; r < ineq.size(); ++r)
-    if (ownerOfSubdomain(ineq[r].entries.front().subdomain, numSubdomains, P) == me)
+    if (owner[ineq[r].entries.front().subdomain] == me)
       myRows.push_back(numEq + static_cast<GO>(r));
   t.multiplierMap = Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(t.numRows),
                                          Teuchos::ArrayView<const GO>(myRows), 0, comm));
