@@ -88,9 +88,10 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
             "rho relative to the estimate of ||P F P||; the constraint error G lambda falls like "
             "1/rho (about 1e-5 relative at the default)");
     pen.set("Power iterations", 20, "power iterations for the estimate of ||P F P||");
-    pl->set("Preconditioning in face", true,
-            "SMALBE / penalty: precondition MPRGP's conjugate gradient steps by P M P (M the "
-            "chosen dual preconditioner) restricted to the free set");
+    pl->set(
+        "Preconditioning in face", true,
+        "SMALBE / penalty: precondition MPRGP's conjugate gradient steps by P M P + Q / rho (M the "
+        "chosen dual preconditioner) restricted to the free set");
   }
   return pl;
 }
