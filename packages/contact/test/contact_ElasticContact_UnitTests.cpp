@@ -20,6 +20,7 @@
 #include "contact_ElasticContactProblem.hpp"
 #include "contact_GmshMesh.hpp"
 #include "contact_NodeToSegment.hpp"
+#include "contact_TestUtils.hpp"
 #include "plasticity_ElasticLaw.hpp"
 #include "plasticity_Elements.hpp"
 #include "tfeti_CsrMatrix.hpp"
@@ -286,22 +287,10 @@ Comparison solveAndCompare(const Case& cs, Reference& ref, int& referenceUnknown
   const tfeti::DualResult result = solver.solve();
 
   Comparison c;
-  int converged = result.converged ? 1 : 0, allConverged = 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MIN, 1, &converged, &allConverged);
-  c.converged = allConverged == 1;
+  c.converged = contact_test::convergedEverywhere(*comm, result.converged);
 
   // Every copy of a torn node must carry the reference's displacement.
-  double err = 0.0;
-  for (std::size_t i = 0; i < solver.data().size(); ++i) {
-    const auto& mesh = solver.data()[i].mesh;
-    const auto& u = solver.solution(i);
-    for (int k = 0; k < mesh.numNodes(); ++k)
-      for (int d = 0; d < 2; ++d)
-        err = std::max(err, std::abs(u[2 * k + d] - ref.u.at(2 * mesh.globalNode[k] + d)));
-  }
-  double globalErr = 0.0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &err, &globalErr);
-  c.solutionError = globalErr / maxAbs(ref.u);
+  c.solutionError = contact_test::tornSolutionError(*comm, solver, ref.u, 2);
 
   // FETI's rows are renumbered canonically: identify each by its slave node, the one node of
   // the row on the slave boundary (master nodes belong to the other body).

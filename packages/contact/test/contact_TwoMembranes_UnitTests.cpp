@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "contact_TestUtils.hpp"
 #include "contact_TwoMembranes.hpp"
 #include "plasticity_Q1Assembly.hpp"
 #include "tfeti_CsrMatrix.hpp"
@@ -235,20 +236,9 @@ Comparison solveAndCompare(const contact::TwoMembranes& tm, const Teuchos::Param
                            data.inequalities);
   const tfeti::DualResult result = solver.solve();
   Comparison c;
-  int converged = result.converged ? 1 : 0, allConverged = 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MIN, 1, &converged, &allConverged);
-  c.converged = allConverged == 1;
+  c.converged = contact_test::convergedEverywhere(*comm, result.converged);
 
-  double err = 0.0;
-  for (std::size_t i = 0; i < solver.data().size(); ++i) {
-    const auto& mesh = solver.data()[i].mesh;
-    const auto& u = solver.solution(i);
-    for (int k = 0; k < mesh.numNodes(); ++k)
-      err = std::max(err, std::abs(u[k] - ref.u.at(mesh.globalNode[k])));
-  }
-  double globalErr = 0.0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &err, &globalErr);
-  c.solutionError = globalErr / maxAbs(ref.u);
+  c.solutionError = contact_test::tornSolutionError(*comm, solver, ref.u, 1);
 
   // Each contact row once, from membrane 1's side (coefficient +1), keyed by its height.
   const auto rows = solver.inequalityMultipliersOnSubdomains();
