@@ -13,14 +13,14 @@ namespace plasticity {
 namespace {
 
 using ExecSpace = Kokkos::DefaultHostExecutionSpace;
-using HostView2 = Kokkos::View<double**, Kokkos::HostSpace>;
-using HostView3 = Kokkos::View<double***, Kokkos::HostSpace>;
+using detail::checkedElementCoords;
+using detail::elementDisplacements;
+using detail::elementLabel;
+using detail::HostView2;
+using detail::HostView3;
+using detail::scatterStiffness;
 
 constexpr int kMaxElementDofs = 2 * kMaxElementNodes;
-
-std::string elementLabel(const ElementMesh& mesh, int e) {
-  return elementTypeName(mesh.type) + " element " + std::to_string(e);
-}
 
 // Sizes and connectivity, checked before any kernel indexes with them.
 void validateMesh(const ElementMesh& mesh) {
@@ -54,23 +54,6 @@ HostView2 elementCoords(const ElementMesh& mesh) {
       xe(e, 2 * a + 1) = mesh.coords[2 * n + 1];
     }
   return xe;
-}
-
-// Shape functions and their x, y derivatives at (xi, eta); returns the Jacobian determinant.
-KOKKOS_INLINE_FUNCTION double physicalGradients(ElementType t, const double* x, double xi,
-                                                double eta, double N[], double dNdx[][2]) {
-  const int npe = nodesPerElement(t);
-  double dN[kMaxElementNodes][2];
-  shapeFunctions(t, xi, eta, N, dN);
-  double J[2][2] = {{0, 0}, {0, 0}};  // J[i][j] = d x_i / d xi_j
-  for (int a = 0; a < npe; ++a)
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j) J[i][j] += x[2 * a + i] * dN[a][j];
-  const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-  const double inv[2][2] = {{J[1][1] / det, -J[0][1] / det}, {-J[1][0] / det, J[0][0] / det}};
-  for (int a = 0; a < npe; ++a)
-    for (int j = 0; j < 2; ++j) dNdx[a][j] = dN[a][0] * inv[0][j] + dN[a][1] * inv[1][j];
-  return det;
 }
 
 // Smallest Jacobian determinant over the Gauss points and the nodes: checking the nodes too
@@ -109,13 +92,25 @@ void checkJacobians(const ElementMesh& mesh, const HostView2& xe) {
                                   std::to_string(minDet(e)) + ")");
 }
 
-// Validated element coordinates: the common prologue of every entry point.
+}  // namespace
+
+namespace detail {
+
+std::string elementLabel(const ElementMesh& mesh, int e) {
+  return elementTypeName(mesh.type) + " element " + std::to_string(e);
+}
+
+// The common prologue of every entry point.
 HostView2 checkedElementCoords(const ElementMesh& mesh) {
   validateMesh(mesh);
   HostView2 xe = elementCoords(mesh);
   checkJacobians(mesh, xe);
   return xe;
 }
+
+}  // namespace detail
+
+namespace {
 
 // Strain-displacement matrix (3 x 2 npe) from the physical gradients; gamma_xy engineering.
 KOKKOS_INLINE_FUNCTION void strainMatrix(int npe, const double dNdx[][2],
@@ -127,7 +122,10 @@ KOKKOS_INLINE_FUNCTION void strainMatrix(int npe, const double dNdx[][2],
   }
 }
 
-// Element displacements (ne, 2 npe) gathered from the global vector.
+}  // namespace
+
+namespace detail {
+
 HostView2 elementDisplacements(const ElementMesh& mesh, const std::vector<double>& u) {
   if (u.size() != 2 * static_cast<std::size_t>(mesh.numNodes()))
     throw std::invalid_argument("displacement vector has " + std::to_string(u.size()) +
@@ -143,6 +141,10 @@ HostView2 elementDisplacements(const ElementMesh& mesh, const std::vector<double
     }
   return ue;
 }
+
+}  // namespace detail
+
+namespace {
 
 // Element tangent stiffness sum_q B^T C_q B w_q det J_q, with C_q the law's tangent at the
 // strain of ue (zero strain when ue is empty: the linear stiffness). Keeping the displacement
@@ -183,9 +185,12 @@ HostView3 elementStiffness(const ElementMesh& mesh, const HostView2& xe, const M
   return Ke;
 }
 
-// CSR matrix of the element blocks: node-to-node adjacency through elements, expanded to 2
-// dofs per node, then each element adds its block (atomics keep this correct should the
-// execution space ever be threaded).
+}  // namespace
+
+namespace detail {
+
+// Pattern: node-to-node adjacency through elements, expanded to 2 dofs per node; then each
+// element adds its block (atomics keep this correct should the execution space be threaded).
 tfeti::CsrMatrix scatterStiffness(const ElementMesh& mesh, const HostView3& Ke) {
   const int ne = mesh.numElements(), nn = mesh.numNodes(), npe = nodesPerElement(mesh.type);
   const int* conn = mesh.connectivity.data();
@@ -224,6 +229,10 @@ tfeti::CsrMatrix scatterStiffness(const ElementMesh& mesh, const HostView3& Ke) 
                        });
   return K;
 }
+
+}  // namespace detail
+
+namespace {
 
 // Extrapolation from Gauss points to nodes, E[a * ngp + q]: the polynomial through the Gauss
 // point values is the interpolant of a smaller (or equal) element whose nodes are the Gauss
@@ -407,11 +416,7 @@ StressField recoverStresses(const ElementMesh& mesh, const MaterialLaw& law,
   const ElementType type = mesh.type;
   const MaterialLaw* lawPtr = &law;
 
-  const std::vector<double> Ehost = extrapolationMatrix(type);
-  Kokkos::View<const double*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> E(
-      Ehost.data(), Ehost.size());
   HostView3 sg("gaussStress", ne, ngp, 4), xg("gaussCoords", ne, ngp, 2);
-  HostView3 sn("nodeStress", ne, npe, 4);
   Kokkos::parallel_for(
       "plasticity::element_stress", Kokkos::RangePolicy<ExecSpace>(0, ne), KOKKOS_LAMBDA(int e) {
         for (int q = 0; q < ngp; ++q) {
@@ -432,6 +437,22 @@ StressField recoverStresses(const ElementMesh& mesh, const MaterialLaw& law,
             xg(e, q, 1) += N[a] * xe(e, 2 * a + 1);
           }
         }
+      });
+  return detail::stressField(mesh, sg, xg);
+}
+
+namespace detail {
+
+StressField stressField(const ElementMesh& mesh, const HostView3& sg, const HostView3& xg) {
+  const int ne = mesh.numElements(), npe = nodesPerElement(mesh.type);
+  const int ngp = numGaussPoints(mesh.type);
+  const std::vector<double> Ehost = extrapolationMatrix(mesh.type);
+  Kokkos::View<const double*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> E(
+      Ehost.data(), Ehost.size());
+  HostView3 sn("nodeStress", ne, npe, 4);
+  Kokkos::parallel_for(
+      "plasticity::stress_extrapolation", Kokkos::RangePolicy<ExecSpace>(0, ne),
+      KOKKOS_LAMBDA(int e) {
         for (int a = 0; a < npe; ++a)
           for (int c = 0; c < 4; ++c) {
             double s = 0;
@@ -469,5 +490,7 @@ StressField recoverStresses(const ElementMesh& mesh, const MaterialLaw& law,
   }
   return out;
 }
+
+}  // namespace detail
 
 }  // namespace plasticity

@@ -24,7 +24,7 @@
 //   Quad9 3 x 3 Gauss-Legendre        integrand of degree 4 in each of xi, eta
 // On such elements the same rules also integrate the consistent body force exactly (on a curved
 // Tri6 only its total is exact), and with them the elements have no spurious zero-energy modes.
-#include <Kokkos_Macros.hpp>  // KOKKOS_INLINE_FUNCTION only; the kernels live in the .cpp
+#include <Kokkos_Core_fwd.hpp>  // KOKKOS_INLINE_FUNCTION and View declarations; kernels in .cpp
 
 #include <cmath>
 #include <string>
@@ -148,6 +148,24 @@ KOKKOS_INLINE_FUNCTION void gaussPoint(ElementType t, int q, double& xi, double&
   }
 }
 
+// Shape functions and their x, y derivatives at (xi, eta) for the element nodes x (x, y per
+// node); returns the Jacobian determinant.
+KOKKOS_INLINE_FUNCTION double physicalGradients(ElementType t, const double* x, double xi,
+                                                double eta, double N[], double dNdx[][2]) {
+  const int npe = nodesPerElement(t);
+  double dN[kMaxElementNodes][2];
+  shapeFunctions(t, xi, eta, N, dN);
+  double J[2][2] = {{0, 0}, {0, 0}};  // J[i][j] = d x_i / d xi_j
+  for (int a = 0; a < npe; ++a)
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) J[i][j] += x[2 * a + i] * dN[a][j];
+  const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+  const double inv[2][2] = {{J[1][1] / det, -J[0][1] / det}, {-J[1][0] / det, J[0][0] / det}};
+  for (int a = 0; a < npe; ++a)
+    for (int j = 0; j < 2; ++j) dNdx[a][j] = dN[a][0] * inv[0][j] + dN[a][1] * inv[1][j];
+  return det;
+}
+
 // A mesh of one element type. Elements must be counter-clockwise (positive Jacobian).
 struct ElementMesh {
   ElementType type = ElementType::Quad4;
@@ -212,5 +230,23 @@ KOKKOS_INLINE_FUNCTION double vonMises(double sxx, double syy, double sxy, doubl
 // Stresses of the displacement u (2 dofs per node) through the law.
 StressField recoverStresses(const ElementMesh& mesh, const MaterialLaw& law,
                             const std::vector<double>& u);
+
+// Building blocks shared with the other kernel files of this package (plasticity_TotalLagrangian),
+// so that they validate, gather and scatter exactly as these kernels do. Not a user API.
+namespace detail {
+using HostView2 = Kokkos::View<double**, Kokkos::HostSpace>;
+using HostView3 = Kokkos::View<double***, Kokkos::HostSpace>;
+// "<type> element <e>", the prefix of every per-element error message.
+std::string elementLabel(const ElementMesh& mesh, int e);
+// Validated element coordinates (ne, 2 npe); throws as assembleStiffness does.
+HostView2 checkedElementCoords(const ElementMesh& mesh);
+// Element displacements (ne, 2 npe); throws when u does not have 2 entries per node.
+HostView2 elementDisplacements(const ElementMesh& mesh, const std::vector<double>& u);
+// CSR matrix (node pairs sharing an element, 2 dofs each) summing the element blocks Ke.
+tfeti::CsrMatrix scatterStiffness(const ElementMesh& mesh, const HostView3& Ke);
+// The StressField of Gauss-point stresses sg (ne, ngp, 4: xx, yy, xy, zz) at positions xg
+// (ne, ngp, 2): von Mises added, nodal values extrapolated and averaged.
+StressField stressField(const ElementMesh& mesh, const HostView3& sg, const HostView3& xg);
+}  // namespace detail
 
 }  // namespace plasticity
