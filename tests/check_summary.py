@@ -292,24 +292,22 @@ def hertz(dirs):
           f" force error {c['force_relative_error']:.1e}")
 
 
+def option(args, name, default):
+    return float(args[args.index(name) + 1]) if name in args else default
+
+
 if __name__ == "__main__":
     mode, args = sys.argv[1], sys.argv[2:]
     if mode == "scalability":
         scalability(args[0])
     elif mode == "single":
-        err = 1e-6
-        if "--max-error" in args:
-            err = float(args[args.index("--max-error") + 1])
-        single(args[0], err)
+        single(args[0], option(args, "--max-error", 1e-6))
     elif mode == "same":
         same(args)
     elif mode == "diverged":
         diverged(args[0])
     elif mode == "contact":
-        tol = 1e-6
-        if "--force-tol" in args:
-            tol = float(args[args.index("--force-tol") + 1])
-        contact(args[0], tol)
+        contact(args[0], option(args, "--force-tol", 1e-6))
     elif mode == "same_contact":
         only = "--solution-only" in args
         same_contact([a for a in args if a != "--solution-only"], only)

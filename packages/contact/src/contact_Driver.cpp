@@ -88,24 +88,9 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   s["elements"] =
       static_cast<long long>(sp.subdomainsX) * sp.elementsX * sp.subdomainsY * sp.elementsY;
   const auto& feti = params.sublist("FETI");
-  s["formulation"] = feti.get<std::string>("Formulation");
-  s["preconditioner"] = feti.get<std::string>("Preconditioner");
-  s["local_solver"] = feti.get<std::string>("Local solver");
-  s["primal_dim"] = solver.primalDimension();
-  s["dual_dim"] = solver.dualDimension();
-  s["gluing_rows"] = solver.gluingRows();
-  s["dirichlet_rows"] = solver.dirichletRows();
-  s["coarse_dim"] = solver.coarseDimension();
-  s["converged"] = result.converged;
-  s["iterations"] = result.iterations;
-  s["relative_residual"] = result.relativeResidual;
-  Json history = Json::array();
-  for (double h : result.history) history.push(h);
-  s["residual_history"] = std::move(history);
+  addSolverSummary(s, solver, result, feti);
   s["stopping_rule"] = kStoppingRule;
   s["tolerance"] = feti.sublist("PCPG").get<double>("Relative tolerance");
-  s["dual_operator_applies"] = solver.dualOperatorApplies();
-  s["factor_bytes"] = static_cast<unsigned long long>(solver.globalFactorBytes());
   s["preconditioner_factor_bytes"] =
       static_cast<unsigned long long>(solver.globalPreconditionerFactorBytes());
   s["timings"] = timingsJson(solver.timings(), result.iterations);

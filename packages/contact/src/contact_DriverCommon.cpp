@@ -4,6 +4,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
@@ -63,6 +64,64 @@ VtuPiece vtuPiece(const tfeti::FetiSolver& solver) {
   piece.pointData.push_back(std::move(u));
   piece.cellData.push_back(std::move(sub));
   return piece;
+}
+
+void addSolverSummary(Json& s, const tfeti::FetiSolver& solver, const tfeti::DualResult& result,
+                      const Teuchos::ParameterList& feti) {
+  s["formulation"] = feti.get<std::string>("Formulation");
+  s["preconditioner"] = feti.get<std::string>("Preconditioner");
+  s["local_solver"] = feti.get<std::string>("Local solver");
+  s["dual_solver"] = result.method;
+  s["primal_dim"] = solver.primalDimension();
+  s["dual_dim"] = solver.dualDimension();
+  s["gluing_rows"] = solver.gluingRows();
+  s["dirichlet_rows"] = solver.dirichletRows();
+  s["contact_rows"] = solver.inequalityRows();
+  s["coarse_dim"] = solver.coarseDimension();
+  s["converged"] = result.converged;
+  s["iterations"] = result.iterations;
+  s["relative_residual"] = result.relativeResidual;
+  Json history = Json::array();
+  for (double h : result.history) history.push(h);
+  s["residual_history"] = std::move(history);
+  s["dual_operator_applies"] = solver.dualOperatorApplies();
+  s["factor_bytes"] = static_cast<unsigned long long>(solver.globalFactorBytes());
+}
+
+Json qpJson(const tfeti::DualResult& r) {
+  Json q = Json::object();
+  q["method"] = r.method;
+  q["converged"] = r.converged;
+  q["outer_iterations"] = r.qp.outerIterations;
+  q["hessian_multiplications"] = r.qp.hessianMultiplications;
+  q["cg_steps"] = r.qp.cgSteps;
+  q["expansion_steps"] = r.qp.expansionSteps;
+  q["proportioning_steps"] = r.qp.proportioningSteps;
+  q["projected_gradient_norm"] = r.qp.projectedGradientNorm;
+  q["equality_residual_norm"] = r.qp.equalityResidualNorm;
+  q["rhs_norm"] = r.qp.rhsNorm;
+  q["rho"] = r.rho;
+  if (!r.qp.message.empty()) q["message"] = r.qp.message;
+  return q;
+}
+
+Json constraintJson(const tfeti::ConstraintReport& c) {
+  Json j = Json::object();
+  j["rows"] = c.inequalityRows;
+  j["active_rows"] = c.activeRows;
+  j["min_multiplier"] = c.minMultiplier;
+  j["max_penetration"] = c.maxPenetration;
+  j["max_complementarity"] = c.maxComplementarity;
+  j["equality_residual"] = c.equalityResidual;
+  return j;
+}
+
+double maxAbsSolution(const tfeti::Comm& comm, const tfeti::FetiSolver& solver) {
+  double mine = 0.0, all = 0.0;
+  for (std::size_t i = 0; i < solver.data().size(); ++i)
+    for (double v : solver.solution(i)) mine = std::max(mine, std::abs(v));
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &mine, &all);
+  return all;
 }
 
 }  // namespace contact

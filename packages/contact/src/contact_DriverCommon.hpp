@@ -17,4 +17,15 @@ double peakRssMb(const tfeti::Comm& comm);
 // The solved subdomains of this rank: u (or displacement) per node, subdomain id per cell.
 VtuPiece vtuPiece(const tfeti::FetiSolver& solver);
 
+// The keys every single-run summary shares: formulation, preconditioner, local and dual solver,
+// dimensions, convergence, iterations, residual history, F applications, factor bytes.
+void addSolverSummary(Json& summary, const tfeti::FetiSolver& solver,
+                      const tfeti::DualResult& result, const Teuchos::ParameterList& feti);
+// The QP solver's counters ("qp" object).
+Json qpJson(const tfeti::DualResult& result);
+// How well the recovered solution meets the contact rows (part of the "contact" object).
+Json constraintJson(const tfeti::ConstraintReport& report);
+// max |u| over every subdomain copy on every rank.
+double maxAbsSolution(const tfeti::Comm& comm, const tfeti::FetiSolver& solver);
+
 }  // namespace contact

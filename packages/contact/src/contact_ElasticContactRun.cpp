@@ -203,11 +203,8 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
     }
     sub.values.insert(sub.values.end(), em.numElements(), problem.local[i].mesh.id);
   }
-  double globalVm = 0.0, maxU = 0.0, globalMaxU = 0.0;
+  double globalVm = 0.0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &maxVm, &globalVm);
-  for (std::size_t i = 0; i < problem.local.size(); ++i)
-    for (double v : solver.solution(i)) maxU = std::max(maxU, std::abs(v));
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &maxU, &globalMaxU);
   piece.pointData = {disp, sxx, syy, sxy, vm};
   piece.cellData = {sub};
 
@@ -217,34 +214,15 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   s["ranks"] = comm->getSize();
   s["subdomains"] = problem.numSubdomains();
   s["nodes"] = problem.mesh.numNodes();
-  s["primal_dim"] = solver.primalDimension();
-  s["dual_dim"] = solver.dualDimension();
-  s["contact_rows"] = solver.inequalityRows();
-  s["coarse_dim"] = solver.coarseDimension();
-  s["dual_solver"] = result.method;
-  s["converged"] = result.converged;
-  Json q = Json::object();
-  q["outer_iterations"] = result.qp.outerIterations;
-  q["hessian_multiplications"] = result.qp.hessianMultiplications;
-  q["cg_steps"] = result.qp.cgSteps;
-  q["expansion_steps"] = result.qp.expansionSteps;
-  q["proportioning_steps"] = result.qp.proportioningSteps;
-  q["projected_gradient_norm"] = result.qp.projectedGradientNorm;
-  q["equality_residual_norm"] = result.qp.equalityResidualNorm;
-  q["message"] = result.qp.message;
-  s["qp"] = std::move(q);
+  addSolverSummary(s, solver, result, params.sublist("FETI"));
+  s["qp"] = qpJson(result);
   const double applied = std::hypot(problem.appliedForce[0], problem.appliedForce[1]);
-  Json c = Json::object();
+  Json c = constraintJson(report);
   c["p_max"] = pMax;
   c["half_width"] = halfWidth;
   c["force"] = force;
   c["applied_force"] = applied;
   c["force_relative_error"] = applied > 0.0 ? std::abs(force - applied) / applied : 0.0;
-  c["active_rows"] = report.activeRows;
-  c["max_penetration"] = report.maxPenetration;
-  c["min_multiplier"] = report.minMultiplier;
-  c["max_complementarity"] = report.maxComplementarity;
-  c["equality_residual"] = report.equalityResidual;
   const auto& hz = params.sublist("Contact problem").sublist("Hertz");
   if (hz.get<bool>("Compare")) {
     const auto& mat = params.sublist("Material");
@@ -267,7 +245,7 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   }
   s["contact"] = std::move(c);
   s["max_von_mises"] = globalVm;
-  s["max_abs_u"] = globalMaxU;
+  s["max_abs_u"] = maxAbsSolution(*comm, solver);
   s["timings"] = timingsJson(solver.timings(), result.iterations);
   s["peak_rss_mb"] = peakRssMb(*comm);
   if (root) {

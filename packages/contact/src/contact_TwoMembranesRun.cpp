@@ -40,33 +40,10 @@ TwoMembranes membranesFrom(const ParameterList& params) {
   return tm;
 }
 
-Json qpJson(const tfeti::DualResult& r) {
-  Json q = Json::object();
-  q["method"] = r.method;
-  q["converged"] = r.converged;
-  q["outer_iterations"] = r.qp.outerIterations;
-  q["hessian_multiplications"] = r.qp.hessianMultiplications;
-  q["cg_steps"] = r.qp.cgSteps;
-  q["expansion_steps"] = r.qp.expansionSteps;
-  q["proportioning_steps"] = r.qp.proportioningSteps;
-  q["projected_gradient_norm"] = r.qp.projectedGradientNorm;
-  q["equality_residual_norm"] = r.qp.equalityResidualNorm;
-  q["rhs_norm"] = r.qp.rhsNorm;
-  q["rho"] = r.rho;
-  if (!r.qp.message.empty()) q["message"] = r.qp.message;
-  return q;
-}
-
 Json contactJson(const tfeti::ConstraintReport& c, double expectedForce) {
-  Json j = Json::object();
-  j["rows"] = c.inequalityRows;
-  j["active_rows"] = c.activeRows;
+  Json j = constraintJson(c);
   j["force"] = c.force;
   j["expected_force"] = expectedForce;
-  j["min_multiplier"] = c.minMultiplier;
-  j["max_penetration"] = c.maxPenetration;
-  j["max_complementarity"] = c.maxComplementarity;
-  j["equality_residual"] = c.equalityResidual;
   return j;
 }
 
@@ -109,14 +86,6 @@ VtuPiece membranePiece(const tfeti::FetiSolver& solver) {
   return piece;
 }
 
-double maxAbsSolution(const tfeti::Comm& comm, const tfeti::FetiSolver& solver) {
-  double mine = 0.0, all = 0.0;
-  for (std::size_t i = 0; i < solver.data().size(); ++i)
-    for (double v : solver.solution(i)) mine = std::max(mine, std::abs(v));
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &mine, &all);
-  return all;
-}
-
 struct MembraneRun {
   tfeti::DualResult result;
   tfeti::ConstraintReport contact;
@@ -146,27 +115,9 @@ int runTwoMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& 
   s["elements"] = 2LL * tm.subdomainsX * tm.elementsX * tm.subdomainsY * tm.elementsY;
   s["H"] = 1.0 / tm.subdomainsX;
   s["h"] = 1.0 / (tm.subdomainsX * tm.elementsX);
-  const auto& feti = params.sublist("FETI");
-  s["formulation"] = feti.get<std::string>("Formulation");
-  s["preconditioner"] = feti.get<std::string>("Preconditioner");
-  s["local_solver"] = feti.get<std::string>("Local solver");
-  s["dual_solver"] = result.method;
-  s["primal_dim"] = solver.primalDimension();
-  s["dual_dim"] = solver.dualDimension();
-  s["gluing_rows"] = solver.gluingRows();
-  s["dirichlet_rows"] = solver.dirichletRows();
-  s["contact_rows"] = solver.inequalityRows();
-  s["coarse_dim"] = solver.coarseDimension();
-  s["converged"] = result.converged;
-  s["iterations"] = result.iterations;
-  s["relative_residual"] = result.relativeResidual;
-  Json history = Json::array();
-  for (double h : result.history) history.push(h);
-  s["residual_history"] = std::move(history);
+  addSolverSummary(s, solver, result, params.sublist("FETI"));
   s["qp"] = qpJson(result);
   s["contact"] = contactJson(contact, tm.expectedContactForce());
-  s["dual_operator_applies"] = solver.dualOperatorApplies();
-  s["factor_bytes"] = static_cast<unsigned long long>(solver.globalFactorBytes());
   Json timings = timingsJson(solver.timings(), result.iterations);
   timings["per_multiplication_s"] =
       result.qp.hessianMultiplications > 0

@@ -59,13 +59,7 @@ void CoarseSpace::leastSquaresOnRows(const Vector& x, const Vector& rowMask, Vec
         e.what() + ")");
   }
   GA.apply(x, *c_);
-  replicated_->doImport(*c_, *replicate_, Tpetra::INSERT);
-  auto r = replicated_->getData();
-  for (GO g = 0; g < dimension_; ++g) rhs_[g] = r[g];
-  factor->solve(rhs_.data(), sol_.data());
-  auto a = alpha.getDataNonConst();
-  const auto& map = *coarseMap_;
-  for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) a[l] = sol_[map.getGlobalElement(l)];
+  solveReplicated(*factor, *c_, alpha);
 }
 
 CoarseSpace::CoarseSpace(const Tearing& tearing, const SubdomainList& subdomains,
@@ -139,15 +133,19 @@ CoarseSpace::CoarseSpace(const Tearing& tearing, const SubdomainList& subdomains
   sol_.resize(nc);
 }
 
-void CoarseSpace::coarseSolve(const Vector& c, Vector& alpha) const {
-  if (dimension_ == 0) return;
+void CoarseSpace::solveReplicated(LocalSolver& factor, const Vector& c, Vector& alpha) const {
   replicated_->doImport(c, *replicate_, Tpetra::INSERT);
   auto r = replicated_->getData();
   for (GO g = 0; g < dimension_; ++g) rhs_[g] = r[g];
-  factor_->solve(rhs_.data(), sol_.data());
+  factor.solve(rhs_.data(), sol_.data());
   auto a = alpha.getDataNonConst();
   const auto& map = *coarseMap_;
   for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) a[l] = sol_[map.getGlobalElement(l)];
+}
+
+void CoarseSpace::coarseSolve(const Vector& c, Vector& alpha) const {
+  if (dimension_ == 0) return;
+  solveReplicated(*factor_, c, alpha);
 }
 
 void CoarseSpace::leastSquaresCoefficients(const Vector& x, Vector& alpha) const {

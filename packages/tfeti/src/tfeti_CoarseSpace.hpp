@@ -42,6 +42,8 @@ class CoarseSpace {
   std::size_t factorBytes() const { return factor_ ? factor_->factorBytes() : 0; }
 
  private:
+  // alpha = factor^{-1} c with c brought to every rank (the factor is replicated).
+  void solveReplicated(LocalSolver& factor, const Vector& c, Vector& alpha) const;
   std::unique_ptr<LocalSolver> factorizeGramian(const CrsMatrix& G,
                                                 const std::string& localSolver) const;
   GO dimension_ = 0;
