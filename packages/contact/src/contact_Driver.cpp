@@ -15,6 +15,7 @@
 #include "contact_DriverCommon.hpp"
 #include "contact_ElasticContactRun.hpp"
 #include "contact_Json.hpp"
+#include "contact_NonlinearContactRun.hpp"
 #include "contact_StructuredProblem.hpp"
 #include "contact_TwoMembranes.hpp"
 #include "contact_VtuWriter.hpp"
@@ -227,11 +228,14 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
   pl = Teuchos::rcp(new ParameterList("tfeti_contact"));
   pl->set("Study", "single", "single: one problem; scalability: the paper's table",
           choice({"single", "scalability"}));
-  pl->set("Problem", "poisson",
-          "poisson, elasticity: the reference paper's linear model problems; two_membranes: "
-          "Dostál's scalar contact benchmark (Mesh: subdomains and elements of each membrane); "
-          "elastic_contact: bodies on a Gmsh mesh in contact (Contact problem)",
-          choice({"poisson", "elasticity", "two_membranes", "elastic_contact"}));
+  pl->set(
+      "Problem", "poisson",
+      "poisson, elasticity: the reference paper's linear model problems; two_membranes: "
+      "Dostál's scalar contact benchmark (Mesh: subdomains and elements of each membrane); "
+      "elastic_contact: bodies on a Gmsh mesh in contact (Contact problem); "
+      "nonlinear_contact: the same with J2 plasticity and large deformations in load steps "
+      "(Contact problem, Material, Nonlinear)",
+      choice({"poisson", "elasticity", "two_membranes", "elastic_contact", "nonlinear_contact"}));
   auto& mesh = pl->sublist("Mesh", false, "structured Q1 mesh of a rectangle, torn into a grid");
   mesh.set("Domain", arr<double>({0.0, 1.0, 0.0, 1.0}), "{x0, x1, y0, y1}");
   mesh.set("Subdomains", arr<int>({4, 4}), "subdomains in x and y (1/H)");
@@ -244,6 +248,7 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
   load.set("Body force", arr<double>({0.0, -1.0}), "{bx, by} per unit volume (elasticity)");
   pl->sublist("FETI").setParameters(*tfeti::FetiSolver::validParameters());
   addElasticContactParameters(*pl);
+  addNonlinearContactParameters(*pl);
   auto& out = pl->sublist("Output");
   out.set("VTU", true, "write solution.pvtu (u and subdomain id)");
   out.set("Compare with direct solve", false,
@@ -311,6 +316,8 @@ int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
     return runTwoMembranes(comm, params, outputDirectory);
   if (params.get<std::string>("Problem") == "elastic_contact")
     return runElasticContact(comm, params, outputDirectory);
+  if (params.get<std::string>("Problem") == "nonlinear_contact")
+    return runNonlinearContact(comm, params, outputDirectory);
   return runSingle(comm, params, outputDirectory);
 }
 

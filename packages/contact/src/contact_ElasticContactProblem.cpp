@@ -86,7 +86,8 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   }
 
   // Every untorn node's first copy (lowest subdomain id): where a contact row acts on it.
-  std::vector<std::pair<int, int>> copyOf(mesh.numNodes(), {-1, -1});
+  std::vector<std::pair<int, int>>& copyOf = p.copyOf;
+  copyOf.assign(mesh.numNodes(), {-1, -1});
   for (const auto& s : p.subdomains)
     for (int n = 0; n < s.numNodes(); ++n)
       if (copyOf[s.globalNode[n]].first < 0) copyOf[s.globalNode[n]] = {s.id, n};
@@ -123,6 +124,22 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     p.ownerOfSubdomain =
         tfeti::distributeSubdomains(comm, tfeti::makeSubdomainGraph(weights, edges),
                                     tfeti::distributionMethodFromString(spec.distribution));
+  }
+
+  // The areas of the bodies with a body load (every rank meshes all of them: no reduction).
+  std::map<std::string, double> bodyArea;
+  for (const auto& [name, total] : spec.bodyLoads) {
+    const auto it = std::find_if(spec.bodies.begin(), spec.bodies.end(),
+                                 [&](const ElasticContactSpec::Body& b) { return b.name == name; });
+    if (it == spec.bodies.end())
+      throw std::invalid_argument("Body load bodies: \"" + name + "\" is not one of \"Bodies\"");
+    const GmshBody& gb = mesh.body(name);
+    const plasticity::ElementMesh whole{toPlasticityType(gb.type), mesh.coords, gb.connectivity};
+    const double unit[2] = {1.0, 0.0};
+    const auto fe = plasticity::assembleBodyForce(whole, unit);
+    double area = 0.0;
+    for (std::size_t i = 0; i < fe.size(); i += 2) area += fe[i];
+    bodyArea[name] = area;
   }
 
   // This rank's subdomains: meshes for the tearing, stiffness and traction loads.
@@ -164,6 +181,16 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
         force[i % 2] += fe[i];
       }
     }
+    for (const auto& [name, total] : spec.bodyLoads) {
+      if (name != spec.bodies[b].name) continue;
+      const double unit[2] = {1.0, 1.0};
+      const auto fe = plasticity::assembleBodyForce(em, unit);
+      for (std::size_t i = 0; i < fe.size(); ++i) {
+        const double density = total[i % 2] / bodyArea.at(name);
+        sd.f[i] += density * fe[i];
+        force[i % 2] += density * fe[i];
+      }
+    }
     p.local.push_back(std::move(sd));
     p.localElements.push_back(std::move(em));
     p.localBody.push_back(b);
@@ -176,7 +203,7 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   const GmshBoundary& master = boundaryNamed(mesh, spec.master, "Master");
   const std::set<int> slaveSet = nodesOf(slave);
   p.slaveNodes.assign(slaveSet.begin(), slaveSet.end());
-  MasterSurface ms;
+  MasterSurface& ms = p.master;
   ms.nodesPerSegment = master.nodesPerEdge;
   ms.segments = master.edges;
   int masterBody = -1;
@@ -186,26 +213,22 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     throw std::invalid_argument("Master: boundary \"" + spec.master + "\" is on no body");
   const GmshBody& mb = mesh.bodies[masterBody];
   orientSegmentsByElements(ms, mesh.coords, mb.type, mb.connectivity);
-  NodeToSegmentOptions opts;
   double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
   for (int n = 0; n < mesh.numNodes(); ++n)
     for (int c = 0; c < 2; ++c) {
       lo[c] = std::min(lo[c], mesh.coords[2 * n + c]);
       hi[c] = std::max(hi[c], mesh.coords[2 * n + c]);
     }
-  opts.searchRadius =
+  // A slave node on a symmetry line opposite the master's end (the contact point of a half
+  // model) moves off that line by the solver's rounding once the contact is re-evaluated on the
+  // deformed geometry; a relative tolerance far above rounding keeps its row.
+  p.contactOptions.endTolerance = 1e-4;
+  p.contactOptions.searchRadius =
       spec.searchRadius > 0.0 ? spec.searchRadius : 0.1 * std::max(hi[0] - lo[0], hi[1] - lo[1]);
-  p.contact = computeNodeToSegment(mesh.coords, p.slaveNodes, ms, opts);
-  if (p.contact.rows.empty())
-    throw std::invalid_argument("no slave node of \"" + spec.slave +
-                                "\" is within the search "
-                                "radius of \"" +
-                                spec.master + "\"");
-  auto dofOf = [&](int node, int component) {
-    return std::make_pair(copyOf[node].first, 2 * copyOf[node].second + component);
-  };
-  if (comm.getRank() == 0)
-    for (const auto& row : p.contact.rows) p.inequalities.push_back(toInequalityRow(row, dofOf));
+  std::set<int> surface(slaveSet);
+  surface.insert(ms.segments.begin(), ms.segments.end());
+  p.surfaceNodes.assign(surface.begin(), surface.end());
+  updateContact(p, {}, comm.getRank(), spec.slave, spec.master);
 
   // Lumping weights: a slave node's share of the slave boundary's length (the contact pressure
   // is its multiplier, a force per unit thickness, divided by this length).
@@ -221,6 +244,21 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   }
   for (int n : p.slaveNodes) p.slaveWeights.push_back(weight[n]);
   return p;
+}
+
+void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank,
+                   const std::string& slaveName, const std::string& masterName) {
+  p.contact =
+      computeNodeToSegment(p.mesh.coords, p.slaveNodes, p.master, p.contactOptions, displacement);
+  if (p.contact.rows.empty())
+    throw std::invalid_argument("no slave node of \"" + slaveName +
+                                "\" is within the search radius of \"" + masterName + "\"");
+  auto dofOf = [&](int node, int component) {
+    return std::make_pair(p.copyOf[node].first, 2 * p.copyOf[node].second + component);
+  };
+  p.inequalities.clear();
+  if (rank == 0)
+    for (const auto& row : p.contact.rows) p.inequalities.push_back(toInequalityRow(row, dofOf));
 }
 
 }  // namespace contact

@@ -28,7 +28,9 @@ struct ElasticContactSpec {
   std::vector<std::string> fixed;                     // every component zero
   std::vector<std::pair<std::string, int>> symmetry;  // (boundary, component) zero
   std::vector<std::pair<std::string, std::array<double, 2>>> tractions;  // force / length
-  std::string slave, master;                                             // the contact pair
+  // Body loads: the total force (per unit thickness) of a body, spread uniformly over its area.
+  std::vector<std::pair<std::string, std::array<double, 2>>> bodyLoads;
+  std::string slave, master;           // the contact pair
   double searchRadius = 0.0;           // 0: a tenth of the mesh's extent
   std::string distribution = "graph";  // subdomains to ranks: graph (Zoltan2) or block
 };
@@ -46,7 +48,12 @@ struct ElasticContactProblem {
   // The contact rows (geometry for output) and their B_I form (rank 0 contributes them).
   NodeToSegmentResult contact;
   std::vector<tfeti::InequalityRow> inequalities;
-  std::vector<int> slaveNodes;          // global node ids of the slave boundary, as in contact
+  // What re-evaluating the contact on another configuration needs (updateContact).
+  MasterSurface master;                     // oriented by the master body's elements
+  NodeToSegmentOptions contactOptions;      // the search radius
+  std::vector<std::pair<int, int>> copyOf;  // node -> (subdomain, local node) of its first copy
+  std::vector<int> surfaceNodes;            // slave and master nodes, sorted
+  std::vector<int> slaveNodes;              // global node ids of the slave boundary, as in contact
   std::vector<double> slaveWeights;     // per slave node: its share of the slave boundary length
   double appliedForce[2] = {0.0, 0.0};  // resultant of the tractions
 };
@@ -54,6 +61,13 @@ struct ElasticContactProblem {
 // Throws std::invalid_argument naming the group or parameter that is wrong.
 ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
                                                  const tfeti::Comm& comm);
+
+// The contact rows on the configuration reference + displacement (2 per mesh node; only the
+// surfaceNodes' entries are read): p.contact and, on rank 0, p.inequalities. Throws when no
+// slave node is within the search radius.
+void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank,
+                   const std::string& slaveName = "slave",
+                   const std::string& masterName = "master");
 
 plasticity::ElementType toPlasticityType(ElementType type);
 

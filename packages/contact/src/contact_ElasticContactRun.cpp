@@ -12,6 +12,7 @@
 #include <map>
 #include <tuple>
 
+#include "contact_ContactOutput.hpp"
 #include "contact_DriverCommon.hpp"
 #include "contact_ElasticContactProblem.hpp"
 #include "contact_ElasticContactRun.hpp"
@@ -29,7 +30,9 @@ std::vector<T> vec(const Array<T>& a) {
   return std::vector<T>(a.begin(), a.end());
 }
 
-ElasticContactSpec specFrom(const ParameterList& params) {
+}  // namespace
+
+ElasticContactSpec elasticContactSpec(const ParameterList& params) {
   const auto& cp = params.sublist("Contact problem");
   const auto& mat = params.sublist("Material");
   ElasticContactSpec spec;
@@ -65,18 +68,20 @@ ElasticContactSpec specFrom(const ParameterList& params) {
         "of \"Traction boundaries\"");
   for (std::size_t k = 0; k < tb.size(); ++k)
     spec.tractions.push_back({tb[k], {tv[2 * k], tv[2 * k + 1]}});
+  const auto bb = vec(cp.get<Array<std::string>>("Body load bodies"));
+  const auto bv = vec(cp.get<Array<double>>("Body loads"));
+  if (bv.size() != 2 * bb.size())
+    throw std::invalid_argument(
+        "Contact problem: \"Body loads\" needs 2 values {Fx, Fy} (the body's total force per unit "
+        "thickness) per entry of \"Body load bodies\"");
+  for (std::size_t k = 0; k < bb.size(); ++k)
+    spec.bodyLoads.push_back({bb[k], {bv[2 * k], bv[2 * k + 1]}});
   spec.slave = cp.get<std::string>("Slave");
   spec.master = cp.get<std::string>("Master");
   spec.searchRadius = cp.get<double>("Search radius");
   spec.distribution = cp.get<std::string>("Subdomain distribution");
   return spec;
 }
-
-struct ContactNode {
-  double x, y, lambda, pressure;
-};
-
-}  // namespace
 
 void addElasticContactParameters(ParameterList& pl) {
   auto& cp = pl.sublist("Contact problem", false,
@@ -94,6 +99,10 @@ void addElasticContactParameters(ParameterList& pl) {
   cp.set("Symmetry components", Array<int>(), "the zero component (0: x, 1: y) of each");
   cp.set("Traction boundaries", Array<std::string>(), "1D groups under a constant traction");
   cp.set("Tractions", Array<double>(), "{tx, ty} per traction boundary (force per unit length)");
+  cp.set("Body load bodies", Array<std::string>(), "bodies under a uniform body force");
+  cp.set("Body loads", Array<double>(),
+         "{Fx, Fy} per body load body: its total force per unit thickness, spread uniformly over "
+         "its area");
   cp.set("Slave", "", "the contact pair's slave boundary (its nodes)");
   cp.set("Master", "", "the contact pair's master boundary (its segments)");
   cp.set("Search radius", 0.0,
@@ -114,7 +123,7 @@ void addElasticContactParameters(ParameterList& pl) {
 int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
                       const std::string& dir) {
   const bool root = comm->getRank() == 0;
-  const ElasticContactSpec spec = specFrom(params);
+  const ElasticContactSpec spec = elasticContactSpec(params);
   const int verbosity = params.sublist("Output").get<int>("Verbosity");
   ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
   tfeti::FetiSolver solver(comm, problem.numSubdomains(), problem.local, params.sublist("FETI"),
@@ -122,91 +131,33 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   const tfeti::DualResult result = solver.solve();
   const tfeti::ConstraintReport report = solver.constraintReport();
 
-  // Multipliers back to the slave nodes: the tearing numbers its rows canonically, so match
-  // them to the node-to-segment rows by content.
-  const auto lambdas = solver.inequalityMultipliers();
-  std::map<std::tuple<std::vector<std::tuple<int, int, double>>, double>, double> byRow;
-  const auto& rows = solver.tearing().inequalityRows;
-  auto key = [](const tfeti::InequalityRow& r) {
-    std::vector<std::tuple<int, int, double>> k;
-    for (const auto& e : r.entries) k.emplace_back(e.subdomain, e.dof, e.coef);
-    return std::make_tuple(k, r.gap);
-  };
-  for (std::size_t i = 0; i < rows.size(); ++i) byRow[key(rows[i])] = lambdas[i];
-  std::map<int, std::size_t> slaveIndex;
-  for (std::size_t k = 0; k < problem.slaveNodes.size(); ++k) slaveIndex[problem.slaveNodes[k]] = k;
-  std::vector<int> copySub(problem.mesh.numNodes(), -1), copyLocal(problem.mesh.numNodes(), -1);
-  for (const auto& s : problem.subdomains)
-    for (int n = 0; n < s.numNodes(); ++n)
-      if (copySub[s.globalNode[n]] < 0)
-        copySub[s.globalNode[n]] = s.id, copyLocal[s.globalNode[n]] = n;
-  std::vector<ContactNode> nodes;
+  const std::vector<ContactNode> nodes = contactNodes(problem, solver, ContactExtentRule{});
   double force = 0.0;
-  for (const auto& row : problem.contact.rows) {
-    const auto ineq = toInequalityRow(
-        row, [&](int n, int c) { return std::make_pair(copySub[n], 2 * copyLocal[n] + c); });
-    const double lambda = byRow.at(key(ineq));
-    const double w = problem.slaveWeights[slaveIndex.at(row.slaveNode)];
-    const double x = problem.mesh.coords[2 * row.slaveNode],
-                 y = problem.mesh.coords[2 * row.slaveNode + 1];
-    nodes.push_back({x, y, lambda, w > 0.0 ? lambda / w : 0.0});
-    force += lambda;
-  }
-  std::sort(nodes.begin(), nodes.end(),
-            [](const ContactNode& a, const ContactNode& b) { return a.x < b.x; });
-  double pMax = 0.0, halfWidth = 0.0;
-  for (std::size_t k = 0; k < nodes.size(); ++k) {
-    pMax = std::max(pMax, nodes[k].pressure);
-    // The contact ends between the outermost loaded node and the next one.
-    if (nodes[k].lambda > 0.0)
-      halfWidth = k + 1 < nodes.size() ? 0.5 * (nodes[k].x + nodes[k + 1].x) : nodes[k].x;
-  }
+  for (const auto& n : nodes) force += n.lambda;
+  const double pMax = maxPressure(nodes), halfWidth = contactExtent(nodes, ContactExtentRule{});
 
   // Stresses per subdomain (nodal values averaged within the subdomain).
   double maxVm = 0.0;
-  VtuPiece piece;
-  VtuField disp{"displacement", 3, {}}, sxx{"sxx", 1, {}}, syy{"syy", 1, {}}, sxy{"sxy", 1, {}},
-      vm{"von_mises", 1, {}}, sub{"subdomain", 1, {}};
+  std::vector<plasticity::StressField> stresses;
   for (std::size_t i = 0; i < problem.local.size(); ++i) {
-    const auto& em = problem.localElements[i];
-    const auto& u = solver.solution(i);
     const plasticity::LinearElasticMaterial law(spec.bodies[problem.localBody[i]].law);
-    const auto stress = plasticity::recoverStresses(em, law, u);
-    for (int e = 0; e < em.numElements(); ++e)
-      for (int q = 0; q < stress.gaussPointsPerElement; ++q)
-        maxVm = std::max(maxVm, stress.atGaussPoint(e, q, plasticity::kVonMises));
-    const int base = static_cast<int>(piece.points.size() / 2);
-    piece.points.insert(piece.points.end(), em.coords.begin(), em.coords.end());
-    int vtkType = kVtkTriangle;
-    switch (em.type) {
-      case plasticity::ElementType::Tri3:
-        vtkType = kVtkTriangle;
-        break;
-      case plasticity::ElementType::Quad4:
-        vtkType = kVtkQuad;
-        break;
-      case plasticity::ElementType::Tri6:
-        vtkType = kVtkQuadraticTriangle;
-        break;
-      case plasticity::ElementType::Quad9:
-        vtkType = kVtkBiquadraticQuad;
-        break;
-    }
-    for (int e = 0; e < em.numElements(); ++e) piece.cellTypes.push_back(vtkType);
-    for (int c : em.connectivity) piece.cellPoints.push_back(base + c);
-    for (int n = 0; n < em.numNodes(); ++n) {
-      disp.values.insert(disp.values.end(), {u[2 * n], u[2 * n + 1], 0.0});
-      sxx.values.push_back(stress.atNode(n, plasticity::kSxx));
-      syy.values.push_back(stress.atNode(n, plasticity::kSyy));
-      sxy.values.push_back(stress.atNode(n, plasticity::kSxy));
-      vm.values.push_back(stress.atNode(n, plasticity::kVonMises));
-    }
-    sub.values.insert(sub.values.end(), em.numElements(), problem.local[i].mesh.id);
+    stresses.push_back(
+        plasticity::recoverStresses(problem.localElements[i], law, solver.solution(i)));
+    const auto& st = stresses.back();
+    for (int e = 0; e < problem.localElements[i].numElements(); ++e)
+      for (int q = 0; q < st.gaussPointsPerElement; ++q)
+        maxVm = std::max(maxVm, st.atGaussPoint(e, q, plasticity::kVonMises));
   }
+  std::vector<SubdomainFields> fields;
+  for (std::size_t i = 0; i < problem.local.size(); ++i)
+    fields.push_back({&problem.localElements[i],
+                      problem.local[i].mesh.id,
+                      &solver.solution(i),
+                      &stresses[i],
+                      {}});
+  const VtuPiece piece = stressPiece(fields);
   double globalVm = 0.0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &maxVm, &globalVm);
-  piece.pointData = {disp, sxx, syy, sxy, vm};
-  piece.cellData = {sub};
 
   Json s = Json::object();
   s["study"] = "single";
@@ -223,38 +174,13 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   c["force"] = force;
   c["applied_force"] = applied;
   c["force_relative_error"] = applied > 0.0 ? std::abs(force - applied) / applied : 0.0;
-  const auto& hz = params.sublist("Contact problem").sublist("Hertz");
-  if (hz.get<bool>("Compare")) {
-    const auto& mat = params.sublist("Material");
-    const double E = mat.get<double>("Young's modulus"), nu = mat.get<double>("Poisson's ratio");
-    const double R1 = hz.get<double>("Radius 1"), R2 = hz.get<double>("Radius 2");
-    const double R = R2 > 0.0 ? R1 * R2 / (R1 + R2) : R1;
-    const double Estar = 1.0 / (2.0 * (1.0 - nu * nu) / E);
-    const double l = hz.get<double>("Line load");
-    const double a = std::sqrt(4.0 * l * R / (M_PI * Estar));
-    const double p0 = 2.0 * l / (M_PI * a);
-    Json h = Json::object();
-    h["p_max"] = p0;
-    h["half_width"] = a;
-    h["max_von_mises"] = 0.557 * p0;  // Hertz line contact, nu = 0.3, at depth 0.78 a
-    c["hertz"] = std::move(h);
-    Json err = Json::object();
-    err["p_max"] = std::abs(pMax - p0) / p0;
-    err["half_width"] = std::abs(halfWidth - a) / a;
-    c["relative_error"] = std::move(err);
-  }
+  addHertzComparison(c, params, pMax, halfWidth);
   s["contact"] = std::move(c);
   s["max_von_mises"] = globalVm;
   s["max_abs_u"] = maxAbsSolution(*comm, solver);
   s["timings"] = timingsJson(solver.timings(), result.iterations);
   s["peak_rss_mb"] = peakRssMb(*comm);
-  if (root) {
-    std::ofstream csv(dir + "/contact_pressure.csv");
-    if (!csv) throw std::runtime_error("cannot write " + dir + "/contact_pressure.csv");
-    csv << "x,y,lambda,pressure\n" << std::setprecision(12);
-    for (const auto& n : nodes)
-      csv << n.x << "," << n.y << "," << n.lambda << "," << n.pressure << "\n";
-  }
+  writeContactCsv(*comm, dir + "/contact_pressure.csv", nodes);
   s["contact_csv"] = dir + "/contact_pressure.csv";
   if (params.sublist("Output").get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", piece);
   writeSummary(*comm, dir, s);

@@ -4,12 +4,16 @@
 
 #include <string>
 
+#include "contact_ElasticContactProblem.hpp"
 #include "tfeti_Types.hpp"
 
 namespace contact {
 
 // Adds the "Contact problem" sublist to the driver's valid parameters.
 void addElasticContactParameters(Teuchos::ParameterList& valid);
+
+// The problem description from the "Contact problem" and "Material" sublists (validated).
+ElasticContactSpec elasticContactSpec(const Teuchos::ParameterList& params);
 
 int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
                       const std::string& dir);

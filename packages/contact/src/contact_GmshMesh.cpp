@@ -286,6 +286,33 @@ std::uint64_t edgeKey(int a, int b) {
 }
 
 // Relates every boundary edge to the body element having it (same end nodes).
+// A surface whose normal is -z (a clockwise curve loop) gives clockwise elements, which the
+// element kernels reject as inverted: renumber them counter-clockwise (corners reversed, the
+// edge midpoints and the centre following their edges).
+void orientCounterClockwise(ElementType type, const std::vector<double>& coords,
+                            std::vector<int>& connectivity) {
+  static const int tri3[] = {0, 2, 1}, tri6[] = {0, 2, 1, 5, 4, 3}, quad4[] = {0, 3, 2, 1},
+                   quad9[] = {0, 3, 2, 1, 7, 6, 5, 4, 8};
+  const int* perm = type == ElementType::Tri3    ? tri3
+                    : type == ElementType::Tri6  ? tri6
+                    : type == ElementType::Quad4 ? quad4
+                                                 : quad9;
+  const int npe = numNodes(type),
+            corners = type == ElementType::Tri3 || type == ElementType::Tri6 ? 3 : 4;
+  std::vector<int> old(npe);
+  for (std::size_t e = 0; e * npe < connectivity.size(); ++e) {
+    int* el = &connectivity[e * npe];
+    double twiceArea = 0.0;  // shoelace over the corners
+    for (int k = 0; k < corners; ++k) {
+      const int a = el[k], b = el[(k + 1) % corners];
+      twiceArea += coords[2 * a] * coords[2 * b + 1] - coords[2 * b] * coords[2 * a + 1];
+    }
+    if (twiceArea >= 0.0) continue;
+    std::copy(el, el + npe, old.begin());
+    for (int k = 0; k < npe; ++k) el[k] = old[perm[k]];
+  }
+}
+
 void relateEdgesToElements(GmshMesh& mesh) {
   struct Side {
     int body, element, edge;
@@ -388,6 +415,7 @@ GmshMesh extract(const std::string& path, const MeshOptions& options) {
     body.physicalTag = bodyGroups[g].tag;
     body.type = static_cast<ElementType>(bodyElements[g].type);
     body.connectivity = toCompact(bodyElements[g].nodes);
+    orientCounterClockwise(body.type, mesh.coords, body.connectivity);
     body.gmshTags = std::move(bodyElements[g].tags);
     mesh.bodies.push_back(std::move(body));
   }

@@ -114,6 +114,27 @@ void J2PlasticMaterial::revert() {
   Kokkos::deep_copy(trial_, committed_);
 }
 
+std::vector<double> J2PlasticMaterial::committedHistory() const {
+  std::vector<double> out;
+  out.reserve(static_cast<std::size_t>(numElements_) * gaussPoints_ * kNumHistory);
+  for (int e = 0; e < numElements_; ++e)
+    for (int g = 0; g < gaussPoints_; ++g)
+      for (int k = 0; k < kNumHistory; ++k) out.push_back(committed_(e, g, k));
+  return out;
+}
+
+void J2PlasticMaterial::setCommittedHistory(const std::vector<double>& values) {
+  const std::size_t n = static_cast<std::size_t>(numElements_) * gaussPoints_ * kNumHistory;
+  if (values.size() != n)
+    throw std::invalid_argument("J2 history: " + std::to_string(values.size()) +
+                                " values, expected " + std::to_string(n));
+  std::size_t i = 0;
+  for (int e = 0; e < numElements_; ++e)
+    for (int g = 0; g < gaussPoints_; ++g)
+      for (int k = 0; k < kNumHistory; ++k) committed_(e, g, k) = values[i++];
+  revert();
+}
+
 double J2PlasticMaterial::equivalentPlasticStrain(const MaterialPointId& where) const {
   checkPoint(where);
   return committed_(where.element, where.gaussPoint, kAlpha);

@@ -11,6 +11,8 @@
 // without drift; commit() accepts the step, revert() abandons it (e.g. for a cut-back).
 #include <Kokkos_Core.hpp>
 
+#include <vector>
+
 #include "plasticity_ElasticLaw.hpp"
 #include "plasticity_MaterialLaw.hpp"
 
@@ -34,6 +36,12 @@ class J2PlasticMaterial : public MaterialLaw {
   void commit();
   // Committed -> trial at every point (a rejected load step).
   void revert();
+
+  // The committed history as a flat array (for restart files) and back; the size must be
+  // numElements x gaussPointsPerElement x historySize(), else std::invalid_argument.
+  std::vector<double> committedHistory() const;
+  void setCommittedHistory(const std::vector<double>& values);
+  static constexpr int historySize() { return kNumHistory; }
 
   // Equivalent plastic strain alpha (the hardening variable), committed or trial.
   double equivalentPlasticStrain(const MaterialPointId& where) const;

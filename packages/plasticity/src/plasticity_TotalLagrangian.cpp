@@ -24,8 +24,8 @@ struct GaussKinematics {
 };
 
 // Deformation gradient, Green-Lagrange strain and B_NL at Gauss point q of element e.
-KOKKOS_INLINE_FUNCTION void kinematics(ElementType type, const double* xe, const double* ue, int q,
-                                       GaussKinematics& g, double E[3]) {
+KOKKOS_INLINE_FUNCTION void kinematics(ElementType type, bool large, const double* xe,
+                                       const double* ue, int q, GaussKinematics& g, double E[3]) {
   const int npe = nodesPerElement(type);
   double xi, eta, w;
   gaussPoint(type, q, xi, eta, w);
@@ -35,12 +35,13 @@ KOKKOS_INLINE_FUNCTION void kinematics(ElementType type, const double* xe, const
     for (int i = 0; i < 2; ++i)
       for (int j = 0; j < 2; ++j) H[i][j] += ue[2 * a + i] * g.dNdX[a][j];
   for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j) g.F[i][j] = (i == j ? 1.0 : 0.0) + H[i][j];
+    for (int j = 0; j < 2; ++j) g.F[i][j] = (i == j ? 1.0 : 0.0) + (large ? H[i][j] : 0.0);
   g.detF = g.F[0][0] * g.F[1][1] - g.F[0][1] * g.F[1][0];
   // Written with H rather than F^T F - I so that small strains lose no digits to cancellation.
-  E[0] = H[0][0] + 0.5 * (H[0][0] * H[0][0] + H[1][0] * H[1][0]);
-  E[1] = H[1][1] + 0.5 * (H[0][1] * H[0][1] + H[1][1] * H[1][1]);
-  E[2] = H[0][1] + H[1][0] + H[0][0] * H[0][1] + H[1][0] * H[1][1];
+  const double s = large ? 0.5 : 0.0;
+  E[0] = H[0][0] + s * (H[0][0] * H[0][0] + H[1][0] * H[1][0]);
+  E[1] = H[1][1] + s * (H[0][1] * H[0][1] + H[1][1] * H[1][1]);
+  E[2] = H[0][1] + H[1][0] + 2 * s * (H[0][0] * H[0][1] + H[1][0] * H[1][1]);
   for (int a = 0; a < npe; ++a)
     for (int k = 0; k < 2; ++k) {
       g.B[0][2 * a + k] = g.F[k][0] * g.dNdX[a][0];
@@ -61,7 +62,9 @@ void checkDeformation(const ElementMesh& mesh, const Kokkos::View<double*, Kokko
 // Per element: the internal force vector (fe), or with Ke also the tangent. The law is not
 // called at an inverted point, so that a rejected state leaves no trial history behind there.
 void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const std::vector<double>& u,
-                   HostView2& fe, HostView3* Ke) {
+                   Kinematics kin, bool initialStress, HostView2& fe, HostView3* Ke) {
+  const bool large = kin == Kinematics::TotalLagrangian;
+  const bool geometric = large && initialStress;
   const HostView2 xe = detail::checkedElementCoords(mesh);
   const HostView2 ue = detail::elementDisplacements(mesh, u);
   const int ne = mesh.numElements(), nd = 2 * nodesPerElement(mesh.type);
@@ -78,7 +81,7 @@ void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const std::v
         for (int q = 0; q < numGaussPoints(type); ++q) {
           GaussKinematics g;
           double E[3];
-          kinematics(type, &xe(e, 0), &ue(e, 0), q, g, E);
+          kinematics(type, large, &xe(e, 0), &ue(e, 0), q, g, E);
           detMin = g.detF < detMin ? g.detF : detMin;
           if (!(g.detF > 0.0)) continue;
           MaterialResponse r;
@@ -98,6 +101,7 @@ void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const std::v
                   (g.B[0][i] * CB[0][j] + g.B[1][i] * CB[1][j] + g.B[2][i] * CB[2][j]) * g.wdetJ;
           // Initial stress: the variation of B_NL with u, contracted with S; it couples only
           // like components, hence the identity in k.
+          if (!geometric) continue;
           const int npe = nd / 2;
           for (int a = 0; a < npe; ++a)
             for (int b = 0; b < npe; ++b) {
@@ -118,9 +122,9 @@ void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const std::v
 }  // namespace
 
 std::vector<double> internalForce(const ElementMesh& mesh, const MaterialLaw& law,
-                                  const std::vector<double>& u) {
+                                  const std::vector<double>& u, Kinematics kinematics) {
   HostView2 fe;
-  elementKernel(mesh, law, u, fe, nullptr);
+  elementKernel(mesh, law, u, kinematics, false, fe, nullptr);
   const int npe = nodesPerElement(mesh.type);
   std::vector<double> f(2 * static_cast<std::size_t>(mesh.numNodes()), 0.0);
   for (int e = 0; e < mesh.numElements(); ++e)
@@ -133,15 +137,17 @@ std::vector<double> internalForce(const ElementMesh& mesh, const MaterialLaw& la
 }
 
 tfeti::CsrMatrix tangentStiffness(const ElementMesh& mesh, const MaterialLaw& law,
-                                  const std::vector<double>& u) {
+                                  const std::vector<double>& u, Kinematics kinematics,
+                                  bool initialStress) {
   HostView2 fe;
   HostView3 Ke;
-  elementKernel(mesh, law, u, fe, &Ke);
+  elementKernel(mesh, law, u, kinematics, initialStress, fe, &Ke);
   return detail::scatterStiffness(mesh, Ke);
 }
 
 StressField cauchyStress(const ElementMesh& mesh, const MaterialLaw& law,
-                         const std::vector<double>& u) {
+                         const std::vector<double>& u, Kinematics kin) {
+  const bool large = kin == Kinematics::TotalLagrangian;
   const HostView2 xe = detail::checkedElementCoords(mesh);
   const HostView2 ue = detail::elementDisplacements(mesh, u);
   const int ne = mesh.numElements(), npe = nodesPerElement(mesh.type);
@@ -156,7 +162,7 @@ StressField cauchyStress(const ElementMesh& mesh, const MaterialLaw& law,
         for (int q = 0; q < ngp; ++q) {
           GaussKinematics g;
           double E[3];
-          kinematics(type, &xe(e, 0), &ue(e, 0), q, g, E);
+          kinematics(type, large, &xe(e, 0), &ue(e, 0), q, g, E);
           detMin = g.detF < detMin ? g.detF : detMin;
           for (int a = 0; a < npe; ++a)
             for (int i = 0; i < 2; ++i)

@@ -19,6 +19,10 @@
 
 namespace plasticity {
 
+// SmallStrain: the same kernels with the linearized strain (F = I in B, no initial stress
+// term, Cauchy = the law's stress), so that one code path serves both kinematics.
+enum class Kinematics { SmallStrain, TotalLagrangian };
+
 class InvertedDeformationError : public std::invalid_argument {
  public:
   explicit InvertedDeformationError(const std::string& what) : std::invalid_argument(what) {}
@@ -27,18 +31,25 @@ class InvertedDeformationError : public std::invalid_argument {
 // Internal nodal forces f = sum_e int B_NL(u)^T S(E(u)) dV0, 2 dofs per node (per unit
 // thickness). Evaluates the law once per Gauss point (writing a history law's trial state).
 std::vector<double> internalForce(const ElementMesh& mesh, const MaterialLaw& law,
-                                  const std::vector<double>& u);
+                                  const std::vector<double>& u,
+                                  Kinematics kinematics = Kinematics::TotalLagrangian);
 
 // d internalForce / du: the material part B_NL^T (dS/dE) B_NL plus the initial-stress part
 // grad N_a . S . grad N_b (times the identity in the two components). Same pattern as
 // assembleStiffness, which it equals at u = 0 for a law stress-free at zero strain.
+// initialStress = false leaves the initial-stress part out: the material tangent alone is
+// positive semidefinite with the rigid motions of the current configuration as its kernel
+// (what a FETI subdomain needs), while the full tangent of a stressed body is not singular.
 tfeti::CsrMatrix tangentStiffness(const ElementMesh& mesh, const MaterialLaw& law,
-                                  const std::vector<double>& u);
+                                  const std::vector<double>& u,
+                                  Kinematics kinematics = Kinematics::TotalLagrangian,
+                                  bool initialStress = true);
 
 // Cauchy stress sigma = F S F^T / det F (sigma_zz = S_zz / det F, as F_zz = 1) at each Gauss
 // point, its von Mises value, and the usual nodal extrapolation. gaussCoords are the deformed
 // positions x = X + u, where the Cauchy stress acts.
 StressField cauchyStress(const ElementMesh& mesh, const MaterialLaw& law,
-                         const std::vector<double>& u);
+                         const std::vector<double>& u,
+                         Kinematics kinematics = Kinematics::TotalLagrangian);
 
 }  // namespace plasticity

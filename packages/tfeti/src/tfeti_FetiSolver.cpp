@@ -92,6 +92,12 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
         "Preconditioning in face", true,
         "SMALBE / penalty: precondition MPRGP's conjugate gradient steps by P M P + Q / rho (M the "
         "chosen dual preconditioner) restricted to the free set");
+    pl->set("Active multiplier threshold", 1e-6,
+            "contact rows count as active in the rigid-motion fit of the primal recovery when "
+            "lambda_i > threshold * max lambda_I");
+    pl->set("Warm start", true,
+            "SMALBE / penalty after update(): start from the multipliers of the previous solve "
+            "(projected onto G lambda = e and the bounds) when the dual dimension is unchanged");
   }
   return pl;
 }
@@ -99,27 +105,40 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
 FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                        std::vector<SubdomainData> local, const Teuchos::ParameterList& params,
                        const std::vector<InequalityRow>& inequalities)
-    : comm_(comm), params_(params), data_(std::move(local)) {
+    : comm_(comm), params_(params), numSubdomains_(numSubdomains), data_(std::move(local)) {
   params_.validateParametersAndSetDefaults(*validParameters());
+  // A rank may hold no subdomain; every rank must still agree on the dofs per node.
+  int localDpn = data_.empty() ? 0 : data_.front().dofsPerNode;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &localDpn, &dofsPerNode_);
+  std::vector<std::vector<double>> coords;
+  for (const auto& sd : data_) coords.push_back(sd.mesh.coords);
+  buildSubdomains(coords);
+  buildConstraints(inequalities, true);
+  buildDualRhs();
+}
+
+void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords) {
+  const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
+  const std::string solver = params_.get<std::string>("Local solver");
+  PhaseTimer t(*comm_, timings_.factorization);
+  subdomains_.clear();
+  for (std::size_t i = 0; i < data_.size(); ++i) {
+    auto& sd = data_[i];
+    const std::vector<int> dirichletDofs = sd.mesh.dirichletDofs(sd.dofsPerNode);
+    subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, coords[i],
+                                                      std::move(sd.K), sd.f, dirichletDofs,
+                                                      formulation, solver));
+    // The subdomain keeps its own (possibly modified) copy of K.
+    sd.K = CsrMatrix();
+  }
+}
+
+void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities,
+                                  bool newSubdomains) {
   const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
   const PreconditionerType precType =
       parsePreconditioner(params_.get<std::string>("Preconditioner"));
   const std::string solver = params_.get<std::string>("Local solver");
-  // A rank may hold no subdomain; every rank must still agree on the dofs per node.
-  int localDpn = data_.empty() ? 0 : data_.front().dofsPerNode, dpn = 0;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &localDpn, &dpn);
-
-  {
-    PhaseTimer t(*comm_, timings_.factorization);
-    for (auto& sd : data_) {
-      const std::vector<int> dirichletDofs = sd.mesh.dirichletDofs(sd.dofsPerNode);
-      subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, sd.mesh.coords,
-                                                        sd.K, sd.f, dirichletDofs, formulation,
-                                                        solver));
-      // The subdomain keeps its own (possibly modified) copy of K.
-      sd.K = CsrMatrix();
-    }
-  }
   {
     PhaseTimer t(*comm_, timings_.tearing);
     TearingOptions opts;
@@ -140,7 +159,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       }
       input.push_back(std::move(in));
     }
-    tearing_ = buildTearing(comm_, numSubdomains, input, dpn, opts, inequalities);
+    tearing_ = buildTearing(comm_, numSubdomains_, input, dofsPerNode_, opts, inequalities);
   }
   {
     PhaseTimer t(*comm_, timings_.coarse);
@@ -153,36 +172,80 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       for (const auto& e : tearing_.subdomainRows[i]) dofs.push_back(e.dof);
       std::sort(dofs.begin(), dofs.end());
       dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
-      subdomains_[i]->setupPreconditioner(dofs, precType, solver);
+      // Contact rows that move between iterations of a nonlinear solve mostly keep the same
+      // dofs: the interior factorization is redone only when they change.
+      if (newSubdomains || dofs != subdomains_[i]->interfaceDofs())
+        subdomains_[i]->setupPreconditioner(dofs, precType, solver);
     }
     if (precType != PreconditionerType::None)
       M_ = Teuchos::rcp(new DualPreconditioner(tearing_, subdomains_));
   }
+  Kplus_ = Teuchos::rcp(new PseudoInverseOperator(tearing_.primalMap, subdomains_));
+  F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
+}
+
+void FetiSolver::buildDualRhs() {
+  PhaseTimer t(*comm_, timings_.dualRhs);
+  f_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
   {
-    PhaseTimer t(*comm_, timings_.dualRhs);
-    Kplus_ = Teuchos::rcp(new PseudoInverseOperator(tearing_.primalMap, subdomains_));
-    F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
-    f_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
-    {
-      auto f = f_->getDataNonConst(0);
-      std::size_t offset = 0;
-      for (const auto& s : subdomains_) {
-        for (int i = 0; i < s->numDofs(); ++i) f[offset + i] = s->load()[i];
-        offset += s->numDofs();
-      }
-    }
-    MultiVector Kf(tearing_.primalMap, 1);
-    Kplus_->apply(*f_, Kf);
-    d_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
-    tearing_.B->apply(Kf, *d_);
-    d_->update(-1.0, *tearing_.rhs, 1.0);  // d = B K+ f - c
-    lambda0_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
-    if (coarse_->dimension() > 0) {
-      Vector e(coarse_->coarseMap());
-      coarse_->applyKernelTranspose(*f_, e);
-      coarse_->particularSolution(e, *lambda0_);
+    auto f = f_->getDataNonConst(0);
+    std::size_t offset = 0;
+    for (const auto& s : subdomains_) {
+      for (int i = 0; i < s->numDofs(); ++i) f[offset + i] = s->load()[i];
+      offset += s->numDofs();
     }
   }
+  MultiVector Kf(tearing_.primalMap, 1);
+  Kplus_->apply(*f_, Kf);
+  d_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  tearing_.B->apply(Kf, *d_);
+  d_->update(-1.0, *tearing_.rhs, 1.0);  // d = B K+ f - c
+  lambda0_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  if (coarse_->dimension() > 0) {
+    Vector e(coarse_->coarseMap());
+    coarse_->applyKernelTranspose(*f_, e);
+    coarse_->particularSolution(e, *lambda0_);
+  }
+}
+
+void FetiSolver::update(const std::vector<std::vector<double>>& loads,
+                        const std::vector<InequalityRow>& inequalities) {
+  if (loads.size() != subdomains_.size())
+    throw std::invalid_argument("FetiSolver::update: " + std::to_string(loads.size()) +
+                                " load vectors for " + std::to_string(subdomains_.size()) +
+                                " local subdomains");
+  for (std::size_t i = 0; i < subdomains_.size(); ++i) subdomains_[i]->setLoad(loads[i]);
+  previousLambda_ = lambda_;
+  previousEqualityMultiplier_ = equalityMultiplier_;
+  previousNorm_ = normEstimate_;
+  buildConstraints(inequalities, false);
+  buildDualRhs();
+  u_vec_ = Teuchos::null;
+  lambda_ = Teuchos::null;
+  u_.clear();
+}
+
+void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
+                                 const std::vector<std::vector<double>>& coords,
+                                 const std::vector<std::vector<double>>& loads,
+                                 const std::vector<InequalityRow>& inequalities) {
+  if (K.size() != data_.size() || coords.size() != data_.size() || loads.size() != data_.size())
+    throw std::invalid_argument("FetiSolver::updateStiffness: expected " +
+                                std::to_string(data_.size()) +
+                                " matrices, coordinate sets and loads");
+  for (std::size_t i = 0; i < data_.size(); ++i) {
+    data_[i].K = std::move(K[i]);
+    data_[i].f = loads[i];
+  }
+  previousLambda_ = lambda_;
+  previousEqualityMultiplier_ = equalityMultiplier_;
+  previousNorm_ = 0.0;  // a new K: estimate ||P F P|| again
+  buildSubdomains(coords);
+  buildConstraints(inequalities, true);
+  buildDualRhs();
+  u_vec_ = Teuchos::null;
+  lambda_ = Teuchos::null;
+  u_.clear();
 }
 
 DualResult FetiSolver::solve() {
@@ -221,15 +284,25 @@ DualResult FetiSolver::solve() {
       if (tearing_.numInequalityRows == 0) {
         coarse_->leastSquaresCoefficients(g, alpha);
       } else {
-        // Inactive inequality rows (lambda_i = 0) have a gap: they must not enter the fit.
+        // Inactive inequality rows (lambda_i = 0) have a gap: they must not enter the fit. The
+        // QP solution is exact only to its tolerance: a row left a rounding above its bound
+        // (e.g. after a warm start) would pull the rigid motion to close its gap, whereas
+        // dropping a truly active row with a tiny multiplier costs nothing (its gap is ~0).
         Vector mask(tearing_.multiplierMap);
         auto m = mask.getDataNonConst();
         auto l = lambda_->getData();
         const auto& map = *tearing_.multiplierMap;
+        double largest = 0.0, globalLargest = 0.0;
         for (std::size_t i = 0; i < map.getNodeNumElements(); ++i)
-          m[i] = !tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i))) || l[i] > 0.0
-                     ? 1.0
-                     : 0.0;
+          if (tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i))))
+            largest = std::max(largest, l[i]);
+        Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &largest, &globalLargest);
+        const double threshold = params_.get<double>("Active multiplier threshold") * globalLargest;
+        for (std::size_t i = 0; i < map.getNodeNumElements(); ++i)
+          m[i] =
+              !tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i))) || l[i] > threshold
+                  ? 1.0
+                  : 0.0;
         coarse_->leastSquaresOnRows(g, mask, alpha, params_.get<std::string>("Local solver"));
       }
       coarse_->addKernelCombination(alpha, u);
@@ -267,7 +340,22 @@ DualResult FetiSolver::solveQp(const std::string& method) {
                   ? -l0[i]
                   : -std::numeric_limits<double>::infinity();
   }
-  auto mu = Teuchos::rcp(new Vector(map));  // 0, projected onto the bounds by MPRGP
+  // From 0, or (warm start) from P (lambda_previous - lambda~): in the kernel of G, projected
+  // onto the bounds by MPRGP. The rows of a nonlinear iteration keep their canonical order as
+  // long as each slave node keeps its segment; any start is valid, a close one is cheap.
+  auto mu = Teuchos::rcp(new Vector(map));
+  bool warm = params_.get<bool>("Warm start") && !previousLambda_.is_null() &&
+              previousLambda_->getGlobalLength() == map->getGlobalNumElements() &&
+              previousLambda_->getLocalLength() == map->getNodeNumElements();
+  int warmAll = 0, warmLocal = warm ? 1 : 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, 1, &warmLocal, &warmAll);
+  if (warmAll == 1) {
+    auto m = mu->getDataNonConst();
+    auto p = previousLambda_->getData();
+    auto l0 = lambda0_->getData();
+    for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) m[i] = p[i] - l0[i];
+    coarse_->project(*mu, *mu);
+  }
   auto PFP = Teuchos::rcp(new ProjectedDualOperator(F_, *coarse_));
   auto Q = Teuchos::rcp(new ComplementProjector(map, *coarse_));
   using Mgr = MprgpSolMgr<Scalar, MV, Operator>;
@@ -277,10 +365,14 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   Teuchos::ParameterList sp = params_.sublist("SMALBE"), mp = params_.sublist("MPRGP");
   const Teuchos::ParameterList& pen = params_.sublist("Penalty");
   double norm = smalbe ? sp.get<double>("Norm of A") : 0.0;
+  // A warm start after update() keeps K, so ||P F P|| moves only with the contact rows: the
+  // previous estimate (already enlarged by 5 %) is kept instead of new power iterations.
+  if (norm <= 0.0 && warmAll == 1 && previousNorm_ > 0.0) norm = previousNorm_;
   if (norm <= 0.0) {
     const int its = smalbe ? sp.get<int>("Power iterations") : pen.get<int>("Power iterations");
     norm = Mgr::estimateNorm(*PFP, *b, its);
   }
+  normEstimate_ = norm;
   result.rho = (smalbe ? sp.get<double>("Penalty") : pen.get<double>("Penalty")) * norm;
   // Preconditioning in face: P M P acts on range(P), where the Hessian is P F P; on range(Q) the
   // Hessian is rho I, so the preconditioner is P M P + Q / rho (singular without the Q part).
@@ -301,8 +393,22 @@ DualResult FetiSolver::solveQp(const std::string& method) {
     if (!prec.is_null()) sp.sublist("MPRGP").set("Preconditioning in face", true);
     SmalbeSolMgr<Scalar, MV, Operator> solver(qp, Q, sp, prec);
     solver.setAugmentedHessian(H);
+    // SMALBE's equality multiplier of the previous solve, moved into the new range(Q).
+    if (warmAll == 1 && !previousEqualityMultiplier_.is_null()) {
+      Vector previous(map);
+      {
+        auto dst = previous.getDataNonConst();
+        auto src = previousEqualityMultiplier_->getData();
+        for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) dst[i] = src[i];
+      }
+      auto nu0 = Teuchos::rcp(new Vector(map));
+      Q->apply(previous, *nu0);
+      solver.setInitialMultiplier(nu0);
+    }
     ret = solver.solve();
     result.qp = solver.counters();
+    equalityMultiplier_ = Teuchos::rcp(new Vector(map));
+    Tpetra::deep_copy(*equalityMultiplier_, *solver.getMultiplier()->getVector(0));
   } else {
     qp.A = H;
     // ||P F P + rho Q|| = max(||P F P||, rho): P and Q are complementary orthogonal projectors.
@@ -328,6 +434,21 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   Tpetra::deep_copy(*lambda_, *lambda0_);
   lambda_->update(1.0, *mu, 1.0);
   return result;
+}
+
+std::vector<std::vector<double>> FetiSolver::multiplierForces() const {
+  if (lambda_.is_null())
+    throw std::logic_error("FetiSolver::multiplierForces: no solution (call solve() first)");
+  MultiVector btl(tearing_.primalMap, 1);
+  tearing_.B->apply(*lambda_, btl, Teuchos::TRANS);
+  auto v = btl.getData(0);
+  std::vector<std::vector<double>> out;
+  std::size_t offset = 0;
+  for (const auto& s : subdomains_) {
+    out.emplace_back(v.getRawPtr() + offset, v.getRawPtr() + offset + s->numDofs());
+    offset += s->numDofs();
+  }
+  return out;
 }
 
 ConstraintReport FetiSolver::constraintReport() const {

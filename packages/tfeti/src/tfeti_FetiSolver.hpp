@@ -74,6 +74,21 @@ class FetiSolver {
 
   DualResult solve();
 
+  // For nonlinear drivers, which keep K (and its factorizations) and change the rest between
+  // solves: new loads f for the local subdomains and new inequality rows (contact rows on the
+  // current geometry). Tearing, coarse space and right-hand sides are rebuilt; the Dirichlet
+  // preconditioner of a subdomain only if the dofs its rows touch changed.
+  void update(const std::vector<std::vector<double>>& loads,
+              const std::vector<InequalityRow>& inequalities);
+  // A new stiffness for every local subdomain (refactorized), its kernel from the rigid modes of
+  // `coords` (2 per node, e.g. the current configuration), with new loads and rows as update().
+  void updateStiffness(std::vector<CsrMatrix> K, const std::vector<std::vector<double>>& coords,
+                       const std::vector<std::vector<double>>& loads,
+                       const std::vector<InequalityRow>& inequalities);
+  // B^T lambda of the last solve on each local subdomain: the forces the multipliers (gluing,
+  // Dirichlet and contact reactions) exert, as in the residual f - B^T lambda - f_int.
+  std::vector<std::vector<double>> multiplierForces() const;
+
   ConstraintReport constraintReport() const;
   // For each local subdomain: every inequality row touching it, as (local dof, the row's
   // coefficient there, lambda); the constraint's force on that dof is -coef * lambda.
@@ -113,6 +128,8 @@ class FetiSolver {
  private:
   Teuchos::RCP<const Comm> comm_;
   Teuchos::ParameterList params_;
+  int numSubdomains_ = 0;
+  int dofsPerNode_ = 0;
   std::vector<SubdomainData> data_;
   SubdomainList subdomains_;
   Tearing tearing_;
@@ -121,7 +138,15 @@ class FetiSolver {
   Teuchos::RCP<DualOperator> F_;
   Teuchos::RCP<DualPreconditioner> M_;
   DualResult solveQp(const std::string& method);
+  void buildSubdomains(const std::vector<std::vector<double>>& coords);
+  void buildConstraints(const std::vector<InequalityRow>& inequalities, bool newSubdomains);
+  void buildDualRhs();
   Teuchos::RCP<Vector> d_, lambda0_, lambda_;
+  // Warm start (update()): the last solve's multipliers, SMALBE's equality multiplier and the
+  // estimate of ||P F P||.
+  Teuchos::RCP<const Vector> previousLambda_, previousEqualityMultiplier_;
+  Teuchos::RCP<Vector> equalityMultiplier_;
+  double normEstimate_ = 0.0, previousNorm_ = 0.0;
   Teuchos::RCP<MultiVector> f_, u_vec_;
   std::vector<std::vector<double>> u_;
   FetiTimings timings_;

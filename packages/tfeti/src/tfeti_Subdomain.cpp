@@ -44,6 +44,7 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
     throw std::invalid_argument("subdomain " + std::to_string(id) +
                                 ": only 1 (scalar) or 2 (2D elasticity) dofs per node");
   if (formulation_ == Formulation::FETI && !dirichletDofs.empty()) {
+    dirichlet_ = dirichletDofs;
     K_ = decoupleDofs(K_, dirichletDofs);
     for (int d : dirichletDofs) f_[d] = 0.0;
   }
@@ -56,6 +57,14 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
     throw std::runtime_error("subdomain " + std::to_string(id_) + ": " + e.what());
   }
   work_.resize(K_.rows);
+}
+
+void Subdomain::setLoad(std::vector<double> f) {
+  if (static_cast<int>(f.size()) != K_.rows)
+    throw std::invalid_argument("subdomain " + std::to_string(id_) + ": load of size " +
+                                std::to_string(f.size()) + ", expected " + std::to_string(K_.rows));
+  f_ = std::move(f);
+  for (int d : dirichlet_) f_[d] = 0.0;
 }
 
 void Subdomain::computeKernel(const std::vector<double>& coords,

@@ -34,6 +34,8 @@ class Subdomain {
   int dofsPerNode() const { return dofsPerNode_; }
   const CsrMatrix& stiffness() const { return K_; }
   const std::vector<double>& load() const { return f_; }
+  // A new load (FETI: zero on the eliminated Dirichlet dofs, as in the constructor).
+  void setLoad(std::vector<double> f);
   int kernelDim() const { return kernelDim_; }
   // Column-major numDofs() x kernelDim(), orthonormal columns.
   const std::vector<double>& kernel() const { return R_; }
@@ -61,6 +63,7 @@ class Subdomain {
   Formulation formulation_;
   CsrMatrix K_;
   std::vector<double> f_;
+  std::vector<int> dirichlet_;
   int kernelDim_ = 0;
   std::vector<double> R_;
   std::vector<int> fixing_;

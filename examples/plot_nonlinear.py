@@ -1,0 +1,206 @@
+#!/usr/bin/env python3
+"""Plots of a nonlinear (elasto-plastic) contact run of tfeti_contact (Problem = nonlinear_contact):
+
+  /usr/bin/python3 examples/plot_nonlinear.py OUTPUT_DIR [--elastic ELASTIC_DIR] [--zoom Z]
+
+writes into OUTPUT_DIR
+  contact_pressure.png  the final contact pressure against x [mm] (extent_measure "half_width",
+                        two cylinders) or against the angle from the bottom [deg] ("angle",
+                        pin in a hole); with Hertz's p(x) = p_max sqrt(1 - x^2/a^2) if the summary
+                        has it, and ELASTIC_DIR's contact_pressure.csv as "elastic" if given;
+  von_mises.png         the von Mises stress in a window of half-size Z around the point of
+                        maximum pressure (default 0.1 m for half_width, 0.5 m for angle), with the
+                        yield stress as a contour line;
+  plastic_strain.png    the equivalent plastic strain in the same window, if any is positive;
+  convergence.png       the relative residual (and increment) of every accepted nonlinear
+                        iteration against the cumulative iteration number, steps marked;
+  solution_norm.png     the solution norm against the cumulative iteration number.
+Reads summary.json, iterations.csv, contact_pressure.csv and solution_*.vtu (ASCII).
+"""
+import argparse
+import csv
+import glob
+import json
+import math
+import os
+import re
+import statistics
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.tri as mtri  # noqa: E402
+
+
+def read_csv(path):
+    with open(path) as f:
+        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def save(fig, d, name):
+    out = os.path.join(d, name)
+    fig.tight_layout()
+    fig.savefig(out, dpi=150)
+    plt.close(fig)
+    return out
+
+
+def pressure_profile(d, angle_mode):
+    """(abscissa, pressure [MPa]) sorted: x [mm], or the angle [deg] from the downward direction
+    (computed about the origin, the hole centre, if the file has no angle column)."""
+    rows = read_csv(os.path.join(d, "contact_pressure.csv"))
+    if angle_mode:
+        s = [r["angle"] if "angle" in r else math.degrees(math.atan2(r["x"], -r["y"]))
+             for r in rows]
+    else:
+        s = [r["x"] * 1e3 for r in rows]
+    return zip(*sorted(zip(s, [r["pressure"] / 1e6 for r in rows]))), rows
+
+
+def pressure_plot(d, summary, elastic):
+    c = summary["contact"]
+    angle_mode = c.get("extent_measure", "half_width") == "angle"
+    (s, p), rows = pressure_profile(d, angle_mode)
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.plot(s, p, "o-", ms=3, label="final step (nodal)")
+    extents = [c.get("contact_extent", 0.0) * (1 if angle_mode else 1e3)]
+    if elastic:
+        (se, pe), _ = pressure_profile(elastic, angle_mode)
+        ax.plot(se, pe, "s-", ms=3, label="elastic")
+    if "hertz" in c:
+        a, p0 = c["hertz"]["half_width"], c["hertz"]["p_max"]
+        xs = [a * i / 200 for i in range(201)]
+        ph = [p0 * math.sqrt(max(0.0, 1 - (v / a) ** 2)) / 1e6 for v in xs]
+        if angle_mode:
+            # x = r sin(angle) on the contact circle (symmetry axis x = 0), r from the data.
+            r = statistics.median([q["x"] / math.sin(math.radians(q["angle"])) for q in rows
+                                   if "angle" in q and abs(q["angle"]) > 1.0] or [1.0])
+            xs = [math.degrees(math.asin(min(1.0, v / r))) for v in xs]
+        else:
+            xs = [v * 1e3 for v in xs]
+        ax.plot(xs, ph, "k--", label="Hertz")
+        extents.append(max(xs))
+    if max(extents) > 0:
+        ax.set_xlim(0, min(max(s), 2 * max(extents)))
+    ax.set_xlabel("angle from the bottom [deg]" if angle_mode else "x [mm]")
+    ax.set_ylabel("contact pressure [MPa]")
+    extent = (f"contact angle {c.get('contact_extent', 0):.1f} deg" if angle_mode
+              else f"half-width {c.get('contact_extent', 0) * 1e3:.2f} mm")
+    ax.set_title(f"p_max {c['p_max'] / 1e6:.0f} MPa, {extent}")
+    ax.legend()
+    return save(fig, d, "contact_pressure.png")
+
+
+# Triangles of the VTK cells: corners of linear/quadratic triangles and quadrilaterals.
+TRIANGLES = {5: [(0, 1, 2)], 22: [(0, 1, 2)], 9: [(0, 1, 2), (0, 2, 3)],
+             28: [(0, 1, 2), (0, 2, 3)]}
+
+
+def data_array(xml, name, required=True):
+    m = re.search(r'<DataArray[^>]*Name="%s"[^>]*>(.*?)</DataArray>' % re.escape(name), xml, re.S)
+    if not m:
+        if not required:
+            return None
+        raise SystemExit(f"no DataArray {name} in the VTU piece")
+    return [float(v) for v in m.group(1).split()]
+
+
+def read_vtu(d, names):
+    """Triangulation of all pieces (undeformed) and the nodal fields `names` (None: missing)."""
+    xs, ys, tris, fields = [], [], [], {n: [] for n in names}
+    for path in sorted(glob.glob(os.path.join(d, "solution_*.vtu"))):
+        with open(path) as f:
+            xml = f.read()
+        base = len(xs)
+        pts = data_array(xml, "Points")
+        xs += pts[0::3]
+        ys += pts[1::3]
+        for n in names:
+            values = data_array(xml, n, required=False)
+            fields[n] = None if values is None or fields[n] is None else fields[n] + values
+        conn = [int(v) for v in data_array(xml, "connectivity")]
+        ends = [int(v) for v in data_array(xml, "offsets")]
+        for t, start, end in zip(data_array(xml, "types"), [0] + ends, ends):
+            cell = conn[start:end]
+            tris += [[base + cell[i] for i in tri] for tri in TRIANGLES.get(int(t), [])]
+    if not xs:
+        raise SystemExit(f"no solution_*.vtu in {d}")
+    return mtri.Triangulation(xs, ys, tris), fields
+
+
+def field_plot(d, tri, values, centre, zoom, label, name, cmap, level=None):
+    fig, ax = plt.subplots(figsize=(6, 5))
+    tpc = ax.tripcolor(tri, values, shading="gouraud", cmap=cmap)
+    fig.colorbar(tpc, ax=ax, label=label)
+    if level is not None and min(values) < level < max(values):
+        ax.tricontour(tri, values, levels=[level], colors="w", linewidths=1)
+        ax.set_title(f"white: yield stress {level:.0f} MPa")
+    ax.set_xlim(max(min(tri.x), centre[0] - zoom), centre[0] + zoom)
+    ax.set_ylim(centre[1] - zoom, centre[1] + zoom)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    return save(fig, d, name)
+
+
+def stress_plots(d, summary, zoom):
+    rows = read_csv(os.path.join(d, "contact_pressure.csv"))
+    top = max(rows, key=lambda r: r["pressure"])
+    centre = (top["x"], top["y"])
+    tri, f = read_vtu(d, ["von_mises", "plastic_strain"])
+    if f["von_mises"] is None:
+        raise SystemExit(f"no von_mises field in {d}/solution_*.vtu")
+    yield_stress = summary.get("material", {}).get("yield_stress")
+    out = [field_plot(d, tri, [v / 1e6 for v in f["von_mises"]], centre, zoom,
+                      "von Mises [MPa]", "von_mises.png", "viridis",
+                      yield_stress / 1e6 if yield_stress else None)]
+    if f["plastic_strain"] and max(f["plastic_strain"]) > 0:
+        out.append(field_plot(d, tri, f["plastic_strain"], centre, zoom,
+                              "equivalent plastic strain", "plastic_strain.png", "magma"))
+    return out
+
+
+def history_plots(d):
+    rows = read_csv(os.path.join(d, "iterations.csv"))
+    acc = [r for r in rows if r["accepted"] == 1]
+    n = list(range(1, len(acc) + 1))
+    # n[i] is the first iteration of a new load step: a boundary between n[i] - 1 and n[i].
+    starts = [n[i] for i in range(1, len(acc)) if acc[i]["step"] != acc[i - 1]["step"]]
+    title = (f"{len({r['step'] for r in acc})} load steps, {len(acc)} iterations "
+             f"({len(rows) - len(acc)} rejected), "
+             f"{sum(int(r['mprgp_iterations']) for r in rows)} MPRGP iterations")
+
+    def figure(ylabel):
+        fig, ax = plt.subplots(figsize=(7, 4))
+        for s in starts:
+            ax.axvline(s - 0.5, color="gray", ls=":", lw=0.8)
+        ax.set_xlabel("nonlinear iteration (cumulative; dotted: load step boundaries)")
+        ax.set_ylabel(ylabel)
+        ax.set_title(title, fontsize=9)
+        return fig, ax
+
+    fig, ax = figure("relative residual / increment")
+    for key, label in [("relative_residual", "residual"), ("relative_increment", "||du|| / ||u||")]:
+        # Zeros have no place on a log scale.
+        ax.semilogy(n, [r[key] if r[key] > 0 else math.nan for r in acc], "o-", ms=3, label=label)
+    ax.legend()
+    out = [save(fig, d, "convergence.png")]
+    fig, ax = figure("||u||")
+    ax.plot(n, [r["solution_norm"] for r in acc], "o-", ms=3)
+    return out + [save(fig, d, "solution_norm.png")]
+
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser()
+    ap.add_argument("dir")
+    ap.add_argument("--elastic", help="output directory of the elastic run, to compare with")
+    ap.add_argument("--zoom", type=float, help="half-size of the stress window [m]")
+    o = ap.parse_args()
+    with open(os.path.join(o.dir, "summary.json")) as f:
+        summary = json.load(f)
+    angle_mode = summary["contact"].get("extent_measure") == "angle"
+    zoom = o.zoom if o.zoom else (0.5 if angle_mode else 0.1)
+    for out in ([pressure_plot(o.dir, summary, o.elastic)] + stress_plots(o.dir, summary, zoom)
+                + history_plots(o.dir)):
+        print("wrote", out)

@@ -1,0 +1,35 @@
+#pragma once
+// Problem = nonlinear_contact of the tfeti_contact driver: the reference paper's algorithm for
+// contact with geometric and material nonlinearities ("FETI with contact and other
+// non-linearities"), in load steps.
+//
+// The bodies, loads and contact pair are those of elastic_contact ("Contact problem"); the
+// material may yield (J2, "Material"/"Yield stress") and the kinematics may be total
+// Lagrangian ("Nonlinear"/"Geometrically nonlinear"). Per load step, with load factor t:
+//   K and B_E are assembled (and K factorized) once;
+//   iterate: B_I and the gaps on the current geometry x = X + u;
+//            the contact QP for the increment: K du + B^T lambda = t f - f_int(u),
+//              B_E du = 0, B_I du <= g(u), lambda_I >= 0 (TFETI, SMALBE/MPRGP);
+//            u += du; res = t f - B^T lambda - f_int(u);
+//            stop when ||du|| / ||u|| < eta1 and ||res|| / ||t f|| < eta2.
+// lambda is the total multiplier (the paper's lambda^{i-1} + dlambda): B_I changes with the
+// geometry, so its previous value would act through rows that no longer exist.
+// A step that does not converge (iterations, QP, an inverted element) is cut back (halved) and
+// retried; every converged step writes its VTU, CSV rows and restart files.
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+
+#include "tfeti_Types.hpp"
+
+namespace contact {
+
+// Adds "Nonlinear" and the plastic parameters of "Material" to the driver's valid parameters.
+void addNonlinearContactParameters(Teuchos::ParameterList& valid);
+
+// 0: converged at load factor 1 (or stopped as asked by "Stop after step"); 3: a load step did
+// not converge after the allowed cut-backs (everything up to the last converged step written).
+int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
+                        const std::string& dir);
+
+}  // namespace contact
