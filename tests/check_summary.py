@@ -29,6 +29,25 @@
                                           method, whose error falls like 1/rho, to 1e-4);
                                           every row meets the contact conditions; further
                                           DIRs (other rank counts) have the same counts
+  check_summary.py nonlinear DIR [--force-tol T] [--hertz-tol T]
+                                          a nonlinear_contact run reached load factor 1; every
+                                          step has the keys issue 5 names and its last
+                                          iteration meets Eta 1 and Eta 2; the last QP solve
+                                          meets the contact conditions; the resultant contact
+                                          force balances the load to T; with Hertz, p_max and
+                                          the half-width within the given tolerance
+  check_summary.py same_nonlinear DIR1 DIR2 ...
+                                          the same load steps and, per step, p_max, contact
+                                          extent and max von Mises to 1e-5, max plastic strain
+                                          to 1e-3
+                                          (other rank counts, or a run continued by restart)
+  check_summary.py plastic_vs_elastic PLASTIC ELASTIC
+                                          the same overload: the elastic run exceeds yield, the
+                                          plastic one yields (plastic strain > 0), caps von
+                                          Mises near sigma_Y and has a lower p_max
+  check_summary.py arc_grows DIR_0.9 DIR_0.99
+                                          pin-hole: the contact half-angle of the conforming
+                                          pin is larger
 """
 import csv
 import json
@@ -292,6 +311,97 @@ def hertz(dirs):
           f" force error {c['force_relative_error']:.1e}")
 
 
+STEP_KEYS = ("step", "load_factor", "outer_iterations", "mprgp_iterations", "residuals",
+             "p_max", "max_von_mises", "max_plastic_strain", "contact_extent")
+
+
+def nonlinear(d, force_tol, hertz_tol):
+    s = load(d)
+    nl = s["nonlinear"]
+    if not s["converged"] or abs(nl["load_factor"] - 1.0) > 1e-12:
+        fail(f"{d}: did not reach load factor 1 ({nl['load_factor']}): {nl.get('message', '')}")
+    steps = s["steps"]
+    if not steps or len(steps) != nl["converged_steps"]:
+        fail(f"{d}: {len(steps)} step records for {nl['converged_steps']} converged steps")
+    for st in steps:
+        missing = [k for k in STEP_KEYS if k not in st]
+        if missing:
+            fail(f"{d}: step {st.get('step')} lacks {missing}")
+        if st["residuals"][-1] >= nl["eta2"] or st["increments"][-1] >= nl["eta1"]:
+            fail(f"{d}: step {st['step']} ended at residual {st['residuals'][-1]:.2e}, "
+                 f"increment {st['increments'][-1]:.2e} (Eta 2 {nl['eta2']}, Eta 1 {nl['eta1']})")
+        if st["outer_iterations"] != len(st["residuals"]):
+            fail(f"{d}: step {st['step']}: {st['outer_iterations']} iterations, "
+                 f"{len(st['residuals'])} residuals")
+    c = s["contact"]
+    k = c["last_solve"]
+    u = s["max_abs_u"]
+    if k["max_penetration"] > KKT_TOL * u or k["equality_residual"] > KKT_TOL * u:
+        fail(f"{d}: last solve: penetration {k['max_penetration']:.2e}, gluing residual "
+             f"{k['equality_residual']:.2e}")
+    if k["min_multiplier"] < 0:
+        fail(f"{d}: negative contact multiplier {k['min_multiplier']}")
+    if c["force_relative_error"] > force_tol:
+        fail(f"{d}: resultant contact force {c['force']:.6e} against the load "
+             f"{c['applied_force']:.6e}: {c['force_relative_error']:.1e} > {force_tol}")
+    if hertz_tol > 0:
+        for key in ("p_max", "half_width"):
+            if c["relative_error"][key] > hertz_tol:
+                fail(f"{d}: {key} {c[key]:.5e} vs Hertz {c['hertz'][key]:.5e}: "
+                     f"{100 * c['relative_error'][key]:.2f} % > {100 * hertz_tol:.0f} %")
+    print(f"OK: {len(steps)} steps, {nl['total_iterations']} iterations, p_max {c['p_max']:.5e}, "
+          f"extent {c['contact_extent']:.5e}, force error {c['force_relative_error']:.1e}")
+
+
+def same_nonlinear(dirs):
+    ref = load(dirs[0])["steps"]
+    for d in dirs[1:]:
+        other = load(d)["steps"]
+        if [s["load_factor"] for s in other] != [s["load_factor"] for s in ref]:
+            fail(f"{d}: load steps {[s['load_factor'] for s in other]} differ from "
+                 f"{[s['load_factor'] for s in ref]} ({dirs[0]})")
+        for a, b in zip(ref, other):
+            # The plastic strain where yield begins is the most sensitive quantity: it moves
+            # with the iterates at the level of the stopping tolerances (Eta 1, Eta 2).
+            for key, tol in (("p_max", 1e-5), ("contact_extent", 1e-5), ("max_von_mises", 1e-5),
+                             ("max_plastic_strain", 1e-3)):
+                scale = max(abs(a[key]), 1e-300)
+                if abs(a[key] - b[key]) > tol * scale:
+                    fail(f"{d}: step {b['step']} {key} {b[key]} differs from {a[key]} ({dirs[0]})")
+    print(f"OK: {len(dirs)} runs agree over {len(ref)} steps")
+
+
+def plastic_vs_elastic(pdir, edir):
+    p, e = load(pdir), load(edir)
+    for s, d in ((p, pdir), (e, edir)):
+        if not s["converged"]:
+            fail(f"{d}: did not converge")
+    sy = p["material"]["yield_stress"]
+    if e["max_von_mises"] <= sy:
+        fail(f"the elastic run stays below yield ({e['max_von_mises']:.3e} <= {sy:.3e}): "
+             f"no overload")
+    if p["max_plastic_strain"] <= 0:
+        fail("the overloaded plastic run has no plastic strain")
+    if p["max_von_mises"] > 1.01 * sy:
+        fail(f"von Mises {p['max_von_mises']:.4e} exceeds sigma_Y {sy:.4e} by more than 1 %")
+    pp, pe = p["contact"]["p_max"], e["contact"]["p_max"]
+    if not pp < 0.97 * pe:
+        fail(f"plastic p_max {pp:.4e} is not below the elastic {pe:.4e} (by 3 %)")
+    print(f"OK: p_max plastic {pp:.4e} < elastic {pe:.4e}; von Mises {p['max_von_mises']:.4e} "
+          f"(sigma_Y {sy:.1e}); plastic strain {p['max_plastic_strain']:.3e}")
+
+
+def arc_grows(d09, d099):
+    a, b = load(d09), load(d099)
+    for s, d in ((a, d09), (b, d099)):
+        if not s["converged"] or s["contact"]["extent_measure"] != "angle":
+            fail(f"{d}: not converged, or the extent is not an angle")
+    t09, t099 = a["contact"]["contact_extent"], b["contact"]["contact_extent"]
+    if not t099 > 1.5 * t09:
+        fail(f"contact half-angle {t099:.2f} deg (0.99) is not well above {t09:.2f} deg (0.9)")
+    print(f"OK: contact half-angle {t09:.2f} deg (R_pin/R_hole = 0.9) < {t099:.2f} deg (0.99)")
+
+
 def option(args, name, default):
     return float(args[args.index(name) + 1]) if name in args else default
 
@@ -315,5 +425,13 @@ if __name__ == "__main__":
         hertz(args)
     elif mode == "membranes_scaling":
         membranes_scaling(args)
+    elif mode == "nonlinear":
+        nonlinear(args[0], option(args, "--force-tol", 1e-6), option(args, "--hertz-tol", 0.0))
+    elif mode == "same_nonlinear":
+        same_nonlinear(args)
+    elif mode == "plastic_vs_elastic":
+        plastic_vs_elastic(args[0], args[1])
+    elif mode == "arc_grows":
+        arc_grows(args[0], args[1])
     else:
         fail("unknown mode " + mode)

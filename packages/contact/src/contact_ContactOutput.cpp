@@ -45,7 +45,8 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
     // Signed angle from the direction to the node, counter-clockwise positive (towards +x for
     // the default direction (0, -1)).
     const double angle = std::atan2(d0 * ry - d1 * rx, d0 * rx + d1 * ry) * 180.0 / M_PI;
-    nodes.push_back({x, y, lambda, w > 0.0 ? lambda / w : 0.0, angle});
+    nodes.push_back(
+        {x, y, lambda, w > 0.0 ? lambda / w : 0.0, angle, {row.normal[0], row.normal[1]}});
   }
   std::sort(nodes.begin(), nodes.end(), [&](const ContactNode& a, const ContactNode& b) {
     return rule.angle ? a.angle < b.angle : a.x < b.x;
@@ -57,6 +58,13 @@ double maxPressure(const std::vector<ContactNode>& nodes) {
   double p = 0.0;
   for (const auto& n : nodes) p = std::max(p, n.pressure);
   return p;
+}
+
+double resultantForce(const std::vector<ContactNode>& nodes, const double direction[2]) {
+  double f = 0.0;
+  for (const auto& n : nodes)
+    f += n.lambda * (n.normal[0] * direction[0] + n.normal[1] * direction[1]);
+  return std::abs(f);
 }
 
 double contactExtent(const std::vector<ContactNode>& nodes, const ContactExtentRule& rule) {

@@ -16,10 +16,12 @@
 namespace contact {
 
 struct ContactNode {
-  double x, y;      // position (reference, or current when a displacement is given)
-  double lambda;    // the row's multiplier: force per unit thickness at the node
-  double pressure;  // lambda over the node's share of the slave boundary length
-  double angle;     // degrees, seen from ContactExtentRule::centre, from its direction
+  double x, y;       // position (reference, or current when a displacement is given)
+  double lambda;     // the row's multiplier: force per unit thickness at the node
+  double pressure;   // lambda over the node's share of the slave boundary length
+  double angle;      // degrees, seen from ContactExtentRule::centre, from its direction
+  double normal[2];  // the master's outward normal of the row: lambda * normal is the force
+                     // on the slave node
 };
 
 // How the contact zone's extent is measured: the half-width along x (a contact centred at
@@ -38,6 +40,10 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                                       const std::vector<double>& surfaceDisplacement = {});
 
 double maxPressure(const std::vector<ContactNode>& nodes);
+// The resultant contact force on the slave body, sum of lambda * normal, along `direction`
+// (a unit vector; e.g. the applied load's direction: symmetry rows carry the other component
+// of the contact force on a half model).
+double resultantForce(const std::vector<ContactNode>& nodes, const double direction[2]);
 // Between the outermost loaded node and the next one (metres, or degrees for an angle rule).
 double contactExtent(const std::vector<ContactNode>& nodes, const ContactExtentRule& rule);
 

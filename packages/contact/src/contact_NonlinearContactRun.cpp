@@ -242,6 +242,9 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
     model.u.emplace_back(problem.local[i].f.size(), 0.0);
   }
   const double appliedForce = std::hypot(problem.appliedForce[0], problem.appliedForce[1]);
+  const double loadDirection[2] = {
+      appliedForce > 0.0 ? problem.appliedForce[0] / appliedForce : 0.0,
+      appliedForce > 0.0 ? problem.appliedForce[1] / appliedForce : 0.0};
   const double fNorm = globalNorm(*comm, model.externalLoad);
   if (!(fNorm > 0.0)) throw std::invalid_argument("Contact problem: no load is applied");
 
@@ -464,7 +467,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
     rec.contactExtent = contactExtent(nodes, opt.rule);
     rec.maxVonMises = maxVm;
     rec.maxPlasticStrain = maxEp;
-    for (const auto& n : nodes) rec.contactForce += n.lambda;
+    rec.contactForce = resultantForce(nodes, loadDirection);
     history.steps.push_back(rec);
     history.step = step;
     history.loadFactor = t;
@@ -535,6 +538,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
     rejected += r.accepted ? 0 : 1;
   }
   nl["total_iterations"] = its;
+  s["iterations"] = its;
   nl["rejected_iterations"] = rejected;
   nl["total_mprgp_iterations"] = mprgp;
   nl["total_hessian_multiplications"] = mults;
@@ -576,9 +580,18 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
         applied > 0.0 ? std::abs(last.contactForce - applied) / applied : 0.0;
     if (history.loadFactor > 1.0 - 1e-12)
       addHertzComparison(c, params, last.pMax, last.contactExtent);
+    // The contact conditions of the last QP solve (rows B_I du <= g on the last geometry).
+    c["last_solve"] = constraintJson(solver.constraintReport());
+    c["last_solve"]["max_abs_du"] = maxAbsSolution(*comm, solver);
     s["contact"] = std::move(c);
     s["max_von_mises"] = last.maxVonMises;
     s["max_plastic_strain"] = last.maxPlasticStrain;
+  }
+  {
+    double mx = 0.0;
+    for (const auto& x : model.u)
+      for (double v : x) mx = std::max(mx, std::abs(v));
+    s["max_abs_u"] = globalMax(*comm, mx);
   }
   s["contact_csv"] = dir + "/contact_pressure.csv";
   s["iterations_csv"] = dir + "/iterations.csv";

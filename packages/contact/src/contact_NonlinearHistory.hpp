@@ -31,7 +31,7 @@ struct StepRecord {
   int cutbacks = 0;  // attempts of this step that were rejected before it converged
   std::vector<double> residuals, increments;
   double pMax = 0.0, maxVonMises = 0.0, maxPlasticStrain = 0.0, contactExtent = 0.0;
-  double contactForce = 0.0;
+  double contactForce = 0.0;  // sum lambda n on the slave body, along the applied load
 };
 
 struct NonlinearHistory {

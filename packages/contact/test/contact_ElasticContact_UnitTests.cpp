@@ -408,4 +408,80 @@ TEUCHOS_UNIT_TEST(ElasticContact, SmalbeMatchesReferenceQuadratic) {
   checkAgainstReference(kQuadratic, out, success);
 }
 
+// A nonlinear driver keeps K and changes loads and contact rows: update() (factorizations
+// reused, warm start) and updateStiffness() (refactorized) must give what a new solver gives.
+TEUCHOS_UNIT_TEST(ElasticContact, UpdateMatchesNewSolver) {
+  auto comm = Tpetra::getDefaultComm();
+  contact::ElasticContactProblem problem =
+      contact::buildElasticContactProblem(specOf(kLinear), *comm);
+  Teuchos::ParameterList params;
+  params.set("Dual solver", std::string("SMALBE"));
+  params.sublist("SMALBE").set("Relative tolerance", 1e-10);
+  params.sublist("SMALBE").set("Equality tolerance", 1e-12);
+  std::vector<std::vector<double>> half, stiffnessCoords;
+  std::vector<tfeti::CsrMatrix> K;
+  for (const auto& sd : problem.local) {
+    half.push_back(sd.f);
+    for (double& v : half.back()) v *= 0.5;
+    K.push_back(sd.K);
+    stiffnessCoords.push_back(sd.mesh.coords);
+  }
+  tfeti::FetiSolver reused(comm, problem.numSubdomains(), problem.local, params,
+                           problem.inequalities);
+  const auto full = reused.solve();
+  TEST_ASSERT(contact_test::convergedEverywhere(*comm, full.converged));
+  reused.update(half, problem.inequalities);
+  const auto warm = reused.solve();
+  TEST_ASSERT(contact_test::convergedEverywhere(*comm, warm.converged));
+
+  auto data = problem.local;
+  for (std::size_t i = 0; i < data.size(); ++i) data[i].f = half[i];
+  tfeti::FetiSolver fresh(comm, problem.numSubdomains(), data, params, problem.inequalities);
+  const auto cold = fresh.solve();
+  TEST_ASSERT(contact_test::convergedEverywhere(*comm, cold.converged));
+  double err = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < data.size(); ++i)
+    for (std::size_t k = 0; k < fresh.solution(i).size(); ++k) {
+      err = std::max(err, std::abs(reused.solution(i)[k] - fresh.solution(i)[k]));
+      scale = std::max(scale, std::abs(fresh.solution(i)[k]));
+    }
+  double gErr = 0.0, gScale = 0.0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &err, &gErr);
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &scale, &gScale);
+  out << "update: |u - u_fresh| / max|u| = " << gErr / gScale << ", Hessian multiplications "
+      << warm.qp.hessianMultiplications << " (warm) vs " << cold.qp.hessianMultiplications
+      << " (new solver)\n";
+  TEST_COMPARE(gErr, <=, 1e-7 * gScale);
+  // Half the load from the full-load solution: the warm start must not cost more.
+  TEST_COMPARE(warm.qp.hessianMultiplications, <=, cold.qp.hessianMultiplications);
+
+  reused.updateStiffness(K, stiffnessCoords, half, problem.inequalities);
+  const auto refactorized = reused.solve();
+  TEST_ASSERT(contact_test::convergedEverywhere(*comm, refactorized.converged));
+  err = 0.0;
+  for (std::size_t i = 0; i < data.size(); ++i)
+    for (std::size_t k = 0; k < fresh.solution(i).size(); ++k)
+      err = std::max(err, std::abs(reused.solution(i)[k] - fresh.solution(i)[k]));
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &err, &gErr);
+  out << "updateStiffness: |u - u_fresh| / max|u| = " << gErr / gScale << "\n";
+  TEST_COMPARE(gErr, <=, 1e-7 * gScale);
+
+  // B^T lambda balances the load on every subdomain: K u = f - B^T lambda.
+  const auto btl = reused.multiplierForces();
+  double res = 0.0, fmax = 0.0;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    std::vector<double> Ku(K[i].rows, 0.0);
+    K[i].multiply(reused.solution(i).data(), Ku.data());
+    for (std::size_t k = 0; k < Ku.size(); ++k) {
+      res = std::max(res, std::abs(Ku[k] - half[i][k] + btl[i][k]));
+      fmax = std::max(fmax, std::abs(half[i][k]));
+    }
+  }
+  double gRes = 0.0, gF = 0.0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &res, &gRes);
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &fmax, &gF);
+  out << "max |K u - f + B^T lambda| / max|f| = " << gRes / gF << "\n";
+  TEST_COMPARE(gRes, <=, 1e-6 * gF);
+}
+
 }  // namespace

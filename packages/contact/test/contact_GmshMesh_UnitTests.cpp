@@ -15,7 +15,9 @@
 #include <utility>
 #include <vector>
 
+#include "contact_ElasticContactProblem.hpp"
 #include "contact_GmshMesh.hpp"
+#include "plasticity_Elements.hpp"
 
 namespace {
 
@@ -459,6 +461,39 @@ TEUCHOS_UNIT_TEST(GmshMesh, InvalidOptionsAndFileType) {
   const std::string msg = errorOf([&] { loadMesh(meshFile("rectangle.txt")); });
   TEST_ASSERT(contains(msg, "rectangle.txt") && contains(msg, "unknown mesh file type"));
   TEST_THROW(loadMesh(meshFile("rectangle.txt")), std::invalid_argument);
+}
+
+}  // namespace
+
+namespace {
+
+// A clockwise curve loop gives clockwise elements in Gmsh; the reader renumbers them
+// counter-clockwise (corners and, for quadratic elements, the edge and centre nodes), so that
+// every element has a positive Jacobian at every node of the reference element.
+TEUCHOS_UNIT_TEST(GmshMesh, ClockwiseSurfaceIsReoriented) {
+  for (int order : {1, 2})
+    for (bool quads : {false, true}) {
+      const contact::GmshMesh m = loadMesh(meshFile("clockwise_square.geo"), opts(order, quads));
+      const contact::GmshBody& b = m.body("square");
+      const plasticity::ElementMesh em{contact::toPlasticityType(b.type), m.coords, b.connectivity};
+      // assembleStiffness rejects an element with a non-positive Jacobian, naming it.
+      TEST_NOTHROW(plasticity::assembleStiffness(em, plasticity::ElasticLaw(1.0, 0.3)));
+      const int npe = b.nodesPerElement(), corners = (npe == 3 || npe == 6) ? 3 : 4;
+      double area = 0.0;
+      for (int e = 0; e < b.numElements(); ++e) {
+        const int* el = &b.connectivity[static_cast<std::size_t>(e) * npe];
+        double twice = 0.0;
+        for (int k = 0; k < corners; ++k) {
+          const int p = el[k], q = el[(k + 1) % corners];
+          twice += m.coords[2 * p] * m.coords[2 * q + 1] - m.coords[2 * q] * m.coords[2 * p + 1];
+        }
+        TEST_COMPARE(twice, >, 0.0);
+        area += 0.5 * twice;
+      }
+      out << "order " << order << (quads ? " quads" : " triangles") << ": " << b.numElements()
+          << " elements, area " << area << "\n";
+      TEST_FLOATING_EQUALITY(area, 1.0, 1e-12);
+    }
 }
 
 }  // namespace

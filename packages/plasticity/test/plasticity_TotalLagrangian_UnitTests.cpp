@@ -294,3 +294,83 @@ TEUCHOS_UNIT_TEST(TotalLagrangian, InvertedDeformationThrowsNamingTheElement) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------- small strain, material tangent
+
+namespace {
+
+// The small-strain kinematics of the same kernels is linear elasticity: f_int = K u for the
+// elastic law, the tangent is K at any u, and the Cauchy stress is the small-strain stress.
+TEUCHOS_UNIT_TEST(TotalLagrangian, SmallStrainKinematicsIsLinearElasticity) {
+  const LinearElasticMaterial law(kE, kNu);
+  for (ElementType type : kAllTypes) {
+    const ElementMesh m = distortedMesh(type, 3).mesh;
+    const std::vector<double> u = deformedState(m, 1.0);
+    const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, law);
+    std::vector<double> Ku(u.size(), 0.0);
+    K.multiply(u.data(), Ku.data());
+    const auto f = plasticity::internalForce(m, law, u, plasticity::Kinematics::SmallStrain);
+    double d = 0.0, s = 0.0;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      d = std::max(d, std::abs(f[i] - Ku[i]));
+      s = std::max(s, std::abs(Ku[i]));
+    }
+    const tfeti::CsrMatrix Kt =
+        plasticity::tangentStiffness(m, law, u, plasticity::Kinematics::SmallStrain);
+    double dk = 0.0;
+    for (std::size_t k = 0; k < K.values.size(); ++k)
+      dk = std::max(dk, std::abs(Kt.values[k] - K.values[k]));
+    const StressField a = plasticity::cauchyStress(m, law, u, plasticity::Kinematics::SmallStrain);
+    const StressField b = plasticity::recoverStresses(m, law, u);
+    double ds = 0.0;
+    for (std::size_t k = 0; k < a.gauss.size(); ++k)
+      ds = std::max(ds, std::abs(a.gauss[k] - b.gauss[k]));
+    out << plasticity::elementTypeName(type) << ": |f - K u| / |K u| = " << d / s
+        << ", |Kt - K| / |K| = " << dk / K.maxAbs() << ", |sigma - sigma_lin| = " << ds << "\n";
+    TEST_COMPARE(d / s, <, 1e-13);
+    TEST_COMPARE(dk / K.maxAbs(), <, 1e-14);
+    TEST_COMPARE(ds, <, 1e-12 * kE);
+  }
+}
+
+// The material tangent without the initial-stress part is what a FETI subdomain is factorized
+// with in a nonlinear run: its kernel must hold the rigid motions of the current configuration
+// (translations, and the rotation about the deformed positions), while the full tangent of the
+// stressed body does not annihilate that rotation.
+TEUCHOS_UNIT_TEST(TotalLagrangian, MaterialTangentKernelIsCurrentRigidMotion) {
+  const LinearElasticMaterial law(kE, kNu);
+  for (ElementType type : kAllTypes) {
+    const ElementMesh m = distortedMesh(type, 3).mesh;
+    const std::vector<double> u = deformedState(m, 1.0);
+    const tfeti::CsrMatrix Km =
+        plasticity::tangentStiffness(m, law, u, plasticity::Kinematics::TotalLagrangian, false);
+    const tfeti::CsrMatrix Kt = plasticity::tangentStiffness(m, law, u);
+    const int n = m.numNodes();
+    std::vector<std::vector<double>> modes(3, std::vector<double>(2 * n, 0.0));
+    for (int a = 0; a < n; ++a) {
+      const double x = m.coords[2 * a] + u[2 * a], y = m.coords[2 * a + 1] + u[2 * a + 1];
+      modes[0][2 * a] = 1.0;
+      modes[1][2 * a + 1] = 1.0;
+      modes[2][2 * a] = -y;
+      modes[2][2 * a + 1] = x;
+    }
+    std::vector<double> y(2 * n);
+    for (int k = 0; k < 3; ++k) {
+      double norm = 0.0;
+      for (double v : modes[k]) norm += v * v;
+      norm = std::sqrt(norm);
+      Km.multiply(modes[k].data(), y.data());
+      double r = 0.0;
+      for (double v : y) r = std::max(r, std::abs(v));
+      out << plasticity::elementTypeName(type) << " mode " << k
+          << ": |K_mat r| / (|K| |r|) = " << r / (Km.maxAbs() * norm) << "\n";
+      TEST_COMPARE(r / (Km.maxAbs() * norm), <, 1e-12);
+    }
+    Kt.multiply(modes[2].data(), y.data());
+    double r = 0.0;
+    for (double v : y) r = std::max(r, std::abs(v));
+    TEST_COMPARE(r / Kt.maxAbs(), >, 1e-4);
+  }
+}
+
+}  // namespace
