@@ -273,6 +273,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   // K of the undeformed elastic bodies, factorized once; loads and rows change per iteration.
   tfeti::FetiSolver solver(comm, problem.numSubdomains(), problem.local, params.sublist("FETI"),
                            problem.inequalities);
+  for (auto& sd : problem.local) sd.K = tfeti::CsrMatrix();  // the solver holds its own copy
   const auto coordsOf = [&](const Field& disp) {
     Field x;
     for (std::size_t i = 0; i < disp.size(); ++i) {
