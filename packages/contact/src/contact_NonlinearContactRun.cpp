@@ -531,42 +531,16 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   nl["converged_steps"] = history.step;
   nl["stopped"] = stopped;
   nl["restarted"] = opt.restart;
-  long long its = 0, mprgp = 0, mults = 0, rejected = 0;
-  for (const auto& r : history.iterations) {
-    ++its;
-    mprgp += r.mprgpIterations;
-    mults += r.hessianMultiplications;
-    rejected += r.accepted ? 0 : 1;
-  }
+  const IterationTotals totals = iterationTotals(history);
+  const long long its = totals.iterations, mults = totals.hessianMultiplications;
   nl["total_iterations"] = its;
   s["iterations"] = its;
-  nl["rejected_iterations"] = rejected;
-  nl["total_mprgp_iterations"] = mprgp;
+  nl["rejected_iterations"] = totals.rejected;
+  nl["total_mprgp_iterations"] = totals.mprgpIterations;
   nl["total_hessian_multiplications"] = mults;
   if (failed) nl["message"] = failure;
   s["nonlinear"] = std::move(nl);
-  Json steps = Json::array();
-  for (const auto& r : history.steps) {
-    Json j = Json::object();
-    j["step"] = r.step;
-    j["load_factor"] = r.loadFactor;
-    j["outer_iterations"] = r.outerIterations;
-    j["mprgp_iterations"] = r.mprgpIterations;
-    j["hessian_multiplications"] = r.hessianMultiplications;
-    j["cutbacks"] = r.cutbacks;
-    Json res = Json::array(), inc = Json::array();
-    for (double v : r.residuals) res.push(v);
-    for (double v : r.increments) inc.push(v);
-    j["residuals"] = std::move(res);
-    j["increments"] = std::move(inc);
-    j["p_max"] = r.pMax;
-    j["max_von_mises"] = r.maxVonMises;
-    j["max_plastic_strain"] = r.maxPlasticStrain;
-    j["contact_extent"] = r.contactExtent;
-    j["contact_force"] = r.contactForce;
-    steps.push(std::move(j));
-  }
-  s["steps"] = std::move(steps);
+  s["steps"] = stepsJson(history);
   if (haveStep) {
     const StepRecord& last = history.steps.back();
     Json c = Json::object();

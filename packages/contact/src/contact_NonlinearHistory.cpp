@@ -37,6 +37,42 @@ std::vector<double> readVector(std::istream& in) {
 
 }  // namespace
 
+Json stepsJson(const NonlinearHistory& history) {
+  Json steps = Json::array();
+  for (const auto& r : history.steps) {
+    Json j = Json::object();
+    j["step"] = r.step;
+    j["load_factor"] = r.loadFactor;
+    j["outer_iterations"] = r.outerIterations;
+    j["mprgp_iterations"] = r.mprgpIterations;
+    j["hessian_multiplications"] = r.hessianMultiplications;
+    j["cutbacks"] = r.cutbacks;
+    Json res = Json::array(), inc = Json::array();
+    for (double v : r.residuals) res.push(v);
+    for (double v : r.increments) inc.push(v);
+    j["residuals"] = std::move(res);
+    j["increments"] = std::move(inc);
+    j["p_max"] = r.pMax;
+    j["max_von_mises"] = r.maxVonMises;
+    j["max_plastic_strain"] = r.maxPlasticStrain;
+    j["contact_extent"] = r.contactExtent;
+    j["contact_force"] = r.contactForce;
+    steps.push(std::move(j));
+  }
+  return steps;
+}
+
+IterationTotals iterationTotals(const NonlinearHistory& history) {
+  IterationTotals t;
+  for (const auto& r : history.iterations) {
+    ++t.iterations;
+    t.rejected += r.accepted ? 0 : 1;
+    t.mprgpIterations += r.mprgpIterations;
+    t.hessianMultiplications += r.hessianMultiplications;
+  }
+  return t;
+}
+
 void writeRestartState(const std::string& restartDir, const NonlinearHistory& h) {
   const std::string path = restartDir + "/state.txt", tmp = path + ".tmp";
   {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "contact_Json.hpp"
+
 namespace contact {
 
 struct IterationRecord {
@@ -41,6 +43,13 @@ struct NonlinearHistory {
   std::vector<StepRecord> steps;
   std::vector<IterationRecord> iterations;
 };
+
+// summary.json's "steps": one object per converged step (the keys issue 5 names).
+Json stepsJson(const NonlinearHistory& history);
+struct IterationTotals {
+  long long iterations = 0, rejected = 0, mprgpIterations = 0, hessianMultiplications = 0;
+};
+IterationTotals iterationTotals(const NonlinearHistory& history);
 
 // Rank-0 files; each throws std::runtime_error naming the file.
 void writeRestartState(const std::string& restartDir, const NonlinearHistory& history);
