@@ -51,6 +51,13 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
     // decrease f. Helps when ||A|| is dominated by a part of A the bounds do not touch (the
     // penalized dual Hessian P F P + rho Q, where alphaBar ~ 2/rho hardly moves x).
     bool optimalExpansion = false;
+    // Expansion by the projected conjugate gradient step x = P(x - alphaCg p): the CG step
+    // length of the (preconditioned) direction, which adds every constraint the step crosses at
+    // once. Accepted when f does not exceed f at the feasible half step x - alphaFeasible p;
+    // otherwise the fixed-length (or optimal) expansion from the half step is taken (one more
+    // multiplication). The CG step length is set by the curvature along p, not by ||A||, so it
+    // is not shortened by a large part of A the bounds do not see (rho Q in SMALBE).
+    bool projectedCgExpansion = false;
     S printScale = 1;             // verbosity 2 prints ||g^P|| / printScale
     int verbosity = 0;            // >= 2: one line per step on rank 0
     std::ostream* out = nullptr;  // std::cout when null
@@ -85,6 +92,8 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   // (bounds may be -Inf).
   static void checkProblemData(const BoundConstrainedQp<S, MV, OP>& qp);
   void setPrintScale(S scale) { opts_.printScale = scale; }
+  // g = A x - b at the (feasible) initial x: initialize() copies it instead of multiplying.
+  void setInitialGradient(Teuchos::RCP<const MV> g) { g0_ = std::move(g); }
   magnitude_type projectedGradientNorm() const { return gpNorm_; }
   // g = A x - b of the current iterate (updated recursively between restarts).
   Teuchos::RCP<const MV> getGradient() const { return g_; }
@@ -107,7 +116,9 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   // p (or z) = the CG restart direction from phi.
   void precondition(MV& z);
   void cgStep(S alphaCg);
-  void expansionStep(S alphaFeasible);
+  // Returns the kind of expansion taken, for the verbose output.
+  const char* expansionStep(S alphaFeasible, S alphaCg);
+  bool tryProjectedCgExpansion(S alphaFeasible, S alphaCg);
   bool tryOptimalExpansion();
   S energy() const;
   void proportioningStep();
@@ -118,7 +129,8 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   Teuchos::RCP<Belos::StatusTest<S, MV, OP>> tester_;
   Options opts_;
   Teuchos::RCP<Belos::LinearProblem<S, MV, OP>> problem_;
-  Teuchos::RCP<MV> g_, p_, Ap_, phi_, beta_, z_, xHalf_;
+  Teuchos::RCP<MV> g_, p_, Ap_, phi_, beta_, z_, xHalf_, gHalf_;
+  Teuchos::RCP<const MV> g0_;
   magnitude_type gpNorm_ = 0, betaNorm2_ = 0;
   S phiTildePhi_ = 0;
   int iter_ = 0;

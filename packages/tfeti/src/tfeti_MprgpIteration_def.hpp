@@ -40,7 +40,8 @@ MprgpIteration<S, MV, OP>::MprgpIteration(const BoundConstrainedQp<S, MV, OP>& q
   phi_ = MVT::Clone(*qp_.x, 1);
   beta_ = MVT::Clone(*qp_.x, 1);
   if (!M_.is_null()) z_ = MVT::Clone(*qp_.x, 1);
-  if (opts_.optimalExpansion) xHalf_ = MVT::Clone(*qp_.x, 1);
+  if (opts_.optimalExpansion || opts_.projectedCgExpansion) xHalf_ = MVT::Clone(*qp_.x, 1);
+  if (opts_.projectedCgExpansion) gHalf_ = MVT::Clone(*qp_.x, 1);
   root_ = BoundTraits<S, MV>::commRank(*qp_.x) == 0;
 }
 
@@ -111,8 +112,12 @@ void MprgpIteration<S, MV, OP>::initialize() {
   using BT = BoundTraits<S, MV>;
   checkProblemData(qp_);
   BT::project(*qp_.x, *qp_.lower);
-  applyA(*qp_.x, *g_);
-  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  if (!g0_.is_null()) {
+    MVT::Assign(*g0_, *g_);
+  } else {
+    applyA(*qp_.x, *g_);
+    MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  }
   if (!BT::allFinite(*g_))
     throw std::runtime_error("MPRGP: A x contains NaN or Inf for the initial guess x");
   updateGradientSplit();
@@ -168,8 +173,7 @@ void MprgpIteration<S, MV, OP>::iterate() {
         cgStep(alphaCg);
         record("CG");
       } else {
-        expansionStep(alphaF);
-        record("expansion");
+        record(expansionStep(alphaF, alphaCg));
       }
     } else {
       proportioningStep();
@@ -232,15 +236,48 @@ bool MprgpIteration<S, MV, OP>::tryOptimalExpansion() {
 }
 
 template <class S, class MV, class OP>
-void MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible) {
+bool MprgpIteration<S, MV, OP>::tryProjectedCgExpansion(S alphaFeasible, S alphaCg) {
   using BT = BoundTraits<S, MV>;
+  // The feasible half step and its energy, kept for the fall-back (no multiplication).
+  MVT::MvAddMv(S(1), *qp_.x, -alphaFeasible, *p_, *xHalf_);
+  BT::project(*xHalf_, *qp_.lower);
+  MVT::MvAddMv(S(1), *g_, -alphaFeasible, *Ap_, *gHalf_);
+  std::vector<S> xg(1), xb(1);
+  MVT::MvDot(*xHalf_, *gHalf_, xg);
+  MVT::MvDot(*xHalf_, *qp_.b, xb);
+  const S fHalf = S(0.5) * (xg[0] - xb[0]);
+  MVT::MvAddMv(S(1), *qp_.x, -alphaCg, *p_, *qp_.x);
+  BT::project(*qp_.x, *qp_.lower);
+  applyA(*qp_.x, *g_);
+  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  if (BT::allFinite(*g_) && energy() <= fHalf) {
+    updateGradientSplit();
+    precondition(*p_);
+    return true;
+  }
+  MVT::Assign(*xHalf_, *qp_.x);
+  MVT::Assign(*gHalf_, *g_);
+  return false;
+}
+
+template <class S, class MV, class OP>
+const char* MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible, S alphaCg) {
+  using BT = BoundTraits<S, MV>;
+  if (opts_.projectedCgExpansion) {
+    if (tryProjectedCgExpansion(alphaFeasible, alphaCg)) {
+      ++counters_.expansionSteps;
+      return "expansion (CG)";
+    }
+    // x and g are the half step's: continue with the projected gradient step.
+    alphaFeasible = 0;
+  }
   MVT::MvAddMv(S(1), *qp_.x, -alphaFeasible, *p_, *qp_.x);
   BT::project(*qp_.x, *qp_.lower);
   MVT::MvAddMv(S(1), *g_, -alphaFeasible, *Ap_, *g_);
   BT::freeGradient(*qp_.x, *qp_.lower, *g_, *phi_);
   if (opts_.optimalExpansion && tryOptimalExpansion()) {
     ++counters_.expansionSteps;
-    return;
+    return "expansion (opt)";
   }
   MVT::MvAddMv(S(1), *qp_.x, -opts_.alphaBar, *phi_, *qp_.x);
   BT::project(*qp_.x, *qp_.lower);
@@ -251,6 +288,7 @@ void MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible) {
   updateGradientSplit();
   precondition(*p_);
   ++counters_.expansionSteps;
+  return opts_.projectedCgExpansion ? "expansion (fixed, fall-back)" : "expansion";
 }
 
 template <class S, class MV, class OP>
@@ -282,7 +320,7 @@ void MprgpIteration<S, MV, OP>::record(const char* kind) {
   counters_.history.push_back(gpNorm_);
   if (opts_.verbosity >= 2 && root_) {
     std::ostream& os = opts_.out != nullptr ? *opts_.out : std::cout;
-    os << "  MPRGP " << std::setw(5) << iter_ + 1 << "  " << std::left << std::setw(13) << kind
+    os << "  MPRGP " << std::setw(5) << iter_ + 1 << "  " << std::left << std::setw(28) << kind
        << std::right << " ||g^P||/||b|| = " << std::scientific << std::setprecision(3)
        << gpNorm_ / opts_.printScale << std::defaultfloat << "\n";
   }

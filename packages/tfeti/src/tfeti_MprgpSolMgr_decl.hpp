@@ -12,6 +12,10 @@
 //  "Gamma"                1.0    proportioning parameter: x is proportional when
 //                                ||beta||^2 <= Gamma^2 phi~^T phi
 //  "Step length factor"   1.9    alphaBar = factor / ||A||, in (0, 2]
+//  "Expansion step"       "fixed"  fixed: P(x - alphaBar phi) after the feasible half step;
+//                                optimal: the line-search length along -phi, falling back to
+//                                alphaBar; projected CG: P(x - alphaCg p), falling back to the
+//                                fixed step when f is above f at the feasible half step
 //  "Norm of A"            0.0    ||A|| (an upper bound is best); 0: estimate by power iterations
 //  "Power iterations"     20     power iterations for the estimate of ||A||
 //  "Preconditioning in face" false  CG directions M phi restricted to the free set (needs the
@@ -54,6 +58,9 @@ class MprgpSolMgr {
   void setNormOfA(magnitude_type normA);
   // ||A|| used by the last solve (or set).
   magnitude_type getNormOfA() const { return normA_; }
+  // g = A x - b at the initial guess x, known to the caller (SMALBE: the last inner gradient
+  // plus the multiplier change); saves the first multiplication. Ignored when x is infeasible.
+  void setInitialGradient(Teuchos::RCP<const MV> g) { g0_ = std::move(g); }
 
   // Throws std::runtime_error for a Hessian that is not positive definite on a free set and for
   // NaN/Inf in the data; otherwise Converged, or Unconverged with counters().message saying why.
@@ -78,7 +85,7 @@ class MprgpSolMgr {
   magnitude_type normA_ = 0;
   bool normGiven_ = false;
   QpCounters counters_;
-  Teuchos::RCP<const MV> g_;
+  Teuchos::RCP<const MV> g_, g0_;
   int numIters_ = 0;
 };
 

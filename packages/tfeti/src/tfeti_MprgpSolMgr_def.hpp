@@ -26,12 +26,16 @@ Teuchos::RCP<const Teuchos::ParameterList> MprgpSolMgr<S, MV, OP>::getValidParam
     pl->set("Maximum iterations", 10000, "limit on MPRGP steps; reaching it is Unconverged");
     pl->set("Gamma", 1.0, "proportioning: proportional when ||beta||^2 <= Gamma^2 phi~^T phi");
     pl->set("Step length factor", 1.9, "alphaBar = factor / ||A||, in (0, 2]");
-    pl->set("Expansion step", "fixed",
-            "fixed: x = P(x - alphaBar phi) (Dostál-Schöberl); optimal: the step minimizing f "
-            "along -phi before the projection, alphaBar when that does not decrease f (one more "
-            "multiplication; for Hessians whose norm the bounds do not see, e.g. P F P + rho Q)",
-            Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-                Teuchos::tuple<std::string>("fixed", "optimal"), "Expansion step")));
+    pl->set(
+        "Expansion step", "fixed",
+        "fixed: x = P(x - alphaBar phi) (Dostál-Schöberl); optimal: the step minimizing f "
+        "along -phi before the projection, alphaBar when that does not decrease f (one more "
+        "multiplication; for Hessians whose norm the bounds do not see, e.g. P F P + rho Q); "
+        "projected CG: x = P(x - alphaCg p), the conjugate gradient step projected onto the "
+        "bounds, accepted when f is not above f at the feasible half step, else the fixed "
+        "step from the half step (one more multiplication)",
+        Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+            Teuchos::tuple<std::string>("fixed", "optimal", "projected CG"), "Expansion step")));
     pl->set("Norm of A", 0.0, "||A||; 0: estimate by power iterations");
     pl->set("Power iterations", 20, "power iterations for estimating ||A||");
     pl->set("Preconditioning in face", false,
@@ -161,11 +165,13 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
   opts.gamma = params_.get<double>("Gamma");
   opts.alphaBar = params_.get<double>("Step length factor") / normA_;
   opts.optimalExpansion = params_.get<std::string>("Expansion step") == "optimal";
+  opts.projectedCgExpansion = params_.get<std::string>("Expansion step") == "projected CG";
   opts.printScale = scale;
   opts.verbosity = verbosity;
   const Teuchos::RCP<const OP> M =
       params_.get<bool>("Preconditioning in face") ? M_ : Teuchos::RCP<const OP>();
   MprgpIteration<S, MV, OP> iteration(qp_, M, combo, opts);
+  if (!g0_.is_null() && BT::isFeasible(*qp_.x, *qp_.lower)) iteration.setInitialGradient(g0_);
   iteration.initialize();
   iteration.iterate();
 

@@ -10,8 +10,10 @@
 // warm-started from the previous x, to the precision
 //   ||g^P(x, mu_k)|| <= min(M_k ||Q x||, eta)
 // (or until SMALBE's final test holds, see below); then mu_{k+1} = mu_k + rho Q x_k, and M is
-// divided by beta when L did not increase enough:
-//   L(x_k, mu_{k+1}, rho) < L(x_{k-1}, mu_k, rho) + rho/2 ||Q x_k||^2   =>   M_{k+1} = M_k / beta.
+// divided by beta when L did not increase enough (k > 0; each L at the multiplier of its own
+// inner solve, as published; a shortfall below the rounding level of L does not count):
+//   L(x_k, mu_k, rho) < L(x_{k-1}, mu_{k-1}, rho) + rho/2 ||Q x_k||^2   =>   M_{k+1} = M_k / beta.
+// The next inner solve starts at x_k with the gradient g_k + rho Q x_k (no multiplication).
 // SMALBE stops when ||g^P|| <= tol ||b|| and ||A|| ||Q x|| <= tolE ||b||; g = A x - b + mu with
 // the final mu (getMultiplier), the gradient of the Lagrangian, so the KKT conditions read
 // g^P = 0 and Q x = 0.
@@ -26,6 +28,11 @@
 //  "Initial M"                 1.0   M_0 = value * ||A||
 //  "Beta"                      10.0  M is divided by Beta when the Lagrangian does not increase
 //                                    enough (> 1)
+//  "Lagrangian test"           "Dostal"  the test above; "shifted": L(x_k, mu_{k+1}) against
+//                                    L(x_{k-1}, mu_k), the earlier implementation, which asks for
+//                                    about rho ||Q x_{k-1}||^2 and fails almost always
+//  "Reuse gradient"            true  start the inner solves from g_k + rho Q x_k; false: one
+//                                    multiplication per outer iteration (the earlier behaviour)
 //  "Eta"                       0.1   eta = value * ||b||
 //  "Norm of A"                 0.0   ||A|| of the unaugmented Hessian; 0: power iterations
 //  "Power iterations"          20    for the estimate of ||A||

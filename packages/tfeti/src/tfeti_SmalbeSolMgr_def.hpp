@@ -1,9 +1,11 @@
 #pragma once
 #include <Teuchos_Assert.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -26,7 +28,17 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
     pl->set("Penalty", 1.0, "rho = Penalty * ||A||");
     pl->set("Initial M", 1.0, "M_0 = value * ||A||");
     pl->set("Beta", 10.0, "M is divided by Beta when the Lagrangian does not increase enough");
+    pl->set("Lagrangian test", "Dostal",
+            "Dostal: L(x_k, mu_k) < L(x_{k-1}, mu_{k-1}) + rho/2 ||Q x_k||^2 divides M by Beta "
+            "(SMALBE-M as published); shifted: the same with L(x_k, mu_{k+1}) and "
+            "L(x_{k-1}, mu_k), the multipliers after the update (the earlier implementation, "
+            "which demands an increase of about rho ||Q x_{k-1}||^2 and fails almost always)",
+            Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+                Teuchos::tuple<std::string>("Dostal", "shifted"), "Lagrangian test")));
     pl->set("Eta", 0.1, "eta = value * ||b||: inner precision bound");
+    pl->set("Reuse gradient", true,
+            "start each inner solve from the last inner gradient plus rho Q x (the multiplier "
+            "change) instead of a multiplication; false: recompute it (the earlier behaviour)");
     pl->set("Norm of A", 0.0, "||A||; 0: estimate by power iterations");
     pl->set("Power iterations", 20, "power iterations for estimating ||A||");
     pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every outer iteration (rank 0)");
@@ -83,6 +95,9 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
   rho_ = params_.get<double>("Penalty") * normA_;
   M_ = params_.get<double>("Initial M") * normA_;
   const magnitude_type beta = params_.get<double>("Beta");
+  const bool shiftedTest = params_.get<std::string>("Lagrangian test") == "shifted";
+  const bool reuseGradient = params_.get<bool>("Reuse gradient");
+  auto gNext = MVT::Clone(*qp_.x, 1);
 
   std::vector<magnitude_type> n(1);
   MVT::MvNorm(*qp_.b, n);
@@ -117,6 +132,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
   const int maxOuter = params_.get<int>("Maximum outer iterations");
 
   S lagrangianPrev = 0;
+  magnitude_type noisePrev = 0;
   bool converged = false, innerFailed = false;
   magnitude_type gp = 0, qxNorm = 0;
   int k = 0;
@@ -125,6 +141,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
     innerTest->setM(M_);
     MprgpSolMgr<S, MV, OP> mprgp(inner, innerParams, P_);
     mprgp.setNormOfA(normA_ + rho_);
+    if (reuseGradient && k > 0) mprgp.setInitialGradient(gNext);
     mprgp.setConvergenceTest(innerTest, true);
     const Belos::ReturnType innerResult = mprgp.solve();
     const QpCounters& ic = mprgp.counters();
@@ -148,24 +165,43 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
     MVT::MvAddMv(S(1), *w, S(-1), *qp_.b, *w);
     MVT::MvAddMv(S(1), *w, S(1), *mu_, *w);
     MVT::MvDot(*qp_.x, *w, d);
-    const S lagrangianOld = S(0.5) * d[0];
+    const S lagrangianK = S(0.5) * d[0];
+    // The rounding level of that dot product: Lagrangian changes below it carry no information.
+    std::vector<magnitude_type> nx(1), nw(1);
+    MVT::MvNorm(*qp_.x, nx);
+    MVT::MvNorm(*w, nw);
+    const magnitude_type noise =
+        magnitude_type(1e3) * std::numeric_limits<magnitude_type>::epsilon() * nx[0] * nw[0];
     // mu_{k+1} = mu_k + rho Q x_k: even after convergence, so that A x - b + mu is the
     // gradient the inner solver drove to zero.
     MVT::MvAddMv(S(1), *mu_, S(rho_), *Qx, *mu_);
-    // L(x_k, mu_{k+1}) = L(x_k, mu_k) + rho x^T Q x = L(x_k, mu_k) + rho ||Q x||^2.
-    const S lagrangian = lagrangianOld + S(rho_) * qxNorm * qxNorm;
+    // SMALBE-M compares L(x_k, mu_k) with L(x_{k-1}, mu_{k-1}), each at the multiplier of its
+    // own inner solve; "shifted" compares L(x_k, mu_{k+1}) = L(x_k, mu_k) + rho ||Q x_k||^2
+    // with L(x_{k-1}, mu_k), which asks for an increase of about rho ||Q x_{k-1}||^2.
+    const S lagrangian = shiftedTest ? lagrangianK + S(rho_) * qxNorm * qxNorm : lagrangianK;
+    const S required = S(0.5) * S(rho_) * qxNorm * qxNorm;
+    // M is reduced only when the shortfall exceeds the rounding level of L (otherwise the
+    // decision, and with it the iteration, would depend on the order of the reductions).
+    const bool reduceM =
+        !converged && k > 0 && lagrangian + std::max(noise, noisePrev) < lagrangianPrev + required;
     if (verbosity >= 2 && root)
       std::cout << "SMALBE " << std::setw(4) << k + 1 << "  ||g^P||/||b|| = " << std::scientific
                 << std::setprecision(3) << gp / scale
                 << "  ||A|| ||Qx||/||b|| = " << normA_ * qxNorm / scale
                 << "  M/||A|| = " << M_ / normA_ << "  MPRGP steps " << mprgp.getNumIters()
-                << std::defaultfloat << std::endl;
+                << "  L increase " << (k > 0 ? lagrangian - lagrangianPrev : S(0)) << " (needed "
+                << required << (reduceM ? ", M reduced)" : ")") << std::defaultfloat << std::endl;
     if (converged) {
       ++k;
       break;
     }
-    if (k > 0 && lagrangian < lagrangianPrev + S(0.5) * S(rho_) * qxNorm * qxNorm) M_ /= beta;
+    if (reduceM) M_ /= beta;
+    if (reuseGradient) {
+      // The next inner gradient at the same x: H x - b + mu_{k+1} = g + rho Q x.
+      MVT::MvAddMv(S(1), *mprgp.getGradient(), S(rho_), *Qx, *gNext);
+    }
     lagrangianPrev = lagrangian;
+    noisePrev = noise;
   }
   qApplies_ += innerTest->projectorApplications();
   counters_.outerIterations = k;

@@ -474,6 +474,31 @@ TEUCHOS_UNIT_TEST(Mprgp, ObstacleProblemMatchesProjectedSor) {
   TEST_COMPARE(active, <, 0.9 * u.size());
 }
 
+// The projected CG expansion (x = P(x - alphaCg p), fall-back to the fixed step when f is
+// above f at the feasible half step) reaches the same solution; every expansion costs one
+// multiplication more than a fixed one only when it falls back.
+TEUCHOS_UNIT_TEST(Mprgp, ProjectedCgExpansionMatchesProjectedSor) {
+  auto o = obstacle(world());
+  Teuchos::ParameterList params = mprgpParams(1e-11);
+  params.set("Expansion step", "projected CG");
+  Mprgp solver(o.qp(), params);
+  const Belos::ReturnType solverResult = solver.solve();  // TEST_EQUALITY evaluates twice
+  TEST_EQUALITY(solverResult, Belos::Converged);
+  const auto& c = solver.counters();
+  out << c.message << "; " << c.cgSteps << " CG, " << c.expansionSteps << " expansion, "
+      << c.proportioningSteps << " proportioning\n";
+  TEST_COMPARE(c.expansionSteps, >, 0);
+  TEST_COMPARE(c.hessianMultiplications, >=, expectedMultiplications(c, 20));
+  TEST_COMPARE(c.hessianMultiplications, <=, expectedMultiplications(c, 20) + c.expansionSteps);
+  expectKkt(checkKkt(*o.A, *o.b, *o.lower, *o.x), 1e-10 * o.b->norm2(), out, success);
+  const std::vector<double> ref = psor(kObstacleM);
+  const std::vector<double> u = gatherAll(*o.x);
+  double diff = 0.0;
+  for (std::size_t r = 0; r < u.size(); ++r) diff = std::max(diff, std::abs(u[r] - ref[r]));
+  out << "max |u - u_PSOR| = " << diff << "\n";
+  TEST_COMPARE(diff, <=, 1e-8 * tfeti_test::maxAbs(ref));
+}
+
 // ---------------------------------------------------------------------------------------------
 // 3. Ill-conditioned: 1D diffusion whose coefficient jumps from 1 to 1e4 in the middle.
 
@@ -739,6 +764,64 @@ TEUCHOS_UNIT_TEST(Smalbe, ObstacleWithZeroMeanMatchesPenalty) {
   const double diff = maxAbsDiff(*xp, *o.x);
   out << "max |u - u_penalty| = " << diff << " (penalty: " << penalty.counters().message << ")\n";
   TEST_COMPARE(diff, <=, 1e-6 * o.x->normInf());
+}
+
+// SMALBE's variants: the Lagrangian test (Dostal / shifted), the reuse of the inner gradient and
+// the expansion step change the path, not the solution. With the gradient reused, every outer
+// iteration after the first saves the initial multiplication of MPRGP. The published test
+// reduces M less often than the shifted one.
+TEUCHOS_UNIT_TEST(Smalbe, VariantsReachTheSameSolution) {
+  auto o = obstacle(world(), 15, [](double x, double) { return 60.0 * (x - 0.65); });
+  auto ones = vectorOf(o.x->getMap(), [](GO) { return 1.0; });
+  auto Q = rcp(new SpanProjector(*ones));
+  struct Run {
+    std::vector<double> u;
+    tfeti::QpCounters c;
+    double M;
+  };
+  auto run = [&](const std::string& test, bool reuse, const std::string& expansion,
+                 double penalty) {
+    Teuchos::ParameterList p = smalbeParams(1e-9);
+    p.set("Lagrangian test", test);
+    p.set("Reuse gradient", reuse);
+    p.set("Penalty", penalty);
+    p.sublist("MPRGP").set("Expansion step", expansion);
+    o.x->putScalar(0.0);
+    Smalbe solver(o.qp(), Q, p);
+    const Belos::ReturnType result = solver.solve();
+    const auto muView = solver.getMultiplier()->getVector(0);
+    const Kkt k = checkKkt(*o.A, *o.b, *o.lower, *o.x, muView.getRawPtr(), Q.get());
+    out << test << (reuse ? ", reuse" : ", no reuse") << ", " << expansion << ", rho/||A|| "
+        << penalty << ": " << solver.counters().message << ", "
+        << solver.counters().hessianMultiplications << " multiplications, M/||A|| "
+        << solver.getM() / solver.getNormOfA() << "\n";
+    TEST_EQUALITY(result, Belos::Converged);
+    expectKkt(k, 1e-8 * o.b->norm2(), out, success);
+    return Run{gatherAll(*o.x), solver.counters(), solver.getM()};
+  };
+  const Run ref = run("Dostal", true, "fixed", 1.0);
+  const double scale = tfeti_test::maxAbs(ref.u);
+  auto same = [&](const Run& r) {
+    double d = 0.0;
+    for (std::size_t i = 0; i < ref.u.size(); ++i) d = std::max(d, std::abs(r.u[i] - ref.u[i]));
+    TEST_COMPARE(d, <=, 1e-6 * scale);
+  };
+  // 20 power iterations, one per CG and proportioning step, two per (fixed) expansion step, and
+  // the initial gradient of every inner solve, or of the first only when it is reused. (The
+  // paths themselves may differ in rounding, and with them the discrete choices of MPRGP.)
+  auto steps = [](const tfeti::QpCounters& c) {
+    return 20 + c.cgSteps + 2 * c.expansionSteps + c.proportioningSteps;
+  };
+  TEST_EQUALITY(ref.c.hessianMultiplications, steps(ref.c) + 1);
+  const Run noReuse = run("Dostal", false, "fixed", 1.0);
+  same(noReuse);
+  TEST_EQUALITY(noReuse.c.hessianMultiplications, steps(noReuse.c) + noReuse.c.outerIterations);
+  const Run shifted = run("shifted", false, "fixed", 1.0);
+  same(shifted);
+  TEST_COMPARE(ref.M, >=, shifted.M);
+  same(run("Dostal", true, "projected CG", 1.0));
+  same(run("Dostal", true, "projected CG", 100.0));
+  same(run("shifted", false, "fixed", 100.0));
 }
 
 // ---------------------------------------------------------------------------------------------
