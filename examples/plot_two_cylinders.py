@@ -10,24 +10,16 @@ solution_*.vtu (ASCII) in OUTPUT_DIR.
 """
 import argparse
 import csv
-import glob
 import json
 import math
 import os
-import re
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.tri as mtri  # noqa: E402
 
-
-def data_array(xml, name):
-    m = re.search(r'<DataArray[^>]*Name="%s"[^>]*>(.*?)</DataArray>' % re.escape(name), xml, re.S)
-    if not m:
-        raise SystemExit(f"no DataArray {name} in the VTU piece")
-    return [float(v) for v in m.group(1).split()]
+from vtu_reading import read_vtu  # noqa: E402
 
 
 def pressure_plot(d, summary):
@@ -54,30 +46,11 @@ def pressure_plot(d, summary):
     return out
 
 
-# Corner nodes of each VTK cell type, as triangles.
-TRIANGLES = {5: [(0, 1, 2)], 22: [(0, 1, 2)], 9: [(0, 1, 2), (0, 2, 3)],
-             28: [(0, 1, 2), (0, 2, 3)]}
-SIZES = {5: 3, 22: 6, 9: 4, 28: 9}
-
-
 def von_mises_plot(d, zoom):
-    xs, ys, vm, tris = [], [], [], []
-    for path in sorted(glob.glob(os.path.join(d, "solution_*.vtu"))):
-        with open(path) as f:
-            xml = f.read()
-        base = len(xs)
-        pts = data_array(xml, "Points")
-        xs += pts[0::3]
-        ys += pts[1::3]
-        vm += data_array(xml, "von_mises")
-        conn = [int(v) for v in data_array(xml, "connectivity")]
-        types = [int(v) for v in data_array(xml, "types")]
-        k = 0
-        for t in types:
-            cell = conn[k:k + SIZES[t]]
-            k += SIZES[t]
-            tris += [[base + cell[i] for i in tri] for tri in TRIANGLES[t]]
-    tri = mtri.Triangulation(xs, ys, tris)
+    tri, fields = read_vtu(d, ["von_mises"])
+    vm = fields["von_mises"]
+    if vm is None:
+        raise SystemExit(f"no von_mises field in the VTU pieces of {d}")
     fig, ax = plt.subplots(figsize=(6, 5))
     tpc = ax.tripcolor(tri, [v / 1e6 for v in vm], shading="gouraud", cmap="viridis")
     fig.colorbar(tpc, ax=ax, label="von Mises [MPa]")
