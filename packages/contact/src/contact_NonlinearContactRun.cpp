@@ -295,7 +295,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
                       spec.master);
         Field rhs(u.size());
         for (std::size_t i = 0; i < u.size(); ++i) {
-          rhs[i] = fint[i];
+          rhs[i].resize(fint[i].size());
           for (std::size_t k = 0; k < rhs[i].size(); ++k)
             rhs[i][k] = t * model.externalLoad[i][k] - fint[i][k];
         }

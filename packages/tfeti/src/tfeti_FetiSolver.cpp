@@ -109,9 +109,6 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
         "Preconditioning in face", true,
         "SMALBE / penalty: precondition MPRGP's conjugate gradient steps by P M P + Q / rho (M the "
         "chosen dual preconditioner) restricted to the free set");
-    pl->set("Active multiplier threshold", 1e-6,
-            "contact rows count as active in the rigid-motion fit of the primal recovery when "
-            "lambda_i > threshold * max lambda_I");
     pl->set("Warm start", true,
             "SMALBE / penalty after update(): start from the multipliers of the previous solve "
             "(projected onto G lambda = e and the bounds) when the dual dimension is unchanged");
@@ -301,25 +298,15 @@ DualResult FetiSolver::solve() {
       if (tearing_.numInequalityRows == 0) {
         coarse_->leastSquaresCoefficients(g, alpha);
       } else {
-        // Inactive inequality rows (lambda_i = 0) have a gap: they must not enter the fit. The
-        // QP solution is exact only to its tolerance: a row left a rounding above its bound
-        // (e.g. after a warm start) would pull the rigid motion to close its gap, whereas
-        // dropping a truly active row with a tiny multiplier costs nothing (its gap is ~0).
+        // Inactive inequality rows (lambda_i = 0) have a gap: they must not enter the fit.
         Vector mask(tearing_.multiplierMap);
         auto m = mask.getDataNonConst();
         auto l = lambda_->getData();
         const auto& map = *tearing_.multiplierMap;
-        double largest = 0.0, globalLargest = 0.0;
         for (std::size_t i = 0; i < map.getNodeNumElements(); ++i)
-          if (tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i))))
-            largest = std::max(largest, l[i]);
-        Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &largest, &globalLargest);
-        const double threshold = params_.get<double>("Active multiplier threshold") * globalLargest;
-        for (std::size_t i = 0; i < map.getNodeNumElements(); ++i)
-          m[i] =
-              !tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i))) || l[i] > threshold
-                  ? 1.0
-                  : 0.0;
+          m[i] = !tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i))) || l[i] > 0.0
+                     ? 1.0
+                     : 0.0;
         coarse_->leastSquaresOnRows(g, mask, alpha, params_.get<std::string>("Local solver"));
       }
       coarse_->addKernelCombination(alpha, u);
