@@ -124,8 +124,11 @@ int vtkCellType(plasticity::ElementType type) {
       return kVtkQuadraticTriangle;
     case plasticity::ElementType::Quad9:
       return kVtkBiquadraticQuad;
+    default:  // 3D cells need their VTK node permutations first (Tet10, Hex27 differ from Gmsh)
+      break;
   }
-  throw std::invalid_argument("vtkCellType: unknown element type");
+  throw std::invalid_argument("vtkCellType: no VTK cell for " +
+                              plasticity::elementTypeName(type));
 }
 
 VtuPiece stressPiece(const std::vector<SubdomainFields>& subdomains,

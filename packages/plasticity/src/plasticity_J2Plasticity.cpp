@@ -40,36 +40,41 @@ void J2PlasticMaterial::checkPoint(const MaterialPointId& where) const {
                             std::to_string(numElements_) + " x " + std::to_string(gaussPoints_));
 }
 
-void J2PlasticMaterial::evaluate(const MaterialPointId& where, const double strain[3],
+void J2PlasticMaterial::evaluate(const MaterialPointId& where, const double strain[kNumVoigt],
                                  MaterialResponse& out) const {
   checkPoint(where);
   const int e = where.element, g = where.gaussPoint;
   const double l = elastic_.lambda(), m = elastic_.mu();
-  const double epXX = committed_(e, g, kEpXX), epYY = committed_(e, g, kEpYY),
-               epXY = committed_(e, g, kEpXY), epZZ = committed_(e, g, kEpZZ),
-               alpha = committed_(e, g, kAlpha);
+  double ep[kNumVoigt];
+  for (int c = 0; c < kNumVoigt; ++c) ep[c] = committed_(e, g, kEp + c);
+  const double alpha = committed_(e, g, kAlpha);
 
-  // Elastic strain with eps_zz = 0; written as LinearElasticMaterial does so that, with no
-  // plastic strain, the elastic response is bit-for-bit the linear elastic one.
-  const double exx = strain[0] - epXX, eyy = strain[1] - epYY, gxy = strain[2] - 2 * epXY,
-               ezz = -epZZ;
-  const double trace = exx + eyy + ezz;
-  double s[4] = {l * trace + 2 * m * exx, l * trace + 2 * m * eyy, m * gxy,
-                 l * trace + 2 * m * ezz};
+  // Elastic strain (engineering shears, while the history holds tensor shears); the stress is
+  // written as LinearElasticMaterial writes it so that, with no plastic strain, the elastic
+  // response is bit-for-bit the linear elastic one.
+  double ee[kNumVoigt];
+  for (int c = 0; c < 3; ++c) ee[c] = strain[c] - ep[c];
+  for (int c = 3; c < kNumVoigt; ++c) ee[c] = strain[c] - 2 * ep[c];
+  const double trace = ee[kXX] + ee[kYY] + ee[kZZ];
+  double s[kNumVoigt];
+  for (int c = 0; c < 3; ++c) s[c] = l * trace + 2 * m * ee[c];
+  for (int c = 3; c < kNumVoigt; ++c) s[c] = m * ee[c];
 
-  const double p = (s[0] + s[1] + s[3]) / 3.0;
-  const double dev[4] = {s[0] - p, s[1] - p, s[2], s[3] - p};  // (xx, yy, xy, zz)
-  const double devNorm2 = dev[0] * dev[0] + dev[1] * dev[1] + dev[3] * dev[3] + 2 * dev[2] * dev[2];
+  const double p = (s[kXX] + s[kYY] + s[kZZ]) / 3.0;
+  double dev[kNumVoigt];  // the deviator, tensor shears (= the shear stresses)
+  for (int c = 0; c < kNumVoigt; ++c) dev[c] = c < 3 ? s[c] - p : s[c];
+  // |dev|^2 with each shear counted twice (dev_ij = dev_ji). The xy shear is added first so
+  // that plane strain (zero yz, xz) sums exactly as the plane-strain law always did.
+  const double devNorm2 = dev[kXX] * dev[kXX] + dev[kYY] * dev[kYY] + dev[kZZ] * dev[kZZ] +
+                          2 * dev[kXY] * dev[kXY] + 2 * dev[kYZ] * dev[kYZ] +
+                          2 * dev[kXZ] * dev[kXZ];
   const double qTrial = std::sqrt(1.5 * devNorm2);
   const double f = qTrial - (yieldStress_ + hardening_ * alpha);
 
   if (f <= 0.0) {
-    for (int c = 0; c < 4; ++c) out.stress[c] = s[c];
-    elastic_.planeStrainMatrix(out.tangent);
-    trial_(e, g, kEpXX) = epXX;
-    trial_(e, g, kEpYY) = epYY;
-    trial_(e, g, kEpXY) = epXY;
-    trial_(e, g, kEpZZ) = epZZ;
+    for (int c = 0; c < kNumVoigt; ++c) out.stress[c] = s[c];
+    elastic_.voigtMatrix(out.tangent);
+    for (int c = 0; c < kNumVoigt; ++c) trial_(e, g, kEp + c) = ep[c];
     trial_(e, g, kAlpha) = alpha;
     return;
   }
@@ -78,32 +83,32 @@ void J2PlasticMaterial::evaluate(const MaterialPointId& where, const double stra
   // qTrial - 3 mu dGamma = yieldStress + H (alpha + dGamma) is linear in dGamma.
   const double dGamma = f / (3 * m + hardening_);
   const double shrink = 3 * m * dGamma / qTrial;  // f > 0 implies qTrial > 0
-  for (int c = 0; c < 4; ++c) out.stress[c] = s[c] - shrink * dev[c];
+  for (int c = 0; c < kNumVoigt; ++c) out.stress[c] = s[c] - shrink * dev[c];
 
   // Flow direction df/dsigma = 3/2 dev / q, the same for trial and returned stress.
   const double flow = 1.5 * dGamma / qTrial;
-  trial_(e, g, kEpXX) = epXX + flow * dev[0];
-  trial_(e, g, kEpYY) = epYY + flow * dev[1];
-  trial_(e, g, kEpXY) = epXY + flow * dev[2];
-  trial_(e, g, kEpZZ) = epZZ + flow * dev[3];
+  for (int c = 0; c < kNumVoigt; ++c) trial_(e, g, kEp + c) = ep[c] + flow * dev[c];
   trial_(e, g, kAlpha) = alpha + dGamma;
 
   // Consistent tangent (Simo & Hughes, Box 3.2):
   //   C = K 1(x)1 + 2 mu theta I_dev - 2 mu thetaBar n(x)n,  n = dev / |dev|,
   //   theta = 1 - 3 mu dGamma / qTrial,  thetaBar = 3 mu / (3 mu + H) - (1 - theta).
-  // Only the (xx, yy, xy) rows and columns are needed because eps_zz is prescribed; against
-  // engineering shear the xy column of n(x)n carries n_xy once and I_dev's shear entry is 1/2.
+  // Against engineering shear strains a shear column of n(x)n carries the tensor component
+  // n_ij once (eps_ij and eps_ji both move) and I_dev's shear diagonal is 1/2.
   const double K = l + 2.0 * m / 3.0;
   const double theta = 1.0 - shrink;
   const double thetaBar = 3 * m / (3 * m + hardening_) - shrink;
   const double invNorm = 1.0 / std::sqrt(devNorm2);
-  const double n[3] = {dev[0] * invNorm, dev[1] * invNorm, dev[2] * invNorm};
-  const double Idev[9] = {2.0 / 3, -1.0 / 3, 0, -1.0 / 3, 2.0 / 3, 0, 0, 0, 0.5};
-  const double bulk[9] = {1, 1, 0, 1, 1, 0, 0, 0, 0};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      out.tangent[3 * i + j] =
-          K * bulk[3 * i + j] + 2 * m * theta * Idev[3 * i + j] - 2 * m * thetaBar * n[i] * n[j];
+  double n[kNumVoigt];
+  for (int c = 0; c < kNumVoigt; ++c) n[c] = dev[c] * invNorm;
+  for (int i = 0; i < kNumVoigt; ++i)
+    for (int j = 0; j < kNumVoigt; ++j) {
+      const bool normal = i < 3 && j < 3;
+      const double bulk = normal ? 1.0 : 0.0;
+      const double Idev = normal ? (i == j ? 2.0 / 3 : -1.0 / 3) : (i == j ? 0.5 : 0.0);
+      out.tangent[kNumVoigt * i + j] =
+          K * bulk + 2 * m * theta * Idev - 2 * m * thetaBar * n[i] * n[j];
+    }
 }
 
 void J2PlasticMaterial::commit() {
@@ -145,14 +150,15 @@ double J2PlasticMaterial::trialEquivalentPlasticStrain(const MaterialPointId& wh
   return trial_(where.element, where.gaussPoint, kAlpha);
 }
 
-void J2PlasticMaterial::plasticStrain(const MaterialPointId& where, double ep[4]) const {
+void J2PlasticMaterial::plasticStrain(const MaterialPointId& where, double ep[kNumVoigt]) const {
   checkPoint(where);
-  for (int c = 0; c < 4; ++c) ep[c] = committed_(where.element, where.gaussPoint, kEpXX + c);
+  for (int c = 0; c < kNumVoigt; ++c) ep[c] = committed_(where.element, where.gaussPoint, kEp + c);
 }
 
-void J2PlasticMaterial::trialPlasticStrain(const MaterialPointId& where, double ep[4]) const {
+void J2PlasticMaterial::trialPlasticStrain(const MaterialPointId& where,
+                                           double ep[kNumVoigt]) const {
   checkPoint(where);
-  for (int c = 0; c < 4; ++c) ep[c] = trial_(where.element, where.gaussPoint, kEpXX + c);
+  for (int c = 0; c < kNumVoigt; ++c) ep[c] = trial_(where.element, where.gaussPoint, kEp + c);
 }
 
 }  // namespace plasticity

@@ -1,9 +1,9 @@
 #pragma once
-// Plane-strain J2 (von Mises) plasticity with linear isotropic hardening, small strain.
-//
-// The return mapping works in 3D because plane strain fixes eps_zz = 0, not sigma_zz: the
-// out-of-plane stress enters the von Mises norm and the plastic flow has a zz component. For
-// linear hardening the radial return is closed form, so evaluate() needs no local iteration.
+// J2 (von Mises) plasticity with linear isotropic hardening, small strain, in full 3D (Voigt
+// order of plasticity_MaterialLaw.hpp). Plane strain is the same law evaluated with
+// eps_zz = gamma_yz = gamma_xz = 0: sigma_zz enters the von Mises norm and the plastic flow has
+// a zz component there. For linear hardening the radial return is closed form, so evaluate()
+// needs no local iteration.
 //
 // History lives per (element, Gauss point) in two copies, committed and trial, as
 // plasticity_MaterialLaw.hpp lays out: evaluate() starts from the committed copy and overwrites
@@ -26,10 +26,10 @@ class J2PlasticMaterial : public MaterialLaw {
   J2PlasticMaterial(double youngs, double poisson, double yieldStress, double hardeningModulus,
                     int numElements, int gaussPointsPerElement);
 
-  // Stress and consistent tangent at `where` for the total strain (eps_xx, eps_yy, gamma_xy),
+  // Stress and 6x6 consistent tangent at `where` for the total strain (Voigt, engineering shears),
   // starting from the committed history; writes the resulting trial history at `where`.
   // Throws std::out_of_range for a point outside numElements x gaussPointsPerElement.
-  void evaluate(const MaterialPointId& where, const double strain[3],
+  void evaluate(const MaterialPointId& where, const double strain[kNumVoigt],
                 MaterialResponse& out) const override;
 
   // Trial -> committed at every point (a converged load step).
@@ -46,10 +46,10 @@ class J2PlasticMaterial : public MaterialLaw {
   // Equivalent plastic strain alpha (the hardening variable), committed or trial.
   double equivalentPlasticStrain(const MaterialPointId& where) const;
   double trialEquivalentPlasticStrain(const MaterialPointId& where) const;
-  // Plastic strain tensor components (xx, yy, xy, zz) -- xy is the tensor component, half the
-  // engineering shear -- committed or trial.
-  void plasticStrain(const MaterialPointId& where, double ep[4]) const;
-  void trialPlasticStrain(const MaterialPointId& where, double ep[4]) const;
+  // Plastic strain tensor components in Voigt order (xx, yy, zz, yz, xz, xy) -- the shears are
+  // tensor components, half the engineering shears -- committed or trial.
+  void plasticStrain(const MaterialPointId& where, double ep[kNumVoigt]) const;
+  void trialPlasticStrain(const MaterialPointId& where, double ep[kNumVoigt]) const;
 
   const ElasticLaw& elastic() const { return elastic_; }
   double yieldStress() const { return yieldStress_; }
@@ -58,8 +58,9 @@ class J2PlasticMaterial : public MaterialLaw {
   int gaussPointsPerElement() const { return gaussPoints_; }
 
  private:
-  // Layout of the last extent of the history views.
-  enum : int { kEpXX = 0, kEpYY = 1, kEpXY = 2, kEpZZ = 3, kAlpha = 4, kNumHistory = 5 };
+  // Layout of the last extent of the history views: the plastic strain tensor (Voigt order,
+  // tensor shears), then alpha.
+  enum : int { kEp = 0, kAlpha = kNumVoigt, kNumHistory = kNumVoigt + 1 };
   using History = Kokkos::View<double***, Kokkos::HostSpace>;
 
   void checkPoint(const MaterialPointId& where) const;

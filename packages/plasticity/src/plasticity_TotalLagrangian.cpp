@@ -11,43 +11,85 @@ using ExecSpace = Kokkos::DefaultHostExecutionSpace;
 using detail::HostView2;
 using detail::HostView3;
 
-constexpr int kMaxElementDofs = 2 * kMaxElementNodes;
+constexpr int kMaxElementDofs = kMaxDim * kMaxElementNodes;
+
+// The Voigt components a mesh of dimension dim strains: (xx, yy, xy) in plane strain, all six
+// in 3D. The kernels' B matrices have one row per active component, in this order.
+KOKKOS_INLINE_FUNCTION int activeComponents(int dim, int comp[kNumVoigt]) {
+  if (dim == 2) {
+    comp[0] = kXX, comp[1] = kYY, comp[2] = kXY;
+    return 3;
+  }
+  for (int c = 0; c < kNumVoigt; ++c) comp[c] = c;
+  return kNumVoigt;
+}
+// Tensor indices (i, j) of Voigt component c, and the Voigt component of (i, j).
+KOKKOS_INLINE_FUNCTION void voigtPair(int c, int& i, int& j) {
+  const int p[kNumVoigt][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+  i = p[c][0], j = p[c][1];
+}
+KOKKOS_INLINE_FUNCTION int voigtIndex(int i, int j) {
+  const int v[3][3] = {{kXX, kXY, kXZ}, {kXY, kYY, kYZ}, {kXZ, kYZ, kZZ}};
+  return v[i][j];
+}
 
 // What one Gauss point contributes, in the reference configuration.
 struct GaussKinematics {
+  int dim;
+  int nv;  // active Voigt components
+  int comp[kNumVoigt];
   double N[kMaxElementNodes];
-  double dNdX[kMaxElementNodes][2];
-  double F[2][2];
+  double dNdX[kMaxElementNodes][kMaxDim];
+  double F[3][3];  // 3x3 also in 2D, with F_zz = 1 (plane strain)
   double detF;
-  double wdetJ;                  // quadrature weight times reference Jacobian
-  double B[3][kMaxElementDofs];  // dE (Voigt) / du_e
+  double wdetJ;                          // quadrature weight times reference Jacobian
+  double B[kNumVoigt][kMaxElementDofs];  // d E (active components) / d u_e
 };
 
-// Deformation gradient, Green-Lagrange strain and B_NL at Gauss point q of element e.
+// Deformation gradient, strain and B_NL at Gauss point q of element e. The strain is the
+// Green-Lagrange one (large) or B u (small: F = I in B, the linearized strain); it has all six
+// Voigt components, zero where the dimension does not strain.
 KOKKOS_INLINE_FUNCTION void kinematics(ElementType type, bool large, const double* xe,
-                                       const double* ue, int q, GaussKinematics& g, double E[3]) {
-  const int npe = nodesPerElement(type);
-  double xi, eta, w;
-  gaussPoint(type, q, xi, eta, w);
-  g.wdetJ = w * physicalGradients(type, xe, xi, eta, g.N, g.dNdX);
-  double H[2][2] = {{0, 0}, {0, 0}};  // du_i / dX_j
+                                       const double* ue, int q, GaussKinematics& g,
+                                       double E[kNumVoigt]) {
+  const int npe = nodesPerElement(type), dim = spatialDimension(type), nd = dim * npe;
+  g.dim = dim;
+  g.nv = activeComponents(dim, g.comp);
+  double xi[kMaxDim], w;
+  gaussPoint(type, q, xi, w);
+  g.wdetJ = w * physicalGradients(type, xe, xi, g.N, g.dNdX);
+  double H[3][3] = {};  // du_i / dX_j
   for (int a = 0; a < npe; ++a)
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j) H[i][j] += ue[2 * a + i] * g.dNdX[a][j];
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j) g.F[i][j] = (i == j ? 1.0 : 0.0) + (large ? H[i][j] : 0.0);
-  g.detF = g.F[0][0] * g.F[1][1] - g.F[0][1] * g.F[1][0];
-  // Written with H rather than F^T F - I so that small strains lose no digits to cancellation.
-  const double s = large ? 0.5 : 0.0;
-  E[0] = H[0][0] + s * (H[0][0] * H[0][0] + H[1][0] * H[1][0]);
-  E[1] = H[1][1] + s * (H[0][1] * H[0][1] + H[1][1] * H[1][1]);
-  E[2] = H[0][1] + H[1][0] + 2 * s * (H[0][0] * H[0][1] + H[1][0] * H[1][1]);
-  for (int a = 0; a < npe; ++a)
-    for (int k = 0; k < 2; ++k) {
-      g.B[0][2 * a + k] = g.F[k][0] * g.dNdX[a][0];
-      g.B[1][2 * a + k] = g.F[k][1] * g.dNdX[a][1];
-      g.B[2][2 * a + k] = g.F[k][0] * g.dNdX[a][1] + g.F[k][1] * g.dNdX[a][0];
+    for (int i = 0; i < dim; ++i)
+      for (int j = 0; j < dim; ++j) H[i][j] += ue[dim * a + i] * g.dNdX[a][j];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) g.F[i][j] = (i == j ? 1.0 : 0.0) + (large ? H[i][j] : 0.0);
+  const double(&F)[3][3] = g.F;
+  g.detF = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
+           F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
+           F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
+  for (int r = 0; r < g.nv; ++r) {
+    int i, j;
+    voigtPair(g.comp[r], i, j);
+    for (int a = 0; a < npe; ++a)
+      for (int k = 0; k < dim; ++k)
+        g.B[r][dim * a + k] =
+            i == j ? F[k][i] * g.dNdX[a][i] : F[k][i] * g.dNdX[a][j] + F[k][j] * g.dNdX[a][i];
+  }
+  for (int c = 0; c < kNumVoigt; ++c) E[c] = 0;
+  for (int r = 0; r < g.nv; ++r) {
+    const int c = g.comp[r];
+    if (!large) {
+      for (int j = 0; j < nd; ++j) E[c] += g.B[r][j] * ue[j];
+      continue;
     }
+    // Written with H rather than F^T F - I so that small strains lose no digits to cancellation.
+    int i, j;
+    voigtPair(c, i, j);
+    double hh = 0;
+    for (int k = 0; k < dim; ++k) hh += H[k][i] * H[k][j];
+    E[c] = i == j ? H[i][i] + 0.5 * hh : H[i][j] + H[j][i] + 2 * 0.5 * hh;
+  }
 }
 
 // Throws for the first element with det F <= 0 at some Gauss point (minDetF filled by a kernel).
@@ -67,51 +109,64 @@ void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const std::v
   const bool geometric = large && initialStress;
   const HostView2 xe = detail::checkedElementCoords(mesh);
   const HostView2 ue = detail::elementDisplacements(mesh, u);
-  const int ne = mesh.numElements(), nd = 2 * nodesPerElement(mesh.type);
+  const int ne = mesh.numElements(), nd = mesh.dim() * nodesPerElement(mesh.type);
   const ElementType type = mesh.type;
-  const MaterialLaw* lawPtr = &law;
+  const MaterialLaw* lawPtr = &law;  // captured by value: the lambda copies the pointer only
   fe = HostView2("fe", ne, nd);
   const bool withTangent = Ke != nullptr;
   HostView3 K;
   if (withTangent) K = *Ke = HostView3("Ke", ne, nd, nd);
   Kokkos::View<double*, Kokkos::HostSpace> minDetF("minDetF", ne);
   Kokkos::parallel_for(
-      "plasticity::total_lagrangian", Kokkos::RangePolicy<ExecSpace>(0, ne), KOKKOS_LAMBDA(int e) {
+      "plasticity::element_kernel", Kokkos::RangePolicy<ExecSpace>(0, ne), KOKKOS_LAMBDA(int e) {
         double detMin = 1e300;
         for (int q = 0; q < numGaussPoints(type); ++q) {
           GaussKinematics g;
-          double E[3];
+          double E[kNumVoigt];
           kinematics(type, large, &xe(e, 0), &ue(e, 0), q, g, E);
           detMin = g.detF < detMin ? g.detF : detMin;
           if (!(g.detF > 0.0)) continue;
           MaterialResponse r;
           lawPtr->evaluate(MaterialPointId{e, q}, E, r);
           const double* S = r.stress;
-          for (int i = 0; i < nd; ++i)
-            fe(e, i) += (g.B[0][i] * S[0] + g.B[1][i] * S[1] + g.B[2][i] * S[2]) * g.wdetJ;
+          const int nv = g.nv;
+          for (int i = 0; i < nd; ++i) {
+            double s = 0;
+            for (int k = 0; k < nv; ++k) s += g.B[k][i] * S[g.comp[k]];
+            fe(e, i) += s * g.wdetJ;
+          }
           if (!withTangent) continue;
-          const double* C = r.tangent;
-          double CB[3][kMaxElementDofs];
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < nd; ++j)
-              CB[i][j] = C[3 * i] * g.B[0][j] + C[3 * i + 1] * g.B[1][j] + C[3 * i + 2] * g.B[2][j];
+          // Material part B^T C B over the active components.
+          double CB[kNumVoigt][kMaxElementDofs];
+          for (int k = 0; k < nv; ++k)
+            for (int j = 0; j < nd; ++j) {
+              double s = 0;
+              for (int l = 0; l < nv; ++l)
+                s += r.tangent[kNumVoigt * g.comp[k] + g.comp[l]] * g.B[l][j];
+              CB[k][j] = s;
+            }
           for (int i = 0; i < nd; ++i)
-            for (int j = 0; j < nd; ++j)
-              K(e, i, j) +=
-                  (g.B[0][i] * CB[0][j] + g.B[1][i] * CB[1][j] + g.B[2][i] * CB[2][j]) * g.wdetJ;
+            for (int j = 0; j < nd; ++j) {
+              double s = 0;
+              for (int k = 0; k < nv; ++k) s += g.B[k][i] * CB[k][j];
+              K(e, i, j) += s * g.wdetJ;
+            }
           // Initial stress: the variation of B_NL with u, contracted with S; it couples only
           // like components, hence the identity in k.
           if (!geometric) continue;
-          const int npe = nd / 2;
+          const int dim = g.dim, npe = nd / dim;
           for (int a = 0; a < npe; ++a)
             for (int b = 0; b < npe; ++b) {
               const double* ga = g.dNdX[a];
               const double* gb = g.dNdX[b];
-              const double s =
-                  (ga[0] * (S[0] * gb[0] + S[2] * gb[1]) + ga[1] * (S[2] * gb[0] + S[1] * gb[1])) *
-                  g.wdetJ;
-              K(e, 2 * a, 2 * b) += s;
-              K(e, 2 * a + 1, 2 * b + 1) += s;
+              double s = 0;
+              for (int i = 0; i < dim; ++i) {
+                double t = 0;
+                for (int j = 0; j < dim; ++j) t += S[voigtIndex(i, j)] * gb[j];
+                s += ga[i] * t;
+              }
+              s *= g.wdetJ;
+              for (int k = 0; k < dim; ++k) K(e, dim * a + k, dim * b + k) += s;
             }
         }
         minDetF(e) = detMin;
@@ -125,15 +180,7 @@ std::vector<double> internalForce(const ElementMesh& mesh, const MaterialLaw& la
                                   const std::vector<double>& u, Kinematics kinematics) {
   HostView2 fe;
   elementKernel(mesh, law, u, kinematics, false, fe, nullptr);
-  const int npe = nodesPerElement(mesh.type);
-  std::vector<double> f(2 * static_cast<std::size_t>(mesh.numNodes()), 0.0);
-  for (int e = 0; e < mesh.numElements(); ++e)
-    for (int a = 0; a < npe; ++a) {
-      const int n = mesh.connectivity[static_cast<std::size_t>(e) * npe + a];
-      f[2 * n] += fe(e, 2 * a);
-      f[2 * n + 1] += fe(e, 2 * a + 1);
-    }
-  return f;
+  return detail::scatterVector(mesh, fe);
 }
 
 tfeti::CsrMatrix tangentStiffness(const ElementMesh& mesh, const MaterialLaw& law,
@@ -147,44 +194,54 @@ tfeti::CsrMatrix tangentStiffness(const ElementMesh& mesh, const MaterialLaw& la
 
 StressField cauchyStress(const ElementMesh& mesh, const MaterialLaw& law,
                          const std::vector<double>& u, Kinematics kin) {
+  return detail::gaussPointStresses(mesh, law, u, kin, true);
+}
+
+namespace detail {
+
+StressField gaussPointStresses(const ElementMesh& mesh, const MaterialLaw& law,
+                               const std::vector<double>& u, Kinematics kin,
+                               bool deformedPositions) {
   const bool large = kin == Kinematics::TotalLagrangian;
   const HostView2 xe = detail::checkedElementCoords(mesh);
   const HostView2 ue = detail::elementDisplacements(mesh, u);
-  const int ne = mesh.numElements(), npe = nodesPerElement(mesh.type);
+  const int ne = mesh.numElements(), npe = nodesPerElement(mesh.type), dim = mesh.dim();
   const int ngp = numGaussPoints(mesh.type);
   const ElementType type = mesh.type;
   const MaterialLaw* lawPtr = &law;
-  HostView3 sg("cauchyStress", ne, ngp, 4), xg("deformedGaussCoords", ne, ngp, 2);
+  const double moved = deformedPositions ? 1.0 : 0.0;
+  HostView3 sg("cauchyStress", ne, ngp, kNumVoigt), xg("gaussCoords", ne, ngp, dim);
   Kokkos::View<double*, Kokkos::HostSpace> minDetF("minDetF", ne);
   Kokkos::parallel_for(
       "plasticity::cauchy_stress", Kokkos::RangePolicy<ExecSpace>(0, ne), KOKKOS_LAMBDA(int e) {
         double detMin = 1e300;
         for (int q = 0; q < ngp; ++q) {
           GaussKinematics g;
-          double E[3];
+          double E[kNumVoigt];
           kinematics(type, large, &xe(e, 0), &ue(e, 0), q, g, E);
           detMin = g.detF < detMin ? g.detF : detMin;
           for (int a = 0; a < npe; ++a)
-            for (int i = 0; i < 2; ++i)
-              xg(e, q, i) += g.N[a] * (xe(e, 2 * a + i) + ue(e, 2 * a + i));
+            for (int i = 0; i < dim; ++i)
+              xg(e, q, i) += g.N[a] * (xe(e, dim * a + i) + moved * ue(e, dim * a + i));
           if (!(g.detF > 0.0)) continue;
           MaterialResponse r;
           lawPtr->evaluate(MaterialPointId{e, q}, E, r);
-          const double S[2][2] = {{r.stress[0], r.stress[2]}, {r.stress[2], r.stress[1]}};
-          double sigma[2][2] = {{0, 0}, {0, 0}};
-          for (int i = 0; i < 2; ++i)
-            for (int j = 0; j < 2; ++j)
-              for (int k = 0; k < 2; ++k)
-                for (int l = 0; l < 2; ++l) sigma[i][j] += g.F[i][k] * S[k][l] * g.F[j][l];
-          sg(e, q, 0) = sigma[0][0] / g.detF;
-          sg(e, q, 1) = sigma[1][1] / g.detF;
-          sg(e, q, 2) = sigma[0][1] / g.detF;
-          sg(e, q, 3) = r.stress[3] / g.detF;
+          for (int c = 0; c < kNumVoigt; ++c) {
+            int i, j;
+            voigtPair(c, i, j);
+            double sigma = 0;  // (F S F^T)_ij
+            for (int k = 0; k < 3; ++k)
+              for (int l = 0; l < 3; ++l)
+                sigma += g.F[i][k] * r.stress[voigtIndex(k, l)] * g.F[j][l];
+            sg(e, q, c) = sigma / g.detF;
+          }
         }
         minDetF(e) = detMin;
       });
   checkDeformation(mesh, minDetF);
   return detail::stressField(mesh, sg, xg);
 }
+
+}  // namespace detail
 
 }  // namespace plasticity

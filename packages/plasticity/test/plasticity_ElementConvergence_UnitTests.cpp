@@ -83,8 +83,9 @@ Errors errors(const ElementMesh& m, const ElasticLaw& law, const std::vector<dou
   for (int e = 0; e < m.numElements(); ++e) {
     const int* en = &m.connectivity[e * npe];
     for (const RefPoint& r : rule) {
-      double N[plasticity::kMaxElementNodes], dN[plasticity::kMaxElementNodes][2];
-      plasticity::shapeFunctions(m.type, r.xi, r.eta, N, dN);
+      double N[plasticity::kMaxElementNodes], dN[plasticity::kMaxElementNodes][plasticity::kMaxDim];
+      const double xi[2] = {r.xi, r.eta};
+      plasticity::shapeFunctions(m.type, xi, N, dN);
       double J[2][2] = {{0, 0}, {0, 0}}, x[2] = {0, 0}, u[2] = {0, 0}, G[2][2] = {{0, 0}, {0, 0}};
       for (int a = 0; a < npe; ++a)
         for (int i = 0; i < 2; ++i) {

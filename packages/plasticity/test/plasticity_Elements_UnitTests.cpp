@@ -62,15 +62,16 @@ struct PolynomialField {
   }
 };
 
-// Exact (sxx, syy, sxy, szz, von Mises) of the field at (x, y).
+// Exact stress (StressField's components: Voigt, then von Mises) of the field at (x, y).
 void exactStress(const LinearElasticMaterial& law, const PolynomialField& f, double x, double y,
-                 double s[5]) {
+                 double s[plasticity::kNumStressComponents]) {
   double e[3];
   f.strain(x, y, e);
+  const double e6[plasticity::kNumVoigt] = {e[0], e[1], 0, 0, 0, e[2]};
   plasticity::MaterialResponse r;
-  law.evaluate({}, e, r);
-  for (int c = 0; c < 4; ++c) s[c] = r.stress[c];
-  s[4] = plasticity::vonMises(s[0], s[1], s[2], s[3]);
+  law.evaluate({}, e6, r);
+  for (int c = 0; c < plasticity::kNumVoigt; ++c) s[c] = r.stress[c];
+  s[plasticity::kVonMises] = plasticity::vonMises(r.stress);
 }
 
 struct StressErrors {
@@ -85,17 +86,18 @@ StressErrors stressErrors(const ElementMesh& m, const LinearElasticMaterial& law
   for (int e = 0; e < m.numElements(); ++e)
     for (int q = 0; q < ngp; ++q) {
       const double* xg = &sf.gaussCoords[(e * ngp + q) * 2];
-      double s[5];
+      double s[plasticity::kNumStressComponents];
       exactStress(law, f, xg[0], xg[1], s);
-      for (int c = 0; c < 5; ++c) {
+      for (int c = 0; c < plasticity::kNumStressComponents; ++c) {
         scale = std::max(scale, std::abs(s[c]));
         eg = std::max(eg, std::abs(sf.atGaussPoint(e, q, c) - s[c]));
       }
     }
   for (int n = 0; n < m.numNodes(); ++n) {
-    double s[5];
+    double s[plasticity::kNumStressComponents];
     exactStress(law, f, m.coords[2 * n], m.coords[2 * n + 1], s);
-    for (int c = 0; c < 5; ++c) en = std::max(en, std::abs(sf.atNode(n, c) - s[c]));
+    for (int c = 0; c < plasticity::kNumStressComponents; ++c)
+      en = std::max(en, std::abs(sf.atNode(n, c) - s[c]));
   }
   return {eg / scale, en / scale};
 }
@@ -136,13 +138,14 @@ TEUCHOS_UNIT_TEST(Elements, LinearPatchTestOnDistortedMesh) {
     // K u against the consistent tractions sigma n of the constant stress on the four sides.
     const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, law);
     const std::vector<double> fu = multiply(K, f.nodal(m));
-    double s[5];
+    double s[plasticity::kNumStressComponents];
     exactStress(law, f, 0, 0, s);
     const double normals[4][2] = {{0, -1}, {1, 0}, {0, 1}, {-1, 0}};
     std::vector<double> ft(fu.size(), 0.0);
+    const double sxx = s[plasticity::kSxx], syy = s[plasticity::kSyy], sxy = s[plasticity::kSxy];
     for (int k = 0; k < 4; ++k) {
-      const double t[2] = {s[0] * normals[k][0] + s[2] * normals[k][1],
-                           s[2] * normals[k][0] + s[1] * normals[k][1]};
+      const double t[2] = {sxx * normals[k][0] + sxy * normals[k][1],
+                           sxy * normals[k][0] + syy * normals[k][1]};
       const std::vector<double> fk = plasticity::assembleEdgeTraction(m, L.sideEdges(k), t);
       for (std::size_t i = 0; i < ft.size(); ++i) ft[i] += fk[i];
     }

@@ -15,10 +15,11 @@
 
 namespace {
 
+using plasticity::evaluatePlaneStrain;
 using plasticity::J2PlasticMaterial;
 using plasticity::LinearElasticMaterial;
 using plasticity::MaterialPointId;
-using plasticity::MaterialResponse;
+using plasticity::PlaneStrainResponse;
 using plasticity::vonMises;
 
 // Steel-like, in MPa; H large enough that hardening shows clearly in the stresses.
@@ -29,7 +30,7 @@ double mu() {
   return kE / (2.0 * (1.0 + kNu));
 }
 
-double vm(const MaterialResponse& r) {
+double vm(const PlaneStrainResponse& r) {
   return vonMises(r.stress[0], r.stress[1], r.stress[2], r.stress[3]);
 }
 
@@ -56,9 +57,9 @@ void finiteDifferenceTangent(const J2PlasticMaterial& law, const MaterialPointId
     double ep[3] = {strain[0], strain[1], strain[2]}, em[3] = {strain[0], strain[1], strain[2]};
     ep[j] += h;
     em[j] -= h;
-    MaterialResponse rp, rm;
-    law.evaluate(where, ep, rp);
-    law.evaluate(where, em, rm);
+    PlaneStrainResponse rp, rm;
+    evaluatePlaneStrain(law, where, ep, rp);
+    evaluatePlaneStrain(law, where, em, rm);
     for (int i = 0; i < 3; ++i) D[3 * i + j] = (rp.stress[i] - rm.stress[i]) / (2 * h);
   }
 }
@@ -70,14 +71,14 @@ TEUCHOS_UNIT_TEST(J2Plasticity, ElasticBelowYieldMatchesLinearElastic) {
   for (const auto& d : directions) {
     // Scale to 90% of first yield. Even (-1, -1, 0) has a deviator in plane strain, because
     // sigma_zz = lambda tr(eps) differs from sigma_xx = sigma_yy.
-    MaterialResponse unit;
-    lin.evaluate({}, d, unit);
+    PlaneStrainResponse unit;
+    evaluatePlaneStrain(lin, {}, d, unit);
     const double s = 0.9 * kSy / vm(unit);
     const double strain[3] = {s * d[0], s * d[1], s * d[2]};
-    MaterialResponse a, b;
+    PlaneStrainResponse a, b;
     const MaterialPointId where{2, 3};
-    j2.evaluate(where, strain, a);
-    lin.evaluate({}, strain, b);
+    evaluatePlaneStrain(j2, where, strain, a);
+    evaluatePlaneStrain(lin, {}, strain, b);
     for (int c = 0; c < 4; ++c) TEST_EQUALITY(a.stress[c], b.stress[c]);
     for (int k = 0; k < 9; ++k) TEST_EQUALITY(a.tangent[k], b.tangent[k]);
     TEST_EQUALITY(j2.trialEquivalentPlasticStrain(where), 0.0);
@@ -100,27 +101,27 @@ TEUCHOS_UNIT_TEST(J2Plasticity, SimpleShearClosedForm) {
 
     J2PlasticMaterial once(kE, kNu, kSy, H, 1, 1);
     const double strain[3] = {0, 0, gamma};
-    MaterialResponse r;
-    once.evaluate(where, strain, r);
+    PlaneStrainResponse r;
+    evaluatePlaneStrain(once, where, strain, r);
     once.commit();
     TEST_FLOATING_EQUALITY(r.stress[2], sxy, 1e-10);
     for (int c : {0, 1, 3}) TEST_COMPARE(std::abs(r.stress[c]), <=, 1e-12 * kSy);
     TEST_FLOATING_EQUALITY(once.equivalentPlasticStrain(where), alpha, 1e-10);
     TEST_FLOATING_EQUALITY(vm(r), kSy + H * alpha, 1e-10);
-    double ep[4];
+    double ep[plasticity::kNumVoigt];  // (xx, yy, zz, yz, xz, xy), tensor shears
     once.plasticStrain(where, ep);
-    TEST_FLOATING_EQUALITY(2 * ep[2], kSqrt3 * alpha, 1e-10);
-    for (int c : {0, 1, 3}) TEST_COMPARE(std::abs(ep[c]), <=, 1e-14);
+    TEST_FLOATING_EQUALITY(2 * ep[plasticity::kXY], kSqrt3 * alpha, 1e-10);
+    for (int c : {0, 1, 2, 3, 4}) TEST_COMPARE(std::abs(ep[c]), <=, 1e-14);
     // The hardening slope of this path: d sigma_xy / d gamma = mu H / (3 mu + H).
     // (Absolute against mu because the slope vanishes for H = 0.)
     TEST_COMPARE(std::abs(r.tangent[8] - mu() * H / (3 * mu() + H)), <=, 1e-10 * mu());
 
     J2PlasticMaterial steps(kE, kNu, kSy, H, 1, 1);
     const int n = 12;
-    MaterialResponse s;
+    PlaneStrainResponse s;
     for (int k = 1; k <= n; ++k) {
       const double g[3] = {0, 0, gamma * k / n};
-      steps.evaluate(where, g, s);
+      evaluatePlaneStrain(steps, where, g, s);
       steps.commit();
       const double a = steps.equivalentPlasticStrain(where);
       // Every step past yield stays on the (hardening) yield surface.
@@ -142,8 +143,8 @@ TEUCHOS_UNIT_TEST(J2Plasticity, NormalPureShearClosedForm) {
   const double sxx = (kSy + kH * alpha) / kSqrt3;
   J2PlasticMaterial j2(kE, kNu, kSy, kH, 1, 1);
   const double strain[3] = {e, -e, 0};
-  MaterialResponse r;
-  j2.evaluate({0, 0}, strain, r);
+  PlaneStrainResponse r;
+  evaluatePlaneStrain(j2, {0, 0}, strain, r);
   TEST_FLOATING_EQUALITY(r.stress[0], sxx, 1e-10);
   TEST_FLOATING_EQUALITY(r.stress[1], -sxx, 1e-10);
   TEST_COMPARE(std::abs(r.stress[2]), <=, 1e-12 * kSy);
@@ -159,36 +160,37 @@ TEUCHOS_UNIT_TEST(J2Plasticity, NormalPureShearClosedForm) {
 TEUCHOS_UNIT_TEST(J2Plasticity, ProportionalPathIncrementsMatchOneStep) {
   const double d[3] = {1.0, -0.4, 0.7};
   LinearElasticMaterial lin(kE, kNu);
-  MaterialResponse unit;
-  lin.evaluate({}, d, unit);
+  PlaneStrainResponse unit;
+  evaluatePlaneStrain(lin, {}, d, unit);
   const double t = 4.0 * kSy / vm(unit);  // four times the strain at first yield
   const double strain[3] = {t * d[0], t * d[1], t * d[2]};
-  MaterialResponse elastic;
-  lin.evaluate({}, strain, elastic);
+  PlaneStrainResponse elastic;
+  evaluatePlaneStrain(lin, {}, strain, elastic);
   const double alpha = (vm(elastic) - kSy) / (3 * mu() + kH);
 
   const MaterialPointId where{1, 2};
   J2PlasticMaterial once(kE, kNu, kSy, kH, 2, 3);
-  MaterialResponse r;
-  once.evaluate(where, strain, r);
+  PlaneStrainResponse r;
+  evaluatePlaneStrain(once, where, strain, r);
   TEST_FLOATING_EQUALITY(once.trialEquivalentPlasticStrain(where), alpha, 1e-10);
   TEST_FLOATING_EQUALITY(vm(r), kSy + kH * alpha, 1e-10);
   TEST_COMPARE(std::abs(r.stress[3]), >, 1.0);  // sigma_zz really takes part
 
   J2PlasticMaterial steps(kE, kNu, kSy, kH, 2, 3);
   const int n = 20;
-  MaterialResponse s;
+  PlaneStrainResponse s;
   for (int k = 1; k <= n; ++k) {
     const double e[3] = {strain[0] * k / n, strain[1] * k / n, strain[2] * k / n};
-    steps.evaluate(where, e, s);
+    evaluatePlaneStrain(steps, where, e, s);
     steps.commit();
   }
   for (int c = 0; c < 4; ++c) TEST_COMPARE(std::abs(s.stress[c] - r.stress[c]), <=, 1e-10 * kSy);
   TEST_FLOATING_EQUALITY(steps.equivalentPlasticStrain(where), alpha, 1e-10);
-  double epOnce[4], epSteps[4];
+  double epOnce[plasticity::kNumVoigt], epSteps[plasticity::kNumVoigt];
   once.trialPlasticStrain(where, epOnce);
   steps.plasticStrain(where, epSteps);
-  for (int c = 0; c < 4; ++c) TEST_COMPARE(std::abs(epSteps[c] - epOnce[c]), <=, 1e-10 * alpha);
+  for (int c = 0; c < plasticity::kNumVoigt; ++c)
+    TEST_COMPARE(std::abs(epSteps[c] - epOnce[c]), <=, 1e-10 * alpha);
 }
 
 // The consistent tangent against central differences: elastic, first plastic step from the
@@ -204,8 +206,8 @@ TEUCHOS_UNIT_TEST(J2Plasticity, ConsistentTangentMatchesFiniteDifferences) {
     const double elasticStrain[3] = {0.2 * gy, -0.1 * gy, 0.3 * gy};
     const double plasticStrain[3] = {1.5 * gy, -0.7 * gy, 2.0 * gy};
     for (const double* e : {elasticStrain, plasticStrain}) {
-      MaterialResponse r;
-      j2.evaluate(virgin, e, r);
+      PlaneStrainResponse r;
+      evaluatePlaneStrain(j2, virgin, e, r);
       double D[9];
       finiteDifferenceTangent(j2, virgin, e, h, D);
       TEST_COMPARE(tangentError(r.tangent, D), <=, 1e-6);
@@ -213,13 +215,13 @@ TEUCHOS_UNIT_TEST(J2Plasticity, ConsistentTangentMatchesFiniteDifferences) {
 
     // Commit plastic history at `loaded`, then load in another direction.
     const double first[3] = {0, 0, 3 * gy};
-    MaterialResponse r0;
-    j2.evaluate(loaded, first, r0);
+    PlaneStrainResponse r0;
+    evaluatePlaneStrain(j2, loaded, first, r0);
     j2.commit();
     TEST_COMPARE(j2.equivalentPlasticStrain(loaded), >, 0.0);
     const double second[3] = {2.0 * gy, 0.5 * gy, 3 * gy};
-    MaterialResponse r;
-    j2.evaluate(loaded, second, r);
+    PlaneStrainResponse r;
+    evaluatePlaneStrain(j2, loaded, second, r);
     TEST_COMPARE(j2.trialEquivalentPlasticStrain(loaded), >, j2.equivalentPlasticStrain(loaded));
     double D[9];
     finiteDifferenceTangent(j2, loaded, second, h, D);
@@ -240,28 +242,28 @@ TEUCHOS_UNIT_TEST(J2Plasticity, UnloadingAfterYieldIsElastic) {
   LinearElasticMaterial lin(kE, kNu);
   const MaterialPointId where{0, 0};
   const double loaded[3] = {0, 0, 3 * gy};
-  MaterialResponse r1;
-  j2.evaluate(where, loaded, r1);
+  PlaneStrainResponse r1;
+  evaluatePlaneStrain(j2, where, loaded, r1);
   j2.commit();
   const double alpha = j2.equivalentPlasticStrain(where);
-  double ep1[4];
+  double ep1[plasticity::kNumVoigt];
   j2.plasticStrain(where, ep1);
   TEST_COMPARE(alpha, >, 0.0);
 
   // Back by 1.5 gamma_y: still inside the (grown) elastic range, sigma_xy turns negative.
   for (const double back : {0.5 * gy, 1.5 * gy}) {
     const double unloaded[3] = {0, 0, 3 * gy - back};
-    MaterialResponse r2;
-    j2.evaluate(where, unloaded, r2);
+    PlaneStrainResponse r2;
+    evaluatePlaneStrain(j2, where, unloaded, r2);
     TEST_FLOATING_EQUALITY(r2.stress[2], r1.stress[2] - mu() * back, 1e-10);
     TEST_COMPARE(vm(r2), <, kSy + kH * alpha);
-    MaterialResponse el;
-    lin.evaluate({}, unloaded, el);
+    PlaneStrainResponse el;
+    evaluatePlaneStrain(lin, {}, unloaded, el);
     for (int k = 0; k < 9; ++k) TEST_EQUALITY(r2.tangent[k], el.tangent[k]);
     TEST_EQUALITY(j2.trialEquivalentPlasticStrain(where), alpha);
-    double ep2[4];
+    double ep2[plasticity::kNumVoigt];
     j2.trialPlasticStrain(where, ep2);
-    for (int c = 0; c < 4; ++c) TEST_EQUALITY(ep2[c], ep1[c]);
+    for (int c = 0; c < plasticity::kNumVoigt; ++c) TEST_EQUALITY(ep2[c], ep1[c]);
   }
   // Committing the unloaded state keeps the plastic strain.
   j2.commit();
@@ -275,17 +277,17 @@ TEUCHOS_UNIT_TEST(J2Plasticity, RevertRestoresCommittedState) {
   J2PlasticMaterial j2(kE, kNu, kSy, kH, 2, 2);
   const MaterialPointId a{0, 1}, b{1, 0}, untouched{1, 1};
   const double first[3] = {0, 0, 2 * gy};
-  MaterialResponse rFirst;
-  j2.evaluate(a, first, rFirst);
+  PlaneStrainResponse rFirst;
+  evaluatePlaneStrain(j2, a, first, rFirst);
   j2.commit();
   const double alphaA = j2.equivalentPlasticStrain(a);
   TEST_COMPARE(alphaA, >, 0.0);
 
   // A rejected step: more plastic flow at a, first plastic flow at b.
   const double further[3] = {gy, 0, 4 * gy};
-  MaterialResponse r;
-  j2.evaluate(a, further, r);
-  j2.evaluate(b, further, r);
+  PlaneStrainResponse r;
+  evaluatePlaneStrain(j2, a, further, r);
+  evaluatePlaneStrain(j2, b, further, r);
   TEST_COMPARE(j2.trialEquivalentPlasticStrain(a), >, alphaA);
   TEST_COMPARE(j2.trialEquivalentPlasticStrain(b), >, 0.0);
   TEST_EQUALITY(j2.equivalentPlasticStrain(b), 0.0);
@@ -294,16 +296,16 @@ TEUCHOS_UNIT_TEST(J2Plasticity, RevertRestoresCommittedState) {
   j2.revert();
   TEST_EQUALITY(j2.trialEquivalentPlasticStrain(a), alphaA);
   TEST_EQUALITY(j2.trialEquivalentPlasticStrain(b), 0.0);
-  double epC[4], epT[4];
+  double epC[plasticity::kNumVoigt], epT[plasticity::kNumVoigt];
   j2.plasticStrain(a, epC);
   j2.trialPlasticStrain(a, epT);
-  for (int c = 0; c < 4; ++c) TEST_EQUALITY(epT[c], epC[c]);
+  for (int c = 0; c < plasticity::kNumVoigt; ++c) TEST_EQUALITY(epT[c], epC[c]);
   // A commit right after revert changes nothing, and the committed state answers as before.
   j2.commit();
   TEST_EQUALITY(j2.equivalentPlasticStrain(a), alphaA);
   TEST_EQUALITY(j2.equivalentPlasticStrain(b), 0.0);
-  MaterialResponse again;
-  j2.evaluate(a, first, again);
+  PlaneStrainResponse again;
+  evaluatePlaneStrain(j2, a, first, again);
   for (int c = 0; c < 4; ++c)
     TEST_COMPARE(std::abs(again.stress[c] - rFirst.stress[c]), <=, 1e-12 * kSy);
 }
@@ -342,10 +344,10 @@ TEUCHOS_UNIT_TEST(J2Plasticity, InvalidParametersThrow) {
   // Points outside the history arrays are refused rather than read out of bounds.
   J2PlasticMaterial j2(kE, kNu, kSy, kH, 2, 3);
   const double strain[3] = {0, 0, 0};
-  MaterialResponse r;
-  TEST_THROW(j2.evaluate({2, 0}, strain, r), std::out_of_range);
-  TEST_THROW(j2.evaluate({0, 3}, strain, r), std::out_of_range);
-  TEST_THROW(j2.evaluate({-1, 0}, strain, r), std::out_of_range);
+  PlaneStrainResponse r;
+  TEST_THROW(evaluatePlaneStrain(j2, {2, 0}, strain, r), std::out_of_range);
+  TEST_THROW(evaluatePlaneStrain(j2, {0, 3}, strain, r), std::out_of_range);
+  TEST_THROW(evaluatePlaneStrain(j2, {-1, 0}, strain, r), std::out_of_range);
   TEST_THROW(j2.equivalentPlasticStrain({0, -1}), std::out_of_range);
 }
 

@@ -197,8 +197,8 @@ TEUCHOS_UNIT_TEST(TotalLagrangian, HomogeneousDeformationPatchTest) {
   const double Ev[3] = {0.5 * (F[0][0] * F[0][0] + F[1][0] * F[1][0] - 1),
                         0.5 * (F[0][1] * F[0][1] + F[1][1] * F[1][1] - 1),
                         F[0][0] * F[0][1] + F[1][0] * F[1][1]};
-  plasticity::MaterialResponse r;
-  law.evaluate({}, Ev, r);
+  plasticity::PlaneStrainResponse r;  // stress (xx, yy, xy, zz)
+  plasticity::evaluatePlaneStrain(law, {}, Ev, r);
   const double S[2][2] = {{r.stress[0], r.stress[2]}, {r.stress[2], r.stress[1]}};
   double P[2][2] = {{0, 0}, {0, 0}}, sigma[2][2] = {{0, 0}, {0, 0}};
   for (int i = 0; i < 2; ++i)
@@ -217,8 +217,11 @@ TEUCHOS_UNIT_TEST(TotalLagrangian, HomogeneousDeformationPatchTest) {
     double err = 0.0;
     for (int e = 0; e < m.numElements(); ++e)
       for (int q = 0; q < s.gaussPointsPerElement; ++q)
-        for (int c = 0; c < 4; ++c)
-          err = std::max(err, std::abs(s.atGaussPoint(e, q, c) - exact[c]));
+        for (int c = 0; c < 4; ++c) {
+          const int component[4] = {plasticity::kSxx, plasticity::kSyy, plasticity::kSxy,
+                                    plasticity::kSzz};
+          err = std::max(err, std::abs(s.atGaussPoint(e, q, component[c]) - exact[c]));
+        }
     // The internal forces are the loads of the nominal traction P N on the reference sides
     // (outward normals of sides 0..3: -y, +x, +y, -x), and zero at interior nodes.
     const std::vector<double> f = plasticity::internalForce(m, law, u);
