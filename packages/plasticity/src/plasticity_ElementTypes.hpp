@@ -191,7 +191,7 @@ KOKKOS_INLINE_FUNCTION void shapeFunctions(ElementType t, const double xi[], dou
     }
   }
   for (int a = 0; a < info.nodes; ++a) {
-    int id[kMaxDim];
+    int id[kMaxDim] = {0, 0, 0};
     for (int d = 0; d < dim; ++d) id[d] = detail::tensorIndex(info, a, d);
     N[a] = l[0][id[0]];
     for (int d = 1; d < dim; ++d) N[a] *= l[d][id[d]];
