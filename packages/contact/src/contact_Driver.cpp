@@ -254,7 +254,9 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
   out.set("Compare with direct solve", false,
           "solve the undecomposed problem directly on every rank and report the error "
           "(small problems only)");
-  out.set("Verbosity", 1, "0 silent, 1 summary lines");
+  out.set("Verbosity", 1,
+          "0 silent; 1 summary lines and a line per load step; 2 also a line per nonlinear "
+          "iteration and per SMALBE outer iteration");
   out.set("Time dual operator", false,
           "time 10 extra applications of F and report the bandwidth they achieve (benchmarks)");
   auto& sc = pl->sublist("Scalability", false, "Study = scalability");
@@ -307,6 +309,12 @@ int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
               const std::string& outputDirectory) {
   if (comm->getRank() == 0) std::filesystem::create_directories(outputDirectory);
   comm->barrier();
+  // Output verbosity 2 shows the progress of every contact QP: a line per SMALBE outer
+  // iteration (unless the SMALBE sublist asks for its own verbosity).
+  auto& smalbe = params.sublist("FETI").sublist("SMALBE");
+  if (params.sublist("Output").get<int>("Verbosity") >= 2 &&
+      smalbe.getEntry("Verbosity").isDefault())
+    smalbe.set("Verbosity", 2);
   if (params.get<std::string>("Study") == "scalability") {
     if (params.sublist("Scalability").get<Array<std::string>>("Problems")[0] == "two_membranes")
       return runTwoMembranesScalability(comm, params, outputDirectory);
