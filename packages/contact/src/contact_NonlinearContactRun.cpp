@@ -224,6 +224,23 @@ void addNonlinearContactParameters(ParameterList& pl) {
          "{dx, dy}: where the angle is zero (angle)");
 }
 
+void checkNonlinearParameters(const ParameterList& params) {
+  optionsFrom(params);
+  elasticContactSpec(params);
+  const auto& mat = params.sublist("Material");
+  if (mat.get<double>("Yield stress") < 0.0 || mat.get<double>("Hardening modulus") < 0.0)
+    throw std::invalid_argument(
+        "Material: \"Yield stress\" and \"Hardening modulus\" must be >= 0");
+}
+
+double requireLoad(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local) {
+  Field f;
+  for (const auto& s : local) f.push_back(s.f);
+  const double norm = globalNorm(comm, f);
+  if (!(norm > 0.0)) throw std::invalid_argument("Contact problem: no load is applied");
+  return norm;
+}
+
 int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
                         const std::string& dir) {
   const auto start = std::chrono::steady_clock::now();
@@ -235,14 +252,12 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   };
   const bool root = comm->getRank() == 0;
   const int verbosity = params.sublist("Output").get<int>("Verbosity");
+  checkNonlinearParameters(params);
   const Options opt = optionsFrom(params);
   const ElasticContactSpec spec = elasticContactSpec(params);
   const auto& mat = params.sublist("Material");
   const double yield = mat.get<double>("Yield stress"),
                hardening = mat.get<double>("Hardening modulus");
-  if (yield < 0.0 || hardening < 0.0)
-    throw std::invalid_argument(
-        "Material: \"Yield stress\" and \"Hardening modulus\" must be >= 0");
 
   Model model;
   model.problem = buildElasticContactProblem(spec, *comm);
@@ -266,8 +281,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   const double loadDirection[2] = {
       appliedForce > 0.0 ? problem.appliedForce[0] / appliedForce : 0.0,
       appliedForce > 0.0 ? problem.appliedForce[1] / appliedForce : 0.0};
-  const double fNorm = globalNorm(*comm, model.externalLoad);
-  if (!(fNorm > 0.0)) throw std::invalid_argument("Contact problem: no load is applied");
+  const double fNorm = requireLoad(*comm, problem.local);
 
   const std::string restartDir = dir + "/restart";
   NonlinearHistory history;
