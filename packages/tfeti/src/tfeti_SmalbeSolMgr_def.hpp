@@ -193,9 +193,9 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
                 << "  M/||A|| = " << M_ / normA_ << "  MPRGP steps " << mprgp.getNumIters()
                 << "  L increase " << (k > 0 ? lagrangian - lagrangianPrev : S(0)) << " (needed "
                 << required << (reduceM ? ", M reduced)" : ")") << std::fixed
-                << std::setprecision(2) << "  ["
+                << std::setprecision(2) << "  [QP "
                 << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
-                << " s]" << std::defaultfloat << std::endl;
+                << " s]" << std::defaultfloat << std::setprecision(6) << std::endl;
     if (converged) {
       ++k;
       break;
