@@ -20,7 +20,8 @@ FILES = [
     ("summary.json", "every figure of the run (README.md, \"summary.json\")"),
     ("steps.pvd", "ParaView time series of the load steps (time = load factor): open it and "
                   "press play"),
-    ("solution.pvtu", "final state for ParaView: displacement, stresses, von Mises, subdomain"),
+    ("solution.pvtu", "final state for ParaView (u or the displacement, stresses where computed, "
+                      "subdomain ids)"),
     ("contact_pressure.csv", "contact pressure per slave node (x, y, multiplier, pressure)"),
     ("steps.csv", "per load step: iterations, p_max, contact extent, von Mises"),
     ("iterations.csv", "every nonlinear iteration: residual, increment, MPRGP iterations"),
