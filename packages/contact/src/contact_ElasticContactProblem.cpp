@@ -23,8 +23,11 @@ plasticity::ElementType toPlasticityType(ElementType type) {
       return plasticity::ElementType::Tri6;
     case ElementType::Quad9:
       return plasticity::ElementType::Quad9;
+    default:
+      break;
   }
-  throw std::invalid_argument("unsupported element type");
+  throw std::invalid_argument(std::string("elastic contact: ") + elementTypeName(type) +
+                              " bodies are not supported (2D problem)");
 }
 
 namespace {
@@ -64,7 +67,10 @@ double edgeLength(const GmshMesh& mesh, const int* nodes, int nodesPerEdge) {
 ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
                                                  const tfeti::Comm& comm) {
   ElasticContactProblem p;
-  p.mesh = loadMesh(spec.meshFile, spec.meshOptions);
+  // This problem is plane strain: a 3D mesh is an error naming the file.
+  MeshOptions meshOptions = spec.meshOptions;
+  if (meshOptions.dimension == 0) meshOptions.dimension = 2;
+  p.mesh = loadMesh(spec.meshFile, meshOptions);
   const GmshMesh& mesh = p.mesh;
 
   // Subdomains, body by body, numbered consecutively.
