@@ -7,6 +7,7 @@
 // examines; orientation errors and bad input.
 #include <Teuchos_UnitTestHarness.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
