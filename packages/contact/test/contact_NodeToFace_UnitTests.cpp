@@ -185,7 +185,6 @@ TEUCHOS_UNIT_TEST(NodeToFace, QuadraticFacesOfASphere) {
     // Closest point: x_s - x_m is along the normal (interior) and |gap| is the distance.
     const double* x = &coords[3 * row.slaveNode];
     const std::array<double, 3> d{x[0] - row.point[0], x[1] - row.point[1], x[2] - row.point[2]};
-    const double dn = d[0] * row.normal[0] + d[1] * row.normal[1] + d[2] * row.normal[2];
     const double dd = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     const std::array<double, 3> dxn{d[1] * row.normal[2] - d[2] * row.normal[1],
                                     d[2] * row.normal[0] - d[0] * row.normal[2],
