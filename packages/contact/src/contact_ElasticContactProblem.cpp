@@ -221,6 +221,7 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   options.endTolerance = 1e-4;
   options.searchRadius =
       spec.searchRadius > 0.0 ? spec.searchRadius : 0.1 * std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  p.searchRadius = options.searchRadius;
   if (spec.obstacle) {
     if (!spec.master.empty())
       throw std::invalid_argument("Master: \"" + spec.master +

@@ -56,6 +56,7 @@ struct ElasticContactProblem {
   // What re-evaluating the contact on another configuration needs (updateContact).
   // The Master boundary's segments (oriented by the master body's elements) or the obstacle.
   std::shared_ptr<const ContactMaster> master;
+  double searchRadius = 0.0;  // the radius in force (the spec's, or a tenth of the extent)
   std::vector<std::pair<int, int>> copyOf;  // node -> (subdomain, local node) of its first copy
   std::vector<int> surfaceNodes;            // slave and master nodes, sorted
   std::vector<int> slaveNodes;              // global node ids of the slave boundary, as in contact

@@ -289,11 +289,13 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
     boundary(role.str(), name);
   }
   boundary("contact slave", spec.slave);
-  boundary("contact master", spec.master);
+  if (!spec.obstacle) boundary("contact master", spec.master);
   s.str("");
   s << "contact pair: " << problem.slaveNodes.size() << " slave nodes of \"" << spec.slave
-    << "\" against the segments of \"" << spec.master << "\": " << rows
-    << " within the search radius " << problem.contactOptions.searchRadius << "; applied force {"
+    << "\" against "
+    << (spec.obstacle ? std::string("the rigid obstacle")
+                      : "the segments of \"" + spec.master + "\"")
+    << ": " << rows << " within the search radius " << problem.searchRadius << "; applied force {"
     << problem.appliedForce[0] << ", " << problem.appliedForce[1] << "}";
   lines.push_back(s.str());
   printDryRunReport(*comm, lines, problem.local, rows, out);
