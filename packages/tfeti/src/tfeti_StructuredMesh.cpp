@@ -108,7 +108,15 @@ SubdomainMesh StructuredMesh::block(const std::vector<int>& first,
                             (dim_ == 3 && (k == 0 || k == nn[2] - 1));
         if (dim_ == 3 && onFace) m.interfaceCandidates.push_back(local);
       }
-  if (dim_ == 2) m.quads = cells(n);
+  m.dim = dim_;
+  if (dim_ == 2) {
+    m.quads = cells(n);
+  } else {
+    // The hexahedra tell the kernel detection which nodes are rigidly connected.
+    const std::vector<int> hexes = cells(n);
+    for (std::size_t e = 0; e < hexes.size(); e += 8)
+      m.elements.add(std::vector<int>(hexes.begin() + e, hexes.begin() + e + 8));
+  }
   return m;
 }
 
