@@ -15,6 +15,9 @@ membranes:  the two-membrane contact benchmark, H/h = 8, 16, 32 up to about 4M u
 cylinders_convergence: the two-cylinder problem against Hertz on 4 refinements, linear and
             quadratic elements
 cylinders:  the two-cylinder problem refined to about 100k, 1M and 4M unknowns
+sweep3d:    3D elasticity on the unit cube (clamped on x = 0, trilinear hexahedra), about 0.1M,
+            0.5M, 1M and 2M unknowns, subdomains of 4^3, 6^3 and 8^3 elements, against Belos
+            CG + MueLu (six rigid modes as nullspace) and, up to --direct3d-max-dofs, KLU2
 
 Prints markdown tables (for docs/benchmarks.md) and writes every summary.json under --out; a
 line per run (its case and the time so far) goes to stderr, so a long set shows its progress.
@@ -55,6 +58,31 @@ START = time.monotonic()
 def progress(msg):
     """A line per run on stderr (the tables go to stdout): what runs and the time so far."""
     print(f"[{time.monotonic() - START:8.1f} s] {msg}", file=sys.stderr, flush=True)
+
+
+TEMPLATE3D = """<ParameterList name="tfeti_contact">
+  <Parameter name="Problem" type="string" value="{problem}"/>
+  <ParameterList name="Mesh">
+    <Parameter name="Domain" type="Array(double)" value="{{0, 1, 0, 1, 0, 1}}"/>
+    <Parameter name="Subdomains" type="Array(int)" value="{{{s}, {s}, {s}}}"/>
+    <Parameter name="Elements per subdomain" type="Array(int)" value="{{{e}, {e}, {e}}}"/>
+  </ParameterList>
+  <ParameterList name="Load">
+    <Parameter name="Body force" type="Array(double)" value="{{0, -1, 0}}"/>
+  </ParameterList>
+  <ParameterList name="FETI">
+    <Parameter name="Preconditioner" type="string" value="{prec}"/>
+    <ParameterList name="PCPG">
+      <Parameter name="Relative tolerance" type="double" value="1e-6"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Output">
+    <Parameter name="VTU" type="bool" value="false"/>
+    <Parameter name="Time dual operator" type="bool" value="true"/>
+    <Parameter name="Verbosity" type="int" value="0"/>
+  </ParameterList>
+</ParameterList>
+"""
 
 
 def mpirun(args, ranks):
@@ -301,6 +329,63 @@ def cylinders(o):
               f"{100 * c['relative_error']['half_width']:.2f} % |", flush=True)
 
 
+def feti3d(o, n, e, prec):
+    name = f"elasticity3d_{n}_{e}_{prec}"
+    d = os.path.join(o.out, name)
+    os.makedirs(d, exist_ok=True)
+    xml = os.path.join(d, "input.xml")
+    with open(xml, "w") as f:
+        f.write(TEMPLATE3D.format(problem="elasticity", s=n // e, e=e, prec=prec))
+    res = mpirun([o.build + "/bin/tfeti_contact", "--input=" + xml, "--output=" + d], o.ranks)
+    if res.returncode != 0:
+        return None
+    with open(d + "/summary.json") as f:
+        return json.load(f)
+
+
+def sweep3d(o):
+    print("\n## 3D elasticity on the unit cube (TFETI, CHOLMOD)\n")
+    print(HEADER)
+    base = []
+    # n elements per side; n is a multiple of each subdomain size tried.
+    for n, sizes in [(32, (4, 8)), (56, (4, 7, 8)), (72, (4, 6, 8)), (88, (4, 8))]:
+        if 3 * (n + 1) ** 3 > o.max_dofs:
+            continue
+        runs = []
+        for e in sizes:
+            for prec in o.preconditioners3d.split(","):
+                s = feti3d(o, n, e, prec)
+                if s:
+                    runs.append(s)
+                    print(row(f"elasticity {n}^3, H/h={e}, {prec}", s), flush=True)
+        best = min(runs, key=lambda s: s["timings"]["setup_s"] + s["timings"]["solve_s"],
+                   default=None)
+        solvers = ["muelu"] + (["klu2"] if 3 * (n + 1) ** 3 <= o.direct3d_max_dofs else [])
+        for solver in solvers:
+            b = baseline3d(o, n, solver)
+            base.append((f"elasticity {n}^3", b, best))
+            print(base_row(f"elasticity {n}^3", b), flush=True)
+    print("\n" + BASE_HEADER)
+    for label, b, s in base:
+        ratio = ""
+        if b and s:
+            tf = s["timings"]["setup_s"] + s["timings"]["solve_s"]
+            tb = b["setup_s"] + b["solve_s"]
+            ratio = (f" TFETI ({s['subdomains']} subdomains, {s['preconditioner']}) {tf:.2f} s / "
+                     f"baseline {tb:.2f} s = {tf / tb:.2f}x")
+        print(base_row(label, b) + ratio)
+
+
+def baseline3d(o, n, solver):
+    res = mpirun([o.build + "/bin/tfeti_baseline", "--problem=elasticity", f"--nx={n}",
+                  f"--ny={n}", f"--nz={n}", "--lx=1", "--ly=1", "--lz=1", "--bx=0", "--by=-1",
+                  "--bz=0", "--solver=" + solver], o.ranks)
+    for line in res.stdout.splitlines():
+        if line.startswith("{"):
+            return json.loads(line)
+    return None
+
+
 def solvers(o):
     print("\n## Local solver choice (Poisson 1000x500, 20x10 subdomains of 50x50 elements)\n")
     print(HEADER)
@@ -318,9 +403,13 @@ if __name__ == "__main__":
                    default="solvers,reference,sweep,membranes,cylinders_convergence,cylinders")
     p.add_argument("--max-dofs", type=float, default=4.3e6)
     p.add_argument("--out", default="bench-out")
+    p.add_argument("--preconditioners3d", default="lumped,dirichlet")
+    p.add_argument("--direct3d-max-dofs", type=float, default=1.2e5,
+                   help="largest 3D case solved by KLU2 (its fill grows fast in 3D)")
     p.add_argument("--contact-max-dofs", type=float, default=1.5e6,
                    help="largest two-cylinder case; the 4M one takes over an hour (docs)")
     o = p.parse_args()
     for name in o.sets.split(","):
         {"sweep": sweep, "reference": reference, "solvers": solvers, "membranes": membranes,
-         "cylinders_convergence": cylinders_convergence, "cylinders": cylinders}[name](o)
+         "cylinders_convergence": cylinders_convergence, "cylinders": cylinders,
+         "sweep3d": sweep3d}[name](o)

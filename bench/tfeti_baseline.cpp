@@ -1,7 +1,7 @@
-// Primal baseline for the FETI benchmarks: the same Q1 problems as the FETI solver, assembled
-// into one distributed Tpetra matrix and solved by MueLu-preconditioned CG and by a distributed
-// KLU2 direct solve, so that both can be timed against FETI in the same run. Prints one JSON
-// object per solver on rank 0.
+// Primal baseline for the FETI benchmarks: the same Q1 problems as the FETI solver (2D
+// rectangles, 3D boxes clamped on the face x = 0), assembled into one distributed Tpetra matrix and
+// solved by MueLu-preconditioned CG and by a distributed KLU2 direct solve, so that both can be
+// timed against FETI in the same run. Prints one JSON object per solver on rank 0.
 #include <mpi.h>
 #include <sys/resource.h>
 
@@ -33,6 +33,7 @@
 
 #include "plasticity_Q1Assembly.hpp"
 #include "tfeti_CsrMatrix.hpp"
+#include "tfeti_StructuredMesh.hpp"
 
 namespace {
 
@@ -51,15 +52,27 @@ using Comm = Teuchos::Comm<int>;
 
 struct Problem {
   std::string name;
-  int nx = 0, ny = 0;
-  double lx = 0, ly = 0;
+  int dim = 2;
+  int n[3] = {0, 0, 1};     // cells per axis (n[2] = 1 in 2D)
+  double l[3] = {0, 0, 0};  // domain lengths
   plasticity::Field field = plasticity::Field::Scalar;
   plasticity::ElasticLaw law;
-  double source[2] = {0, 0};
+  double source[3] = {0, 0, 0};
 
-  int dofsPerNode() const { return plasticity::dofsPerNode(field); }
-  GO numDofs() const { return GO(dofsPerNode()) * (nx + 1) * (ny + 1); }
-  bool isDirichlet(GO dof) const { return (dof / dofsPerNode()) % (nx + 1) == 0; }
+  int dofsPerNode() const { return plasticity::dofsPerNode(field, dim); }
+  GO numNodes() const { return GO(n[0] + 1) * (n[1] + 1) * (dim == 3 ? n[2] + 1 : 1); }
+  GO numDofs() const { return GO(dofsPerNode()) * numNodes(); }
+  // Nodes per layer of the last axis (a row in 2D, a plane in 3D): ranks own slabs of layers.
+  GO layerNodes() const { return dim == 2 ? GO(n[0] + 1) : GO(n[0] + 1) * (n[1] + 1); }
+  int layers() const { return n[dim - 1]; }
+  bool isDirichlet(GO dof) const { return (dof / dofsPerNode()) % (n[0] + 1) == 0; }
+  void position(GO node, double x[3]) const {
+    const GO i = node % (n[0] + 1), j = (node / (n[0] + 1)) % (n[1] + 1),
+             k = node / (GO(n[0] + 1) * (n[1] + 1));
+    x[0] = i * l[0] / n[0];
+    x[1] = j * l[1] / n[1];
+    x[2] = dim == 3 ? k * l[2] / n[2] : 0.0;
+  }
 };
 
 struct System {
@@ -67,43 +80,43 @@ struct System {
   RCP<Vector> b;
 };
 
-// Each rank assembles a strip of cell rows with the project's element kernels, so the matrix is
-// the one the FETI subdomains are built from; shared node rows are summed by the export.
+// Each rank assembles a slab of cell layers (rows in 2D, planes in 3D) with the project's
+// element kernels, so the matrix is the one the FETI subdomains are built from; shared node
+// rows are summed by the export.
 System assemble(const Problem& p, const RCP<const Comm>& comm) {
   const int P = comm->getSize(), rank = comm->getRank();
-  const int j0 = static_cast<int>(GO(rank) * p.ny / P);
-  const int j1 = static_cast<int>(GO(rank + 1) * p.ny / P);
+  const int k0 = static_cast<int>(GO(rank) * p.layers() / P);
+  const int k1 = static_cast<int>(GO(rank + 1) * p.layers() / P);
   const int dpn = p.dofsPerNode();
-  const int rowNodes = p.nx + 1;
+  const GO layerNodes = p.layerNodes();
 
-  plasticity::QuadMesh mesh;
-  if (j1 > j0) {
-    for (int j = j0; j <= j1; ++j)
-      for (int i = 0; i <= p.nx; ++i) {
-        mesh.coords.push_back(i * p.lx / p.nx);
-        mesh.coords.push_back(j * p.ly / p.ny);
-      }
-    for (int j = 0; j < j1 - j0; ++j)
-      for (int i = 0; i < p.nx; ++i) {
-        const int n = j * rowNodes + i;
-        mesh.quads.insert(mesh.quads.end(), {n, n + 1, n + 1 + rowNodes, n + rowNodes});
-      }
+  plasticity::Q1Mesh mesh;
+  mesh.dim = p.dim;
+  if (k1 > k0) {
+    std::vector<int> cells(p.n, p.n + p.dim);
+    cells[p.dim - 1] = k1 - k0;
+    mesh.cells = tfeti::StructuredMesh::cells(cells);
+    for (GO node = k0 * layerNodes; node < (k1 + 1) * layerNodes; ++node) {
+      double x[3];
+      p.position(node, x);
+      mesh.coords.insert(mesh.coords.end(), x, x + p.dim);
+    }
   }
   tfeti::CsrMatrix K = plasticity::assembleStiffness(mesh, p.field, p.law);
   std::vector<double> f = plasticity::assembleBodyLoad(mesh, p.field, p.source);
 
-  // Local node numbering is the global one shifted by the strip's first node row.
-  const GO offset = GO(dpn) * j0 * rowNodes;
+  // Local node numbering is the global one shifted by the slab's first node layer.
+  const GO offset = GO(dpn) * k0 * layerNodes;
   std::vector<GO> gids(K.rows);
   std::iota(gids.begin(), gids.end(), offset);
 
   // Dirichlet rows and columns become the identity so that the matrix stays symmetric for CG;
   // the prescribed values are zero, so dropping the columns needs no correction of the rhs.
-  // Node rows on a strip boundary belong to two strips; only the strip whose cell range starts
-  // at that row puts the 1 on the diagonal, so that the export sums to exactly 1.
+  // Node layers on a slab boundary belong to two slabs; only the slab whose cell range starts
+  // at that layer puts the 1 on the diagonal, so that the export sums to exactly 1.
   auto putsDiagonal = [&](int l) {
-    const int j = j0 + l / (dpn * rowNodes);
-    return j < j1 || j == p.ny;
+    const GO k = k0 + l / (dpn * layerNodes);
+    return k < k1 || k == p.layers();
   };
   for (int l = 0; l < K.rows; ++l) {
     const bool rowFixed = p.isDirichlet(gids[l]);
@@ -118,7 +131,7 @@ System assemble(const Problem& p, const RCP<const Comm>& comm) {
   const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
   auto overlapMap = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(gids), 0, comm));
   // Balanced by nodes rather than dofs: MueLu needs a node's dofs on one rank.
-  const GO numNodes = p.numDofs() / dpn;
+  const GO numNodes = p.numNodes();
   const GO ownedNodes = numNodes / P + (rank < numNodes % P ? 1 : 0);
   auto ownedMap = rcp(new Map(static_cast<Tpetra::global_size_t>(p.numDofs()),
                               static_cast<size_t>(dpn * ownedNodes), 0, comm));
@@ -129,6 +142,7 @@ System assemble(const Problem& p, const RCP<const Comm>& comm) {
   std::copy(K.colInd.begin(), K.colInd.end(), colInd.begin());
   Teuchos::ArrayRCP<SC> values(K.values.size());
   std::copy(K.values.begin(), K.values.end(), values.begin());
+  K = tfeti::CsrMatrix();
   auto Aover = rcp(new Matrix(overlapMap, overlapMap, rowPtr, colInd, values));
   Aover->fillComplete(ownedMap, ownedMap);
 
@@ -140,7 +154,7 @@ System assemble(const Problem& p, const RCP<const Comm>& comm) {
 
   Tpetra::Export<LO, GO, Node> exporter(overlapMap, ownedMap);
   System s;
-  s.A = rcp(new Matrix(ownedMap, 9 * dpn));
+  s.A = rcp(new Matrix(ownedMap, (p.dim == 2 ? 9 : 27) * dpn));
   s.A->doExport(*Aover, exporter, Tpetra::ADD);
   s.A->fillComplete();
   s.b = rcp(new Vector(ownedMap));
@@ -148,39 +162,40 @@ System assemble(const Problem& p, const RCP<const Comm>& comm) {
   return s;
 }
 
-void nodePosition(const Problem& p, GO node, double& x, double& y) {
-  x = (node % (p.nx + 1)) * p.lx / p.nx;
-  y = (node / (p.nx + 1)) * p.ly / p.ny;
-}
-
 // Node coordinates on the node map matching dofMap (whose nodes' dofs are contiguous).
 RCP<MV> nodeCoordinates(const Problem& p, const RCP<const Map>& dofMap) {
   const int dpn = p.dofsPerNode();
   auto nodeMap = rcp(new Map(dofMap->getGlobalNumElements() / dpn,
                              dofMap->getNodeNumElements() / dpn, 0, dofMap->getComm()));
-  auto coords = rcp(new MV(nodeMap, 2));
+  auto coords = rcp(new MV(nodeMap, p.dim));
   for (size_t l = 0; l < nodeMap->getNodeNumElements(); ++l) {
-    double x, y;
-    nodePosition(p, nodeMap->getGlobalElement(static_cast<LO>(l)), x, y);
-    coords->replaceLocalValue(static_cast<LO>(l), 0, x);
-    coords->replaceLocalValue(static_cast<LO>(l), 1, y);
+    double x[3];
+    p.position(nodeMap->getGlobalElement(static_cast<LO>(l)), x);
+    for (int d = 0; d < p.dim; ++d) coords->replaceLocalValue(static_cast<LO>(l), d, x[d]);
   }
   return coords;
 }
 
-// Translations and the in-plane rotation (about the domain's centre, for conditioning).
+// Translations and rotations (about the domain's centre, for conditioning): 3 modes in 2D (the
+// in-plane rotation), 6 in 3D.
 RCP<MV> rigidBodyModes(const Problem& p, const RCP<const Map>& map) {
-  auto modes = rcp(new MV(map, 3));
+  const int dim = p.dim, numModes = dim == 2 ? 3 : 6;
+  auto modes = rcp(new MV(map, numModes));
   for (size_t l = 0; l < map->getNodeNumElements(); ++l) {
     const GO dof = map->getGlobalElement(static_cast<LO>(l));
-    double x, y;
-    nodePosition(p, dof / 2, x, y);
-    x -= 0.5 * p.lx;
-    y -= 0.5 * p.ly;
-    const int c = static_cast<int>(dof % 2);
-    modes->replaceLocalValue(static_cast<LO>(l), 0, c == 0 ? 1.0 : 0.0);
-    modes->replaceLocalValue(static_cast<LO>(l), 1, c == 1 ? 1.0 : 0.0);
-    modes->replaceLocalValue(static_cast<LO>(l), 2, c == 0 ? -y : x);
+    double x[3];
+    p.position(dof / dim, x);
+    for (int d = 0; d < dim; ++d) x[d] -= 0.5 * p.l[d];
+    const int c = static_cast<int>(dof % dim);
+    for (int d = 0; d < dim; ++d)
+      modes->replaceLocalValue(static_cast<LO>(l), d, c == d ? 1.0 : 0.0);
+    // Rotation about axis a moves component c by (e_a x x)_c.
+    const int firstAxis = dim == 2 ? 2 : 0;
+    for (int a = firstAxis; a < 3; ++a) {
+      const int b = (a + 1) % 3, e = (a + 2) % 3;  // (e_a x x) = x_b e_e - x_e e_b
+      const double v = c == e ? x[b] : (c == b ? -x[e] : 0.0);
+      modes->replaceLocalValue(static_cast<LO>(l), dim + a - firstAxis, v);
+    }
   }
   return modes;
 }
@@ -253,7 +268,7 @@ Result solveMueLuCg(const Problem& p, const System& s, double rtol) {
   // Zoltan2 never runs for a single part, but the repartitioning setup requires its input.
   params.sublist("user data").set("Coordinates", nodeCoordinates(p, s.A->getRowMap()));
   if (p.field == plasticity::Field::Elasticity) {
-    params.set("number of equations", 2);
+    params.set("number of equations", p.dim);
     params.sublist("user data").set("Nullspace", rigidBodyModes(p, s.A->getRowMap()));
   }
 
@@ -304,7 +319,9 @@ Result solveKlu2(const System& s) {
 
 void printJson(const Result& r, const Problem& p, int ranks) {
   std::string line = "{\"solver\":\"" + r.solver + "\",\"problem\":\"" + p.name +
-                     "\",\"nx\":" + std::to_string(p.nx) + ",\"ny\":" + std::to_string(p.ny) +
+                     "\",\"dimension\":" + std::to_string(p.dim) +
+                     ",\"nx\":" + std::to_string(p.n[0]) + ",\"ny\":" + std::to_string(p.n[1]) +
+                     (p.dim == 3 ? ",\"nz\":" + std::to_string(p.n[2]) : std::string()) +
                      ",\"dofs\":" + std::to_string(p.numDofs()) +
                      ",\"ranks\":" + std::to_string(ranks);
   char buf[512];
@@ -323,20 +340,23 @@ void printJson(const Result& r, const Problem& p, int ranks) {
 int run(int argc, char* argv[], const RCP<const Comm>& comm) {
   Teuchos::CommandLineProcessor clp(false, true);
   std::string problemName = "poisson", solverName = "both";
-  int nx = 100, ny = 50;
-  double lx = 2, ly = 1, rtol = 1e-6, E = 1, nu = 0.3, bx = 0, by = -1;
+  int nx = 100, ny = 50, nz = 0;
+  double lx = 2, ly = 1, lz = 1, rtol = 1e-6, E = 1, nu = 0.3, bx = 0, by = -1, bz = 0;
   clp.setDocString("Primal baseline (MueLu+CG, KLU2) for the TFETI benchmark problems.");
   clp.setOption("problem", &problemName, "poisson | elasticity");
   clp.setOption("solver", &solverName, "muelu | klu2 | both");
   clp.setOption("nx", &nx, "cells in x");
   clp.setOption("ny", &ny, "cells in y");
+  clp.setOption("nz", &nz, "cells in z (0: a 2D problem)");
   clp.setOption("lx", &lx, "domain length in x");
   clp.setOption("ly", &ly, "domain length in y");
+  clp.setOption("lz", &lz, "domain length in z (3D)");
   clp.setOption("rtol", &rtol, "CG relative residual tolerance");
   clp.setOption("E", &E, "Young's modulus (elasticity)");
   clp.setOption("nu", &nu, "Poisson's ratio (elasticity)");
   clp.setOption("bx", &bx, "body force x (elasticity)");
   clp.setOption("by", &by, "body force y (elasticity)");
+  clp.setOption("bz", &bz, "body force z (3D elasticity)");
   switch (clp.parse(argc, argv)) {
     case Teuchos::CommandLineProcessor::PARSE_SUCCESSFUL:
       break;
@@ -349,15 +369,15 @@ int run(int argc, char* argv[], const RCP<const Comm>& comm) {
     throw std::invalid_argument("--problem must be poisson or elasticity, got " + problemName);
   if (solverName != "muelu" && solverName != "klu2" && solverName != "both")
     throw std::invalid_argument("--solver must be muelu, klu2 or both, got " + solverName);
-  if (nx < 1 || ny < 1 || !(lx > 0) || !(ly > 0) || !(rtol > 0))
-    throw std::invalid_argument("--nx, --ny, --lx, --ly and --rtol must be positive");
+  if (nx < 1 || ny < 1 || nz < 0 || !(lx > 0) || !(ly > 0) || !(lz > 0) || !(rtol > 0))
+    throw std::invalid_argument(
+        "--nx, --ny, --lx, --ly, --lz and --rtol must be positive, --nz non-negative");
 
   Problem p;
   p.name = problemName;
-  p.nx = nx;
-  p.ny = ny;
-  p.lx = lx;
-  p.ly = ly;
+  p.dim = nz > 0 ? 3 : 2;
+  p.n[0] = nx, p.n[1] = ny, p.n[2] = nz > 0 ? nz : 1;
+  p.l[0] = lx, p.l[1] = ly, p.l[2] = lz;
   if (problemName == "poisson") {
     p.source[0] = 1.0;
   } else {
@@ -365,6 +385,7 @@ int run(int argc, char* argv[], const RCP<const Comm>& comm) {
     p.law = plasticity::ElasticLaw(E, nu);
     p.source[0] = bx;
     p.source[1] = by;
+    p.source[2] = bz;
   }
 
   const System s = assemble(p, comm);

@@ -1,8 +1,12 @@
 #!/usr/bin/env python3
 """Checks a tfeti_contact summary.json against what the method must deliver.
 
-  check_summary.py scalability DIR        dimensions equal the reference paper's table exactly,
-                                          numerical scalability of Dirichlet-preconditioned TFETI
+  check_summary.py scalability DIR [--reference-H 4] [--check tfeti:dirichlet,feti:lumped,...]
+                                          dimensions equal their closed forms (any dimension)
+                                          and, for 2D Poisson, the reference paper's table
+                                          exactly; numerical scalability: at fixed H/h the
+                                          iterations of each checked formulation:preconditioner
+                                          stay within GROWTH times the count at H = 1/reference
   check_summary.py single DIR [--max-error E]
                                           converged, error against the direct solve below E
   check_summary.py same DIR1 DIR2 ...     identical iteration counts, residual histories and
@@ -76,34 +80,66 @@ def fail(msg):
     sys.exit(1)
 
 
-def scalability(d):
+def expected_dimensions(r):
+    """Closed forms for a row of the structured table (any dimension dim, c dofs per node, S
+    subdomains per side of n elements): every subdomain has (n + 1)^dim nodes; a node's copies
+    are the product over the axes of 2 (on an interior subdomain boundary) or 1, so that the
+    copies of all nodes number (S (n + 1))^dim against (S n + 1)^dim nodes. Non-redundant
+    gluing (FETI) adds copies - 1 rows per node and component; TFETI adds a Dirichlet row on
+    every copy of a node of the face x = 0, (S (n + 1))^(dim - 1) of them."""
+    dim = r.get("dimension", 2)
+    c = 1 if r["problem"] == "poisson" else dim
+    S = r["H_inverse"]
+    n = r["h_inverse"] // S
+    copies = (S * (n + 1)) ** dim
+    feti = c * (copies - (S * n + 1) ** dim)
+    return c * copies, feti, feti + c * (S * (n + 1)) ** (dim - 1)
+
+
+def scalability(d, reference_h, checked):
     s = load(d)
     if not s.get("all_converged"):
         fail("not every solve converged")
-    rows = [r for r in s["table"] if r["problem"] == "poisson"]
-    seen = 0
-    for r in rows:
-        key = (r["H_inverse"], r["h_inverse"])
-        if key in PAPER:
-            got = (r["primal_dim"], r["dual_dim_feti"], r["dual_dim_tfeti"])
-            if got != PAPER[key]:
-                fail(f"H=1/{key[0]} h=1/{key[1]}: dimensions {got}, paper {PAPER[key]}")
-            seen += 1
-    if seen != len(PAPER):
-        fail(f"only {seen} of the paper's {len(PAPER)} rows present")
-    by_ratio = {}
-    for r in rows:
-        by_ratio.setdefault(r["h_inverse"] // r["H_inverse"], {})[r["H_inverse"]] = \
-            r["iterations"]["tfeti"]["dirichlet"]
-    for ratio, its in sorted(by_ratio.items()):
-        if 4 not in its:
-            continue
-        bound = GROWTH * its[4]
-        worst = max(its.values())
-        print(f"H/h={ratio}: TFETI+Dirichlet iterations {dict(sorted(its.items()))}, bound {bound}")
-        if worst > bound:
-            fail(f"H/h={ratio}: {worst} iterations exceed {bound} (1.5 x the count at H=1/4)")
-    print("OK: all dimensions equal the paper's; iterations bounded")
+    for r in s["table"]:
+        got = (r["primal_dim"], r["dual_dim_feti"], r["dual_dim_tfeti"])
+        want = expected_dimensions(r)
+        if got != want:
+            fail(f"{r['problem']} H=1/{r['H_inverse']} h=1/{r['h_inverse']}: dimensions {got}, "
+                 f"closed forms {want}")
+        if r["subdomains"] != r["H_inverse"] ** r.get("dimension", 2):
+            fail(f"{r['problem']} H=1/{r['H_inverse']}: {r['subdomains']} subdomains")
+    rows = [r for r in s["table"] if r["problem"] == "poisson" and r.get("dimension", 2) == 2]
+    if rows:
+        seen = 0
+        for r in rows:
+            key = (r["H_inverse"], r["h_inverse"])
+            if key in PAPER:
+                got = (r["primal_dim"], r["dual_dim_feti"], r["dual_dim_tfeti"])
+                if got != PAPER[key]:
+                    fail(f"H=1/{key[0]} h=1/{key[1]}: dimensions {got}, paper {PAPER[key]}")
+                seen += 1
+        if seen != len(PAPER):
+            fail(f"only {seen} of the paper's {len(PAPER)} rows present")
+    # Iterations at fixed H/h against the count at H = 1/reference_h.
+    for problem in sorted({r["problem"] for r in s["table"]}):
+        for form, prec in checked:
+            by_ratio = {}
+            for r in s["table"]:
+                if r["problem"] == problem:
+                    by_ratio.setdefault(r["h_inverse"] // r["H_inverse"], {})[r["H_inverse"]] = \
+                        r["iterations"][form][prec]
+            for ratio, its in sorted(by_ratio.items()):
+                if reference_h not in its:
+                    fail(f"{problem} H/h={ratio}: no row at H=1/{reference_h}")
+                bound = GROWTH * its[reference_h]
+                worst = max(its.values())
+                print(f"{problem} H/h={ratio}: {form.upper()}+{prec} iterations "
+                      f"{dict(sorted(its.items()))}, bound {bound}")
+                if worst > bound:
+                    fail(f"{problem} H/h={ratio}: {form} {prec} {worst} iterations exceed {bound} "
+                         f"({GROWTH} x the count at H=1/{reference_h})")
+    print("OK: all dimensions equal their closed forms" + (" and the paper's" if rows else "") +
+          "; iterations bounded")
 
 
 def single(d, max_error):
@@ -409,7 +445,10 @@ def option(args, name, default):
 if __name__ == "__main__":
     mode, args = sys.argv[1], sys.argv[2:]
     if mode == "scalability":
-        scalability(args[0])
+        checked = [tuple(k.split(":")) for k in
+                   (args[args.index("--check") + 1] if "--check" in args
+                    else "tfeti:dirichlet").split(",")]
+        scalability(args[0], int(option(args, "--reference-H", 4)), checked)
     elif mode == "single":
         single(args[0], option(args, "--max-error", 1e-6))
     elif mode == "same":

@@ -11,8 +11,8 @@ int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   contact::StructuredProblem problem;
-  problem.subdomainsX = problem.subdomainsY = 3;
-  problem.elementsX = problem.elementsY = 4;
+  problem.subdomains = {3, 3};
+  problem.elements = {4, 4};
   Teuchos::ParameterList params;
   params.sublist("PCPG").set("Relative tolerance", 1e-9);
   tfeti::FetiSolver solver(comm, 9, contact::buildLocalSubdomains(problem, *comm), params);

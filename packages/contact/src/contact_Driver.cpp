@@ -44,6 +44,8 @@ Array<T> arr(std::initializer_list<T> values) {
 const char* kStoppingRule =
     "relative norm of the projected gradient: ||P(F lambda - d)|| <= tol * ||P d||";
 
+// The dimension of a structured problem is that of Mesh/Domain: {x0, x1, y0, y1} is 2D,
+// {x0, x1, y0, y1, z0, z1} is 3D; every other per-axis list must then have that many values.
 StructuredProblem problemFrom(const ParameterList& p, const std::string& field) {
   StructuredProblem sp;
   sp.field = field;
@@ -51,21 +53,39 @@ StructuredProblem problemFrom(const ParameterList& p, const std::string& field) 
   const auto domain = mesh.get<Array<double>>("Domain");
   const auto subs = mesh.get<Array<int>>("Subdomains");
   const auto elems = mesh.get<Array<int>>("Elements per subdomain");
-  if (domain.size() != 4 || subs.size() != 2 || elems.size() != 2)
+  if (domain.size() != 4 && domain.size() != 6)
     throw std::invalid_argument(
-        "Mesh: \"Domain\" takes 4 values {x0, x1, y0, y1}, \"Subdomains\" and \"Elements per "
-        "subdomain\" take 2 values {x, y}");
-  sp.x0 = domain[0], sp.x1 = domain[1], sp.y0 = domain[2], sp.y1 = domain[3];
-  sp.subdomainsX = subs[0], sp.subdomainsY = subs[1];
-  sp.elementsX = elems[0], sp.elementsY = elems[1];
+        "Mesh: \"Domain\" takes 4 values {x0, x1, y0, y1} (2D) or 6 values {x0, x1, y0, y1, "
+        "z0, z1} (3D); got " +
+        std::to_string(domain.size()));
+  const int dim = static_cast<int>(domain.size()) / 2;
+  const std::string axes = dim == 2 ? "{x, y}" : "{x, y, z}";
+  const std::string why = " for a " + std::to_string(dim) + "D problem (\"Domain\" has " +
+                          std::to_string(domain.size()) + " values); got ";
+  if (static_cast<int>(subs.size()) != dim)
+    throw std::invalid_argument("Mesh: \"Subdomains\" takes " + std::to_string(dim) + " values " +
+                                axes + why + std::to_string(subs.size()));
+  if (static_cast<int>(elems.size()) != dim)
+    throw std::invalid_argument("Mesh: \"Elements per subdomain\" takes " + std::to_string(dim) +
+                                " values " + axes + why + std::to_string(elems.size()));
+  sp.lo.assign(dim, 0.0);
+  sp.hi.assign(dim, 0.0);
+  for (int d = 0; d < dim; ++d) sp.lo[d] = domain[2 * d], sp.hi[d] = domain[2 * d + 1];
+  sp.subdomains.assign(subs.begin(), subs.end());
+  sp.elements.assign(elems.begin(), elems.end());
   const auto& mat = p.sublist("Material");
   sp.law = plasticity::ElasticLaw(mat.get<double>("Young's modulus"),
                                   mat.get<double>("Poisson's ratio"));
   const auto& load = p.sublist("Load");
   sp.source = load.get<double>("Source");
   const auto bf = load.get<Array<double>>("Body force");
-  if (bf.size() != 2) throw std::invalid_argument("Load: \"Body force\" takes 2 values {bx, by}");
-  sp.bodyForce[0] = bf[0], sp.bodyForce[1] = bf[1];
+  // Poisson ignores the body force (whose default is 2D); elasticity needs one per axis.
+  if (field == "elasticity" && static_cast<int>(bf.size()) != dim)
+    throw std::invalid_argument("Load: \"Body force\" takes " + std::to_string(dim) + " values " +
+                                (dim == 2 ? "{bx, by}" : "{bx, by, bz}") + why +
+                                std::to_string(bf.size()));
+  sp.bodyForce.assign(dim, 0.0);
+  if (static_cast<int>(bf.size()) == dim) sp.bodyForce.assign(bf.begin(), bf.end());
   sp.mesh();  // validates the sizes
   return sp;
 }
@@ -77,8 +97,12 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   const StructuredProblem sp = problemFrom(params, field);
   const auto& out = params.sublist("Output");
   const int verbosity = out.get<int>("Verbosity");
+  if (sp.dim() == 3 && out.get<bool>("VTU"))
+    throw std::invalid_argument(
+        "Output: \"VTU\" is not available for 3D structured problems in this release; set it "
+        "to false");
 
-  tfeti::FetiSolver solver(comm, sp.subdomainsX * sp.subdomainsY, buildLocalSubdomains(sp, *comm),
+  tfeti::FetiSolver solver(comm, sp.numSubdomains(), buildLocalSubdomains(sp, *comm),
                            params.sublist("FETI"));
   const tfeti::DualResult result = solver.solve();
 
@@ -86,9 +110,9 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   s["study"] = "single";
   s["problem"] = field;
   s["ranks"] = comm->getSize();
-  s["subdomains"] = sp.subdomainsX * sp.subdomainsY;
-  s["elements"] =
-      static_cast<long long>(sp.subdomainsX) * sp.elementsX * sp.subdomainsY * sp.elementsY;
+  s["dimension"] = sp.dim();
+  s["subdomains"] = sp.numSubdomains();
+  s["elements"] = static_cast<long long>(sp.mesh().numGlobalElements());
   const auto& feti = params.sublist("FETI");
   addSolverSummary(s, solver, result, feti);
   s["stopping_rule"] = kStoppingRule;
@@ -124,7 +148,7 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   if (out.get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", vtuPiece(solver));
   writeSummary(*comm, dir, s);
   if (root && verbosity > 0)
-    std::cout << field << ": " << sp.subdomainsX * sp.subdomainsY << " subdomains, primal "
+    std::cout << field << " " << sp.dim() << "D: " << sp.numSubdomains() << " subdomains, primal "
               << solver.primalDimension() << ", dual " << solver.dualDimension() << ", "
               << result.iterations << " iterations ("
               << (result.converged ? "converged" : "NOT CONVERGED") << "), setup "
@@ -165,9 +189,11 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
       for (int hinv : Hinv) {
         ParameterList run = params;
         auto& mesh = run.sublist("Mesh");
-        mesh.set("Subdomains", arr<int>({hinv, hinv}));
-        mesh.set("Elements per subdomain", arr<int>({ratio, ratio}));
+        const int dim = static_cast<int>(mesh.get<Array<double>>("Domain").size()) / 2;
+        mesh.set("Subdomains", Array<int>(dim, hinv));
+        mesh.set("Elements per subdomain", Array<int>(dim, ratio));
         const StructuredProblem sp = problemFrom(run, problem);
+        const int numSubdomains = sp.numSubdomains();
         const auto local = buildLocalSubdomains(sp, *comm);
         Json row = Json::object();
         row["problem"] = problem;
@@ -175,7 +201,8 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
         row["h"] = 1.0 / (hinv * ratio);
         row["H_inverse"] = hinv;
         row["h_inverse"] = hinv * ratio;
-        row["subdomains"] = hinv * hinv;
+        row["dimension"] = sp.dim();
+        row["subdomains"] = numSubdomains;
         Json iterations = Json::object();
         std::ostringstream line;
         GO primal = 0, dual[2] = {0, 0};
@@ -186,7 +213,7 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
             ParameterList feti = run.sublist("FETI");
             feti.set("Formulation", form);
             feti.set("Preconditioner", prec);
-            tfeti::FetiSolver solver(comm, hinv * hinv, local, feti);
+            tfeti::FetiSolver solver(comm, numSubdomains, local, feti);
             const auto res = solver.solve();
             allConverged &= res.converged;
             its[prec] = res.converged ? Json(res.iterations) : Json();
@@ -293,16 +320,21 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
       "nonlinear_contact: the same with J2 plasticity and large deformations in load steps "
       "(Contact problem, Material, Nonlinear)",
       choice({"poisson", "elasticity", "two_membranes", "elastic_contact", "nonlinear_contact"}));
-  auto& mesh = pl->sublist("Mesh", false, "structured Q1 mesh of a rectangle, torn into a grid");
-  mesh.set("Domain", arr<double>({0.0, 1.0, 0.0, 1.0}), "{x0, x1, y0, y1}");
-  mesh.set("Subdomains", arr<int>({4, 4}), "subdomains in x and y (1/H)");
-  mesh.set("Elements per subdomain", arr<int>({16, 16}), "elements per subdomain in x and y (H/h)");
-  auto& mat = pl->sublist("Material", false, "isotropic linear elasticity, plane strain");
+  auto& mesh = pl->sublist("Mesh", false,
+                           "structured Q1 mesh of a rectangle (2D) or a box (3D, trilinear "
+                           "hexahedra), torn into a grid; Dirichlet face x = x0");
+  mesh.set("Domain", arr<double>({0.0, 1.0, 0.0, 1.0}),
+           "{x0, x1, y0, y1} (2D) or {x0, x1, y0, y1, z0, z1} (3D): decides the dimension");
+  mesh.set("Subdomains", arr<int>({4, 4}), "subdomains per axis (1/H), one value per axis");
+  mesh.set("Elements per subdomain", arr<int>({16, 16}),
+           "elements per subdomain per axis (H/h), one value per axis");
+  auto& mat = pl->sublist("Material", false, "isotropic linear elasticity (plane strain in 2D)");
   mat.set("Young's modulus", 1.0, "E");
   mat.set("Poisson's ratio", 0.3, "nu");
   auto& load = pl->sublist("Load");
   load.set("Source", 1.0, "right-hand side of -Δu = source (poisson)");
-  load.set("Body force", arr<double>({0.0, -1.0}), "{bx, by} per unit volume (elasticity)");
+  load.set("Body force", arr<double>({0.0, -1.0}),
+           "{bx, by} or {bx, by, bz} per unit volume (elasticity)");
   pl->sublist("FETI").setParameters(*tfeti::FetiSolver::validParameters());
   addElasticContactParameters(*pl);
   addNonlinearContactParameters(*pl);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "plasticity_Q1Assembly.hpp"
 #include "tfeti_LocalSolver.hpp"
@@ -11,16 +12,13 @@
 namespace contact {
 
 namespace {
-plasticity::Field fieldOf(const StructuredProblem& p) {
-  return p.field == "poisson" ? plasticity::Field::Scalar : plasticity::Field::Elasticity;
-}
-
-tfeti::SubdomainData assemble(const StructuredProblem& p, tfeti::SubdomainMesh mesh) {
+tfeti::SubdomainData assemble(const StructuredProblem& p, tfeti::SubdomainMesh mesh,
+                              std::vector<int> cells) {
   tfeti::SubdomainData sd;
-  plasticity::QuadMesh q{mesh.coords, mesh.quads};
-  const double* src = p.field == "poisson" ? &p.source : p.bodyForce;
-  sd.K = plasticity::assembleStiffness(q, fieldOf(p), p.law);
-  sd.f = plasticity::assembleBodyLoad(q, fieldOf(p), src);
+  const plasticity::Q1Mesh q{mesh.coords, std::move(cells), p.dim()};
+  const double* src = p.field == "poisson" ? &p.source : p.bodyForce.data();
+  sd.K = plasticity::assembleStiffness(q, p.q1Field(), p.law);
+  sd.f = plasticity::assembleBodyLoad(q, p.q1Field(), src);
   sd.dofsPerNode = p.dofsPerNode();
   sd.mesh = std::move(mesh);
   return sd;
@@ -31,14 +29,16 @@ std::vector<tfeti::SubdomainData> buildLocalSubdomains(const StructuredProblem& 
                                                        const tfeti::Comm& comm) {
   const auto mesh = problem.mesh();
   std::vector<tfeti::SubdomainData> local;
+  const std::vector<int> cells = mesh.subdomainCells();
   for (int s : tfeti::subdomainsOfRank(comm.getRank(), mesh.numSubdomains(), comm.getSize()))
-    local.push_back(assemble(problem, mesh.subdomain(s)));
+    local.push_back(assemble(problem, mesh.subdomain(s), cells));
   return local;
 }
 
 double relativeErrorAgainstDirectSolve(const StructuredProblem& problem,
                                        const tfeti::FetiSolver& solver) {
-  tfeti::SubdomainData whole = assemble(problem, problem.mesh().wholeMesh());
+  const tfeti::StructuredMesh mesh = problem.mesh();
+  tfeti::SubdomainData whole = assemble(problem, mesh.wholeMesh(), mesh.wholeCells());
   const int dpn = whole.dofsPerNode;
   // Dirichlet dofs eliminated: rows and columns become the identity, zero load.
   std::vector<char> fixed(whole.K.rows, 0);

@@ -1,12 +1,14 @@
 #pragma once
-// The linear model problems of the reference paper on a structured, torn rectangle: Poisson
-// (-Δu = source, u = 0 on x = x0, Neumann elsewhere) and plane-strain elasticity (body force,
-// clamped on x = x0). Builds this rank's subdomains for the FETI solver and, for verification,
-// solves the undecomposed problem directly.
+// The linear model problems of the reference paper on a structured, torn box (a rectangle in
+// 2D, a cuboid in 3D): Poisson (-Δu = source, u = 0 on the face x = x0, Neumann elsewhere) and
+// linear elasticity (body force, clamped on the face x = x0; plane strain in 2D). The dimension
+// is the number of corner coordinates. Builds this rank's subdomains for the FETI solver and,
+// for verification, solves the undecomposed problem directly.
 #include <string>
 #include <vector>
 
 #include "plasticity_ElasticLaw.hpp"
+#include "plasticity_Q1Assembly.hpp"
 #include "tfeti_FetiSolver.hpp"
 #include "tfeti_StructuredMesh.hpp"
 
@@ -14,18 +16,21 @@ namespace contact {
 
 struct StructuredProblem {
   std::string field = "poisson";  // "poisson" | "elasticity"
-  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
-  int subdomainsX = 4, subdomainsY = 4;
-  int elementsX = 16, elementsY = 16;  // per subdomain
+  // The box's corners and the grids, one entry per axis (2 or 3).
+  std::vector<double> lo = {0, 0}, hi = {1, 1};
+  std::vector<int> subdomains = {4, 4};
+  std::vector<int> elements = {16, 16};  // per subdomain
   plasticity::ElasticLaw law;
   double source = 1.0;
-  double bodyForce[2] = {0.0, -1.0};
+  std::vector<double> bodyForce = {0.0, -1.0};  // one entry per axis
 
-  int dofsPerNode() const { return field == "poisson" ? 1 : 2; }
-  tfeti::StructuredRectangle mesh() const {
-    return tfeti::StructuredRectangle(x0, x1, y0, y1, subdomainsX, subdomainsY, elementsX,
-                                      elementsY);
+  int dim() const { return static_cast<int>(lo.size()); }
+  plasticity::Field q1Field() const {
+    return field == "poisson" ? plasticity::Field::Scalar : plasticity::Field::Elasticity;
   }
+  int dofsPerNode() const { return plasticity::dofsPerNode(q1Field(), dim()); }
+  tfeti::StructuredMesh mesh() const { return tfeti::StructuredMesh(lo, hi, subdomains, elements); }
+  int numSubdomains() const { return mesh().numSubdomains(); }
 };
 
 // Meshes and assembles (Kokkos element kernels) the subdomains of this rank.

@@ -45,7 +45,7 @@ ContactProblemData buildTwoMembranes(const TwoMembranes& problem, const tfeti::C
     sd.mesh.id = s;
     // The membranes are separate bodies: their nodes never glue, even at x = 1.
     for (auto& g : sd.mesh.globalNode) g += which * m[0].numGlobalNodes();
-    plasticity::QuadMesh q{sd.mesh.coords, sd.mesh.quads};
+    plasticity::Q1Mesh q{sd.mesh.coords, sd.mesh.quads, 2};
     std::vector<double> source(sd.mesh.numElements());
     for (int e = 0; e < sd.mesh.numElements(); ++e) {
       double yc = 0.0;

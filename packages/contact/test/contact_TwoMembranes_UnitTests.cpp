@@ -51,7 +51,7 @@ Membrane assembleMembrane(int which, int NX, int NY) {
   rect.setDirichletAtX0(false);
   Membrane m;
   m.mesh = rect.wholeMesh();
-  plasticity::QuadMesh q{m.mesh.coords, m.mesh.quads};
+  plasticity::Q1Mesh q{m.mesh.coords, m.mesh.quads, 2};
   std::vector<double> source(m.mesh.numElements());
   for (int e = 0; e < m.mesh.numElements(); ++e) {
     double yc = 0.0;

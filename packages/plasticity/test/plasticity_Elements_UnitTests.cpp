@@ -345,9 +345,9 @@ TEUCHOS_UNIT_TEST(Elements, EdgeNotOfTheMeshThrowsNamingIt) {
 
 TEUCHOS_UNIT_TEST(Elements, Quad4AgreesWithQ1Assembly) {
   const ElementMesh m = latticeMesh(ElementType::Quad4, 4, randomVertices(0.3)).mesh;
-  plasticity::QuadMesh q;
+  plasticity::Q1Mesh q;
   q.coords = m.coords;
-  q.quads = m.connectivity;
+  q.cells = m.connectivity;
   const ElasticLaw law(210.0, 0.3);
   const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, law);
   const tfeti::CsrMatrix Kq = plasticity::assembleStiffness(q, plasticity::Field::Elasticity, law);

@@ -22,13 +22,13 @@ using namespace plasticity_test;  // NOLINT(build/namespaces)
 
 using plasticity::ElasticLaw;
 using plasticity::Field;
-using plasticity::QuadMesh;
+using plasticity::Q1Mesh;
 
 // A single element with the given corners (counter-clockwise).
-QuadMesh singleElement(const std::vector<double>& xy) {
-  QuadMesh m;
+Q1Mesh singleElement(const std::vector<double>& xy) {
+  Q1Mesh m;
   m.coords = xy;
-  m.quads = {0, 1, 2, 3};
+  m.cells = {0, 1, 2, 3};
   return m;
 }
 
@@ -49,8 +49,8 @@ double quadArea(const std::vector<double>& c) {
 // The unit square meshed by 3x3 elements whose 4 interior nodes are moved off the grid and whose
 // boundary nodes slide along the sides: every element is a general (non-parallelogram) quad but
 // the domain is still the unit square (area 1, centroid (0.5, 0.5)).
-QuadMesh distortedPatch() {
-  QuadMesh m;
+Q1Mesh distortedPatch() {
+  Q1Mesh m;
   const double dx[4][4] = {{0, 0.05, -0.04, 0},
                            {0, 0.07, -0.06, 0},
                            {0, 0.05, -0.08, 0},
@@ -65,7 +65,7 @@ QuadMesh distortedPatch() {
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) {
       const int n = 4 * j + i;
-      m.quads.insert(m.quads.end(), {n, n + 1, n + 5, n + 4});
+      m.cells.insert(m.cells.end(), {n, n + 1, n + 5, n + 4});
     }
   return m;
 }
@@ -76,14 +76,14 @@ bool isInteriorPatchNode(int n) {
 }
 
 // Nodal values of the linear scalar field a + b x + c y.
-std::vector<double> linearScalar(const QuadMesh& m, double a, double b, double c) {
+std::vector<double> linearScalar(const Q1Mesh& m, double a, double b, double c) {
   std::vector<double> u(m.numNodes());
   for (int n = 0; n < m.numNodes(); ++n) u[n] = a + b * m.coords[2 * n] + c * m.coords[2 * n + 1];
   return u;
 }
 
 // Nodal values of the linear displacement u = t + A x (A row-major 2x2), interleaved.
-std::vector<double> linearDisplacement(const QuadMesh& m, const double t[2], const double A[4]) {
+std::vector<double> linearDisplacement(const Q1Mesh& m, const double t[2], const double A[4]) {
   std::vector<double> u(2 * m.numNodes());
   for (int n = 0; n < m.numNodes(); ++n) {
     const double x = m.coords[2 * n], y = m.coords[2 * n + 1];
@@ -104,7 +104,7 @@ double strainEnergy(const ElasticLaw& law, const double A[4], const double B[4])
   return s;
 }
 
-std::string thrownMessage(const QuadMesh& m, Field field) {
+std::string thrownMessage(const Q1Mesh& m, Field field) {
   try {
     plasticity::assembleStiffness(m, field, ElasticLaw(1.0, 0.3));
   } catch (const std::runtime_error& e) {
@@ -119,7 +119,7 @@ std::string thrownMessage(const QuadMesh& m, Field field) {
 
 TEUCHOS_UNIT_TEST(Q1Laplacian, UnitSquareElementMatchesClosedForm) {
   // K = 1/6 [4 -1 -2 -1; -1 4 -1 -2; -2 -1 4 -1; -1 -2 -1 4] on the unit square.
-  const QuadMesh m = singleElement({0, 0, 1, 0, 1, 1, 0, 1});
+  const Q1Mesh m = singleElement({0, 0, 1, 0, 1, 1, 0, 1});
   const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, Field::Scalar, ElasticLaw());
   TEST_EQUALITY(K.rows, 4);
   TEST_EQUALITY(K.cols, 4);
@@ -136,7 +136,7 @@ TEUCHOS_UNIT_TEST(Q1Laplacian, UnitSquareElementMatchesClosedForm) {
 }
 
 TEUCHOS_UNIT_TEST(Q1Laplacian, DistortedElementSymmetricWithConstantKernelOfRankThree) {
-  const QuadMesh m = singleElement(kDistorted);
+  const Q1Mesh m = singleElement(kDistorted);
   const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, Field::Scalar, ElasticLaw());
   TEST_EQUALITY(K.rows, 4);
   TEST_COMPARE(asymmetry(K), <=, 1e-14);
@@ -151,7 +151,7 @@ TEUCHOS_UNIT_TEST(Q1Laplacian, DistortedElementSymmetricWithConstantKernelOfRank
 TEUCHOS_UNIT_TEST(Q1Laplacian, EnergyOfLinearFieldsIsExact) {
   // v^T K u = area * grad u . grad v for linear u, v (bilinear interpolation and 2x2 Gauss are
   // exact for them), on a distorted element.
-  const QuadMesh m = singleElement(kDistorted);
+  const Q1Mesh m = singleElement(kDistorted);
   const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, Field::Scalar, ElasticLaw());
   const double area = quadArea(kDistorted);
   const std::vector<double> u = linearScalar(m, 0.3, 1.7, -0.4);
@@ -163,7 +163,7 @@ TEUCHOS_UNIT_TEST(Q1Laplacian, EnergyOfLinearFieldsIsExact) {
 // ------------------------------------------------------ element stiffness: plane-strain elasticity
 
 TEUCHOS_UNIT_TEST(Q1Elasticity, DistortedElementSymmetricWithRigidBodyKernelOfRankFive) {
-  const QuadMesh m = singleElement(kDistorted);
+  const Q1Mesh m = singleElement(kDistorted);
   const tfeti::CsrMatrix K =
       plasticity::assembleStiffness(m, Field::Elasticity, ElasticLaw(210.0, 0.3));
   TEST_EQUALITY(K.rows, 8);
@@ -178,7 +178,7 @@ TEUCHOS_UNIT_TEST(Q1Elasticity, DistortedElementSymmetricWithRigidBodyKernelOfRa
 }
 
 TEUCHOS_UNIT_TEST(Q1Elasticity, EnergyOfLinearDisplacementsIsExact) {
-  const QuadMesh m = singleElement(kDistorted);
+  const Q1Mesh m = singleElement(kDistorted);
   const ElasticLaw law(3.0, 0.25);
   const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, Field::Elasticity, law);
   const double area = quadArea(kDistorted);
@@ -188,7 +188,7 @@ TEUCHOS_UNIT_TEST(Q1Elasticity, EnergyOfLinearDisplacementsIsExact) {
   TEST_FLOATING_EQUALITY(dot(v, multiply(K, u)), area * strainEnergy(law, Av, Au), 1e-13);
   TEST_FLOATING_EQUALITY(dot(u, multiply(K, u)), area * strainEnergy(law, Au, Au), 1e-13);
   // Uniaxial stretch of the unit square in plane strain: energy (lambda + 2 mu) * e^2.
-  const QuadMesh sq = singleElement({0, 0, 1, 0, 1, 1, 0, 1});
+  const Q1Mesh sq = singleElement({0, 0, 1, 0, 1, 1, 0, 1});
   const tfeti::CsrMatrix Ks = plasticity::assembleStiffness(sq, Field::Elasticity, law);
   const double t0[2] = {0, 0}, stretch[4] = {1e-2, 0, 0, 0};
   const std::vector<double> s = linearDisplacement(sq, t0, stretch);
@@ -198,7 +198,7 @@ TEUCHOS_UNIT_TEST(Q1Elasticity, EnergyOfLinearDisplacementsIsExact) {
 // ------------------------------------------------------------------------------- patch tests
 
 TEUCHOS_UNIT_TEST(Q1Laplacian, PatchTestOnDistortedMesh) {
-  const QuadMesh m = distortedPatch();
+  const Q1Mesh m = distortedPatch();
   const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, Field::Scalar, ElasticLaw());
   TEST_EQUALITY(K.rows, 16);
   TEST_COMPARE(asymmetry(K), <=, 1e-14);
@@ -227,7 +227,7 @@ TEUCHOS_UNIT_TEST(Q1Laplacian, PatchTestOnDistortedMesh) {
 }
 
 TEUCHOS_UNIT_TEST(Q1Elasticity, PatchTestOnDistortedMesh) {
-  const QuadMesh m = distortedPatch();
+  const Q1Mesh m = distortedPatch();
   const ElasticLaw law(1.0, 0.3);
   const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, Field::Elasticity, law);
   TEST_EQUALITY(K.rows, 32);
@@ -254,7 +254,7 @@ TEUCHOS_UNIT_TEST(Q1Elasticity, PatchTestOnDistortedMesh) {
 // -------------------------------------------------------------------------------- body load
 
 TEUCHOS_UNIT_TEST(Q1BodyLoad, ScalarTotalEqualsAreaTimesSource) {
-  const QuadMesh m = distortedPatch();
+  const Q1Mesh m = distortedPatch();
   const double s = 3.5;
   const std::vector<double> f = plasticity::assembleBodyLoad(m, Field::Scalar, &s);
   TEST_EQUALITY(static_cast<int>(f.size()), 16);
@@ -270,13 +270,13 @@ TEUCHOS_UNIT_TEST(Q1BodyLoad, ScalarTotalEqualsAreaTimesSource) {
   TEST_FLOATING_EQUALITY(momentX, s * 0.5, 1e-14);
   TEST_FLOATING_EQUALITY(momentY, s * 0.5, 1e-14);
   // One distorted element on its own.
-  const QuadMesh e = singleElement(kDistorted);
+  const Q1Mesh e = singleElement(kDistorted);
   const std::vector<double> fe = plasticity::assembleBodyLoad(e, Field::Scalar, &s);
   TEST_FLOATING_EQUALITY(fe[0] + fe[1] + fe[2] + fe[3], s * quadArea(kDistorted), 1e-14);
 }
 
 TEUCHOS_UNIT_TEST(Q1BodyLoad, ElasticityTotalEqualsAreaTimesBodyForce) {
-  const QuadMesh m = distortedPatch();
+  const Q1Mesh m = distortedPatch();
   const double b[2] = {0.7, -1.3};
   const std::vector<double> f = plasticity::assembleBodyLoad(m, Field::Elasticity, b);
   TEST_EQUALITY(static_cast<int>(f.size()), 32);
@@ -295,10 +295,10 @@ TEUCHOS_UNIT_TEST(Q1BodyLoad, ElasticityTotalEqualsAreaTimesBodyForce) {
 
 TEUCHOS_UNIT_TEST(Q1Assembly, InvertedElementThrowsNamingIt) {
   // Three unit squares in a row; element 2 has clockwise node order.
-  QuadMesh m;
+  Q1Mesh m;
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 4; ++i) m.coords.insert(m.coords.end(), {double(i), double(j)});
-  m.quads = {0, 1, 5, 4, 1, 2, 6, 5, 2, 6, 7, 3};
+  m.cells = {0, 1, 5, 4, 1, 2, 6, 5, 2, 6, 7, 3};
   for (Field field : {Field::Scalar, Field::Elasticity}) {
     const std::string msg = thrownMessage(m, field);
     TEST_INEQUALITY(msg, std::string(""));
@@ -306,15 +306,15 @@ TEUCHOS_UNIT_TEST(Q1Assembly, InvertedElementThrowsNamingIt) {
     TEST_INEQUALITY(msg.find("inverted"), std::string::npos);
   }
   // The same mesh with the orientation repaired assembles.
-  m.quads = {0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6};
+  m.cells = {0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6};
   TEST_NOTHROW(plasticity::assembleStiffness(m, Field::Elasticity, ElasticLaw()));
 }
 
 TEUCHOS_UNIT_TEST(Q1Assembly, DegenerateElementThrowsNamingIt) {
   // Element 1 has all four nodes on the line y = 0 (zero area).
-  QuadMesh m;
+  Q1Mesh m;
   m.coords = {0, 0, 1, 0, 1, 1, 0, 1, 2, 0, 3, 0, 1.5, 0};
-  m.quads = {0, 1, 2, 3, 1, 4, 5, 6};
+  m.cells = {0, 1, 2, 3, 1, 4, 5, 6};
   for (Field field : {Field::Scalar, Field::Elasticity}) {
     const std::string msg = thrownMessage(m, field);
     TEST_INEQUALITY(msg, std::string(""));
@@ -323,7 +323,7 @@ TEUCHOS_UNIT_TEST(Q1Assembly, DegenerateElementThrowsNamingIt) {
   }
   // Two coincident nodes collapse the element to zero area too.
   m.coords = {0, 0, 1, 0, 1, 1, 0, 1, 2, 0};
-  m.quads = {0, 1, 2, 3, 1, 4, 4, 1};
+  m.cells = {0, 1, 2, 3, 1, 4, 4, 1};
   TEST_INEQUALITY(thrownMessage(m, Field::Scalar).find("element 1"), std::string::npos);
 }
 
@@ -331,7 +331,7 @@ TEUCHOS_UNIT_TEST(Q1Assembly, NonConvexElementThrowsNamingIt) {
   // A dart: node 2 pushed inside the triangle of the other three. det J is linear in (xi, eta)
   // with corner values 1, 0.45, -0.1, 0.45: the map folds over near node 2 (positive at all
   // four Gauss points, negative at the corner), so the element is invalid.
-  const QuadMesh m = singleElement({0, 0, 2, 0, 0.9, 0.9, 0, 2});
+  const Q1Mesh m = singleElement({0, 0, 2, 0, 0.9, 0.9, 0, 2});
   for (Field field : {Field::Scalar, Field::Elasticity}) {
     const std::string msg = thrownMessage(m, field);
     TEST_INEQUALITY(msg.find("element 0"), std::string::npos);

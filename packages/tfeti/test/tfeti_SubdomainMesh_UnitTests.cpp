@@ -4,6 +4,7 @@
 #include <Teuchos_UnitTestHarness.hpp>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -126,4 +127,74 @@ TEUCHOS_UNIT_TEST(SubdomainMesh, BoundaryNodesOfAnLShape) {
   const std::vector<int> qb = q.boundaryNodes();
   TEST_EQUALITY(static_cast<int>(qb.size()), 12);
   for (int n : {5, 6, 9, 10}) TEST_ASSERT(std::find(qb.begin(), qb.end(), n) == qb.end());
+}
+
+TEUCHOS_UNIT_TEST(StructuredMesh, BoxSubdomainsTileTheWholeMesh) {
+  // (0,2) x (0,1) x (0,3), 2 x 3 x 2 subdomains of 2 x 1 x 3 elements: 4 x 3 x 6 elements.
+  const tfeti::StructuredMesh box({0, 0, 0}, {2, 1, 3}, {2, 3, 2}, {2, 1, 3});
+  TEST_EQUALITY(box.dim(), 3);
+  TEST_EQUALITY(box.numSubdomains(), 12);
+  TEST_EQUALITY(box.numGlobalNodes(), tfeti::GO(5 * 4 * 7));
+  TEST_EQUALITY(box.numGlobalElements(), tfeti::GO(4 * 3 * 6));
+  const tfeti::SubdomainMesh whole = box.wholeMesh();
+  TEST_EQUALITY(static_cast<tfeti::GO>(whole.numNodes()), box.numGlobalNodes());
+  TEST_EQUALITY(static_cast<int>(whole.dirichletNodes.size()), 4 * 7);  // the face x = 0
+  TEST_EQUALITY(static_cast<int>(box.wholeCells().size()), 8 * 72);
+  const std::vector<int> cells = box.subdomainCells();
+  TEST_EQUALITY(static_cast<int>(cells.size()), 8 * 6);
+
+  std::map<tfeti::GO, int> copies;
+  int badCoord = 0, badVolume = 0, badCopy = 0;
+  for (int s = 0; s < box.numSubdomains(); ++s) {
+    const tfeti::SubdomainMesh m = box.subdomain(s);
+    TEST_EQUALITY(m.id, s);
+    TEST_EQUALITY(m.numNodes(), 3 * 2 * 4);
+    // Every node of a block of 2 x 1 x 3 elements is on its faces.
+    TEST_EQUALITY(static_cast<int>(m.interfaceCandidates.size()), 3 * 2 * 4);
+    for (int n = 0; n < m.numNodes(); ++n) {
+      const tfeti::GO g = m.globalNode[n];
+      copies[g]++;
+      for (int d = 0; d < 3; ++d)
+        if (m.coords[3 * n + d] != whole.coords[3 * g + d]) ++badCoord;
+      // The lowest-id copy found by copyOfNode is this one or one of a lower subdomain.
+      const std::array<int, 3> gi = {int(g % 5), int((g / 5) % 4), int(g / 20)};
+      const auto [cs, cn] = box.copyOfNode(gi);
+      if (cs > s || box.subdomain(cs).globalNode[cn] != g) ++badCopy;
+    }
+    // Hexahedra in VTK order have a positive volume: (x1-x0) x (x3-x0) . (x4-x0) > 0.
+    for (std::size_t e = 0; e < cells.size(); e += 8) {
+      double a[3][3];
+      const int corner[3] = {1, 3, 4};
+      for (int k = 0; k < 3; ++k)
+        for (int d = 0; d < 3; ++d)
+          a[k][d] = m.coords[3 * cells[e + corner[k]] + d] - m.coords[3 * cells[e] + d];
+      const double vol = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) * a[2][0] +
+                         (a[0][2] * a[1][0] - a[0][0] * a[1][2]) * a[2][1] +
+                         (a[0][0] * a[1][1] - a[0][1] * a[1][0]) * a[2][2];
+      if (!(vol > 0.0)) ++badVolume;
+    }
+  }
+  TEST_EQUALITY(badCoord, 0);
+  TEST_EQUALITY(badVolume, 0);
+  TEST_EQUALITY(badCopy, 0);
+  TEST_EQUALITY(static_cast<tfeti::GO>(copies.size()), box.numGlobalNodes());
+  // Copies per node: the product over the axes of 2 on an interior subdomain boundary, else 1.
+  // Interior boundaries: x = 2 (of 0..4), y = 1, 2 (of 0..3), z = 3 (of 0..6).
+  int bad = 0;
+  for (const auto& [g, m] : copies) {
+    const int i = int(g % 5), j = int((g / 5) % 4), k = int(g / 20);
+    const int expected = (i == 2 ? 2 : 1) * (j == 1 || j == 2 ? 2 : 1) * (k == 3 ? 2 : 1);
+    if (m != expected) ++bad;
+  }
+  TEST_EQUALITY(bad, 0);
+}
+
+TEUCHOS_UNIT_TEST(StructuredMesh, InconsistentListsThrow) {
+  TEST_THROW(tfeti::StructuredMesh({0, 0, 0}, {1, 1}, {2, 2, 2}, {2, 2, 2}), std::invalid_argument);
+  TEST_THROW(tfeti::StructuredMesh({0, 0, 0}, {1, 1, 1}, {2, 2}, {2, 2, 2}), std::invalid_argument);
+  TEST_THROW(tfeti::StructuredMesh({0}, {1}, {2}, {2}), std::invalid_argument);
+  TEST_THROW(tfeti::StructuredMesh({0, 0, 0}, {1, 1, 0}, {2, 2, 2}, {2, 2, 2}),
+             std::invalid_argument);
+  TEST_THROW(tfeti::StructuredMesh({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {2, 0, 2}),
+             std::invalid_argument);
 }

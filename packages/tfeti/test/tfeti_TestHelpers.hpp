@@ -41,10 +41,10 @@ inline Physics elasticity() {
   return p;
 }
 
-inline plasticity::QuadMesh quadMesh(const tfeti::SubdomainMesh& m) {
-  plasticity::QuadMesh q;
+inline plasticity::Q1Mesh quadMesh(const tfeti::SubdomainMesh& m) {
+  plasticity::Q1Mesh q;
   q.coords = m.coords;
-  q.quads = m.quads;
+  q.cells = m.quads;
   return q;
 }
 
