@@ -263,14 +263,17 @@ void checkStructured(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList&
       for (int ratio : sc.get<Array<int>>("H over h"))
         for (int hinv : sc.get<Array<int>>("Subdomains per side")) {
           ParameterList run = params;
-          run.sublist("Mesh").set("Subdomains", arr<int>({hinv, hinv}));
-          run.sublist("Mesh").set("Elements per subdomain", arr<int>({ratio, ratio}));
-          problemFrom(run, problem);
+          const int dim =
+              static_cast<int>(run.sublist("Mesh").get<Array<double>>("Domain").size()) / 2;
+          run.sublist("Mesh").set("Subdomains", Array<int>(dim, hinv));
+          run.sublist("Mesh").set("Elements per subdomain", Array<int>(dim, ratio));
+          const StructuredProblem row = problemFrom(run, problem);
           std::ostringstream s;
           s << "table row " << problem << " H = " << fraction(hinv)
-            << ", h = " << fraction(hinv * ratio) << ": " << hinv * hinv << " subdomains";
+            << ", h = " << fraction(hinv * ratio) << ": " << row.numSubdomains() << " subdomains";
           lines.push_back(s.str());
-          const long long size = static_cast<long long>(hinv) * hinv * ratio * ratio;
+          long long size = 1;
+          for (int c = 0; c < dim; ++c) size *= static_cast<long long>(hinv) * ratio;
           if (size > most) most = size, largest = run, field = problem;
         }
     lines.push_back("the largest row:");
@@ -278,9 +281,18 @@ void checkStructured(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList&
   const StructuredProblem sp = problemFrom(largest, field);
   tfeti::FetiSolver::dualSolverFor(params.sublist("FETI"), 0);
   std::ostringstream s;
-  s << "problem: " << field << " on [" << sp.x0 << ", " << sp.x1 << "] x [" << sp.y0 << ", "
-    << sp.y1 << "], " << sp.subdomainsX << " x " << sp.subdomainsY << " subdomains of "
-    << sp.elementsX << " x " << sp.elementsY << " Q1 elements; "
+  auto axes = [&](auto value) {
+    std::ostringstream a;
+    for (int c = 0; c < sp.dim(); ++c) a << (c ? " x " : "") << value(c);
+    return a.str();
+  };
+  s << "problem: " << field << " " << sp.dim() << "D on " << axes([&](int c) {
+    std::ostringstream interval;
+    interval << "[" << sp.lo[c] << ", " << sp.hi[c] << "]";
+    return interval.str();
+  }) << ", "
+    << axes([&](int c) { return sp.subdomains[c]; }) << " subdomains of "
+    << axes([&](int c) { return sp.elements[c]; }) << " Q1 elements; "
     << largest.sublist("FETI").get<std::string>("Formulation") << ", preconditioner "
     << largest.sublist("FETI").get<std::string>("Preconditioner");
   lines.push_back(s.str());
