@@ -87,7 +87,8 @@ class Subdomain {
                      const std::vector<std::vector<int>>& pieces,
                      const std::vector<int>& dirichletDofs);
   void chooseFixingDofs();
-  void checkKernel(const KernelOptions& options);
+  void checkKernelResidual(double tolerance);
+  void checkNoExtraKernel();
   std::string name() const;
 
   int id_;
