@@ -309,3 +309,41 @@ TEUCHOS_UNIT_TEST(Kernel, InconsistentSizesAreErrors) {
 }
 
 }  // namespace
+
+namespace {
+
+// The extra-kernel check must not reject real subdomains: on the largest subdomains the tests
+// use (and larger) the smallest eigenvalue of the regularized K stays orders of magnitude above
+// the threshold 1e-11 (measured: see the output), while a missed kernel vector gives ~1e-17.
+TEUCHOS_UNIT_TEST(Kernel, LargeSubdomainsPassTheExtraKernelCheck) {
+  for (int e : {4, 8, 12})
+    for (int dpn : {1, 3}) {
+      const tfeti::SubdomainMesh m = tfeti_test::Box3d(1, 1, 1, e, e, e, false).subdomain(0);
+      tfeti_test::Material3d mat;
+      mat.dofsPerNode = dpn;
+      tfeti::CsrMatrix K;
+      std::vector<double> f;
+      tfeti_test::assemble3d(m.coords, m.elements, mat, std::vector<double>(dpn, 1.0), K, f);
+      tfeti::Subdomain sd(0, dpn, m.coords, options3d(m.elements), K, f, {}, Formulation::TFETI,
+                          "cholmod");
+      out << e << "^3 Hex8, " << (dpn == 1 ? "Laplacian" : "elasticity")
+          << ": lambda_min / max diag = " << sd.regularizedConditionEstimate()
+          << ", ||K R|| / ||K|| = " << sd.kernelResidual() << "\n";
+      TEST_EQUALITY(sd.kernelDim(), dpn == 1 ? 1 : 6);
+      TEST_COMPARE(sd.regularizedConditionEstimate(), >, 1e-8);
+    }
+  for (int e : {16, 64}) {
+    const tfeti::StructuredRectangle rect(0, 1, 0, 1, 1, 1, e, e);
+    const tfeti::SubdomainMesh m = rect.subdomain(0);
+    for (const auto& ph : {tfeti_test::poisson(), tfeti_test::elasticity()}) {
+      const tfeti::SubdomainData d = tfeti_test::subdomainData(m, ph);
+      tfeti::Subdomain sd(0, ph.dofsPerNode(), m.coords, d.K, d.f, {}, Formulation::TFETI,
+                          "cholmod");
+      out << e << "^2 Q1, " << ph.name()
+          << ": lambda_min / max diag = " << sd.regularizedConditionEstimate() << "\n";
+      TEST_COMPARE(sd.regularizedConditionEstimate(), >, 1e-8);
+    }
+  }
+}
+
+}  // namespace
