@@ -95,6 +95,7 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
   }
   computeKernel(coords, kernel, pieces,
                 formulation_ == Formulation::FETI ? dirichletDofs : std::vector<int>{});
+  checkKernelResidual(kernel.residualTolerance);
   chooseFixingDofs();
   factor_ = createLocalSolver(localSolver);
   try {
@@ -106,7 +107,7 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
                              std::to_string(kernelDim_) + " modes found (" + e.what() + ")");
   }
   work_.resize(K_.rows);
-  checkKernel(kernel);
+  checkNoExtraKernel();
 }
 
 std::string Subdomain::name() const {
@@ -135,7 +136,7 @@ void Subdomain::computeKernel(const std::vector<double>& coords, const KernelOpt
   kernelDim_ = rigidBodyKernel(options.dim, dofsPerNode_, coords, pieces, dirichletDofs, R_);
 }
 
-void Subdomain::checkKernel(const KernelOptions& options) {
+void Subdomain::checkKernelResidual(double tolerance) {
   const int n = K_.rows, k = kernelDim_;
   // ||K R||: R must be in the kernel (a supplied kernel, elements that are not rigid, ...).
   const double normK = K_.frobeniusNorm();
@@ -146,10 +147,14 @@ void Subdomain::checkKernel(const KernelOptions& options) {
     for (double v : y) kr += v * v;
   }
   kernelResidual_ = normK > 0.0 ? std::sqrt(kr) / normK : 0.0;
-  if (options.residualTolerance > 0.0 && kernelResidual_ > options.residualTolerance)
+  if (tolerance > 0.0 && kernelResidual_ > tolerance)
     throw std::runtime_error(name() + ": the " + std::to_string(k) +
                              " kernel vectors are not in the kernel of K: ||K R|| / ||K|| = " +
-                             sci(kernelResidual_) + " > " + sci(options.residualTolerance));
+                             sci(kernelResidual_) + " > " + sci(tolerance));
+}
+
+void Subdomain::checkNoExtraKernel() {
+  const int n = K_.rows, k = kernelDim_;
   // A kernel vector that R misses makes K with the fixing dofs decoupled singular; the
   // factorization may still succeed on rounding-level pivots. Three power iterations on K+ from
   // a fixed pseudo-random start expose it: such a direction is amplified by ~1e15 per step,
