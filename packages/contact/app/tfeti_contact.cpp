@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "contact_Driver.hpp"
+#include "tfeti_StrictParameters.hpp"
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard tpetra(&argc, &argv);
@@ -48,6 +49,8 @@ int main(int argc, char** argv) {
   int code = 1;
   try {
     if (!std::filesystem::exists(input)) throw std::runtime_error(input + ": no such file");
+    // The raw text first: Teuchos converts numbers leniently ("1e-7e" -> 1e-7, "abc" -> 0).
+    tfeti::strict::checkXmlNumbers(input, *contact::validDriverParameters());
     Teuchos::RCP<Teuchos::ParameterList> params;
     try {
       params = Teuchos::getParametersFromXmlFile(input);

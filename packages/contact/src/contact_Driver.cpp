@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include "contact_DriverCommon.hpp"
@@ -20,6 +21,7 @@
 #include "contact_TwoMembranes.hpp"
 #include "contact_VtuWriter.hpp"
 #include "tfeti_FetiSolver.hpp"
+#include "tfeti_StrictParameters.hpp"
 
 namespace contact {
 
@@ -237,15 +239,19 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
       "(Contact problem, Material, Nonlinear)",
       choice({"poisson", "elasticity", "two_membranes", "elastic_contact", "nonlinear_contact"}));
   auto& mesh = pl->sublist("Mesh", false, "structured Q1 mesh of a rectangle, torn into a grid");
-  mesh.set("Domain", arr<double>({0.0, 1.0, 0.0, 1.0}), "{x0, x1, y0, y1}");
-  mesh.set("Subdomains", arr<int>({4, 4}), "subdomains in x and y (1/H)");
-  mesh.set("Elements per subdomain", arr<int>({16, 16}), "elements per subdomain in x and y (H/h)");
+  mesh.set("Domain", arr<double>({0.0, 1.0, 0.0, 1.0}), "{x0, x1, y0, y1}",
+           tfeti::strict::doubles(4));
+  mesh.set("Subdomains", arr<int>({4, 4}), "subdomains in x and y (1/H)",
+           tfeti::strict::positiveInts(2));
+  mesh.set("Elements per subdomain", arr<int>({16, 16}), "elements per subdomain in x and y (H/h)",
+           tfeti::strict::positiveInts(2));
   auto& mat = pl->sublist("Material", false, "isotropic linear elasticity, plane strain");
-  mat.set("Young's modulus", 1.0, "E");
-  mat.set("Poisson's ratio", 0.3, "nu");
+  mat.set("Young's modulus", 1.0, "E", tfeti::strict::positive());
+  mat.set("Poisson's ratio", 0.3, "nu", tfeti::strict::between(-1.0, 0.5, true, true));
   auto& load = pl->sublist("Load");
   load.set("Source", 1.0, "right-hand side of -Δu = source (poisson)");
-  load.set("Body force", arr<double>({0.0, -1.0}), "{bx, by} per unit volume (elasticity)");
+  load.set("Body force", arr<double>({0.0, -1.0}), "{bx, by} per unit volume (elasticity)",
+           tfeti::strict::doubles(2));
   pl->sublist("FETI").setParameters(*tfeti::FetiSolver::validParameters());
   addElasticContactParameters(*pl);
   addNonlinearContactParameters(*pl);
@@ -254,17 +260,20 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
   out.set("Compare with direct solve", false,
           "solve the undecomposed problem directly on every rank and report the error "
           "(small problems only)");
-  out.set("Verbosity", 1, "0 silent, 1 summary lines");
+  out.set("Verbosity", 1, "0 silent, 1 summary lines", tfeti::strict::count(0));
   out.set("Time dual operator", false,
           "time 10 extra applications of F and report the bandwidth they achieve (benchmarks)");
   auto& sc = pl->sublist("Scalability", false, "Study = scalability");
+  const auto atLeastOne = tfeti::strict::positiveInts(0);
+  atLeastOne->lengthBetween(1, std::numeric_limits<int>::max());
   sc.set("Problems", arr<std::string>({"poisson"}),
          "poisson and/or elasticity, or two_membranes alone");
-  sc.set("Subdomains per side", arr<int>({2, 4, 8, 16}), "values of 1/H");
-  sc.set("H over h", arr<int>({2, 4, 8}), "elements per subdomain side");
+  sc.set("Subdomains per side", arr<int>({2, 4, 8, 16}), "values of 1/H", atLeastOne);
+  sc.set("H over h", arr<int>({2, 4, 8}), "elements per subdomain side", atLeastOne);
   sc.set("Preconditioners", arr<std::string>({"none", "lumped", "dirichlet"}), "columns");
   sc.set("Dual solvers", arr<std::string>({"SMALBE", "penalty"}),
          "two_membranes: the QP solvers compared (SMALBE, penalty)");
+  tfeti::strict::requireNumbers(*pl);  // every number finite, also those without a range
   return pl;
 }
 
