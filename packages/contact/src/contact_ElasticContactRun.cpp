@@ -79,6 +79,9 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     spec.bodyLoads.push_back({bb[k], {bv[2 * k], bv[2 * k + 1]}});
   spec.slave = cp.get<std::string>("Slave");
   spec.master = cp.get<std::string>("Master");
+  if (spec.slave == spec.master)
+    throw std::invalid_argument("Contact problem: \"Slave\" and \"Master\" both name \"" +
+                                spec.slave + "\"; a contact pair needs two different boundaries");
   spec.searchRadius = cp.get<double>("Search radius");
   spec.distribution = cp.get<std::string>("Subdomain distribution");
   return spec;
