@@ -123,7 +123,7 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
       std::cout << "max relative error against direct solve: " << err << "\n";
   }
   if (out.get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", vtuPiece(solver));
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   if (root && verbosity > 0)
     std::cout << field << ": " << sp.subdomainsX * sp.subdomainsY << " subdomains, primal "
               << solver.primalDimension() << ", dual " << solver.dualDimension() << ", "
@@ -218,7 +218,7 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
   s["local_solver"] = params.sublist("FETI").get<std::string>("Local solver");
   s["all_converged"] = allConverged;
   s["table"] = std::move(table);
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   return allConverged ? 0 : 2;
 }
 

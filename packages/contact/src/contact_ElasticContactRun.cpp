@@ -196,7 +196,7 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   writeContactCsv(*comm, dir + "/contact_pressure.csv", nodes);
   s["contact_csv"] = dir + "/contact_pressure.csv";
   if (params.sublist("Output").get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", piece);
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   if (root && verbosity > 0)
     std::cout << "elastic_contact: " << problem.numSubdomains() << " subdomains, primal "
               << solver.primalDimension() << ", dual " << solver.dualDimension() << " ("

@@ -583,7 +583,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   s["wall_time"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   s["peak_rss_mb"] = peakRssMb(*comm);
   writeTables();
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   if (failed) {
     if (root)
       std::cerr << "tfeti_contact: " << failure << "; results up to the last converged step ("

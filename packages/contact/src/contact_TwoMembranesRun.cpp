@@ -140,7 +140,7 @@ int runTwoMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& 
   writeContactCsv(*comm, solver, dir + "/contact.csv");
   s["contact_csv"] = dir + "/contact.csv";
   if (out.get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", membranePiece(solver));
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   if (root && verbosity > 0)
     std::cout << "two_membranes: " << tm.numSubdomains() << " subdomains, primal "
               << solver.primalDimension() << ", dual " << solver.dualDimension() << " ("
@@ -223,7 +223,7 @@ int runTwoMembranesScalability(const Teuchos::RCP<const tfeti::Comm>& comm, Para
   s["ranks"] = comm->getSize();
   s["all_converged"] = allConverged;
   s["table"] = std::move(table);
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   return allConverged ? 0 : 2;
 }
 
