@@ -16,13 +16,15 @@ cylinders_convergence: the two-cylinder problem against Hertz on 4 refinements, 
             quadratic elements
 cylinders:  the two-cylinder problem refined to about 100k, 1M and 4M unknowns
 
-Prints markdown tables (for docs/benchmarks.md) and writes every summary.json under --out.
+Prints markdown tables (for docs/benchmarks.md) and writes every summary.json under --out; a
+line per run (its case and the time so far) goes to stderr, so a long set shows its progress.
 """
 import argparse
 import json
 import os
 import subprocess
 import sys
+import time
 
 TEMPLATE = """<ParameterList name="tfeti_contact">
   <Parameter name="Problem" type="string" value="{problem}"/>
@@ -47,12 +49,26 @@ TEMPLATE = """<ParameterList name="tfeti_contact">
 """
 
 
+START = time.monotonic()
+
+
+def progress(msg):
+    """A line per run on stderr (the tables go to stdout): what runs and the time so far."""
+    print(f"[{time.monotonic() - START:8.1f} s] {msg}", file=sys.stderr, flush=True)
+
+
 def mpirun(args, ranks):
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     cmd = ["mpirun", "--oversubscribe", "--bind-to", "core", "-np", str(ranks)] + args
+    # The case: the output directory's name (it names the size), or the baseline's options.
+    what = " ".join(os.path.basename(a) if a.startswith("--output=") else a for a in args[1:]
+                    if not a.startswith("--input="))
+    progress(f"{os.path.basename(args[0])} {what} on {ranks} ranks")
+    t = time.monotonic()
     res = subprocess.run(cmd, env=env, capture_output=True, text=True)
     if res.returncode != 0:
         print("FAILED:", " ".join(cmd), res.stdout, res.stderr, file=sys.stderr)
+    progress(f"  {'done' if res.returncode == 0 else 'FAILED'} in {time.monotonic() - t:.1f} s")
     return res
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Plots of a nonlinear (elasto-plastic) contact run of tfeti_contact (Problem = nonlinear_contact):
 
-  /usr/bin/python3 examples/plot_nonlinear.py OUTPUT_DIR [--elastic ELASTIC_DIR] [--zoom Z]
+  python3 examples/plot_nonlinear.py OUTPUT_DIR [--elastic ELASTIC_DIR] [--zoom Z]
 
 writes into OUTPUT_DIR
   contact_pressure.png  the final contact pressure against x [mm] (extent_measure "half_width",
@@ -24,7 +24,10 @@ import math
 import os
 import statistics
 
-import matplotlib
+from plot_python import ensure_matplotlib
+
+ensure_matplotlib()
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

@@ -14,7 +14,10 @@ import json
 import math
 import os
 
-import matplotlib
+from plot_python import ensure_matplotlib
+
+ensure_matplotlib()
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

@@ -1,19 +1,23 @@
-// tfeti_contact --input=FILE.xml --output=DIR
+// tfeti_contact --input=FILE.xml --output=DIR [--check]
 //
 // Reads a Teuchos ParameterList (XML), validates it (an unknown or mistyped parameter is an error
 // naming it and listing the valid ones), runs the study and writes summary.json and VTU files
 // into DIR. Exit codes: 0 success, 1 bad input or failure, 2 a solve did not converge (output is
-// still written).
+// still written), 3 a nonlinear load step did not converge. --check is a dry run: the same
+// set-up and checks up to the first solve (meshing, partitioning, contact search), a report of
+// the problem and its estimated memory, nothing solved or written; exit code 0 or 1.
 #include <Teuchos_CommandLineProcessor.hpp>
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Tpetra_Core.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <stdexcept>
 
 #include "contact_Driver.hpp"
+#include "contact_DriverCommon.hpp"
 #include "tfeti_StrictParameters.hpp"
 
 int main(int argc, char** argv) {
@@ -22,13 +26,19 @@ int main(int argc, char** argv) {
   const bool root = comm->getRank() == 0;
 
   std::string input, output = "tfeti_output";
-  bool printParameters = false;
+  std::string echo;
+  bool printParameters = false, check = false;
   Teuchos::CommandLineProcessor clp(false, true);
   clp.setDocString("Total FETI solver for the reference paper's problems.");
   clp.setOption("input", &input, "ParameterList XML file");
   clp.setOption("output", &output, "output directory (created if missing)");
   clp.setOption("print-parameters", "no-print-parameters", &printParameters,
                 "print every valid parameter with its default and documentation, then exit");
+  clp.setOption("check", "no-check", &check,
+                "dry run: validate, mesh, partition and report the problem without solving");
+  clp.setOption("echo-parameters", &echo,
+                "write the validated parameters (defaults filled in) as JSON to this file; "
+                "summary.json holds them too");
   clp.recogniseAllOptions(true);
   clp.throwExceptions(false);
   const auto parse = clp.parse(argc, argv);
@@ -58,8 +68,14 @@ int main(int argc, char** argv) {
       throw std::runtime_error(input + ": not a valid ParameterList XML file: " + e.what());
     }
     contact::validateDriverParameters(*params, input);
+    if (!echo.empty() && root) {
+      std::ofstream file(echo);
+      file << contact::parametersJson(*params).dump();
+      if (!file) throw std::runtime_error("cannot write " + echo);
+    }
     try {
-      code = contact::runDriver(comm, *params, output);
+      code = check ? contact::checkDriver(comm, *params, std::cout)
+                   : contact::runDriver(comm, *params, output);
     } catch (const std::invalid_argument& e) {
       // Inconsistent parameters found while setting the problem up: name the input file.
       throw std::invalid_argument(input + ": " + e.what());

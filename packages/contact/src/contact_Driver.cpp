@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "contact_DriverCommon.hpp"
+#include "contact_DryRun.hpp"
 #include "contact_ElasticContactRun.hpp"
 #include "contact_Json.hpp"
 #include "contact_NonlinearContactRun.hpp"
@@ -56,6 +57,12 @@ StructuredProblem problemFrom(const ParameterList& p, const std::string& field) 
     throw std::invalid_argument(
         "Mesh: \"Domain\" takes 4 values {x0, x1, y0, y1}, \"Subdomains\" and \"Elements per "
         "subdomain\" take 2 values {x, y}");
+  if (!(domain[1] > domain[0]) || !(domain[3] > domain[2]))
+    throw std::invalid_argument("Mesh/Domain: {" + std::to_string(domain[0]) + ", " +
+                                std::to_string(domain[1]) + ", " + std::to_string(domain[2]) +
+                                ", " + std::to_string(domain[3]) +
+                                "} is not {x0, x1, y0, y1} with x1 > x0 and y1 > y0");
+  checkGridSize(mesh);
   sp.x0 = domain[0], sp.x1 = domain[1], sp.y0 = domain[2], sp.y1 = domain[3];
   sp.subdomainsX = subs[0], sp.subdomainsY = subs[1];
   sp.elementsX = elems[0], sp.elementsY = elems[1];
@@ -222,7 +229,63 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
   return allConverged ? 0 : 2;
 }
 
+// The dry run of the structured problems: one (Study = single) or the table's rows, the
+// subdomains of the single one or of the largest row built for the report.
+void checkStructured(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
+                     std::ostream& out) {
+  std::vector<std::string> lines;
+  const bool scalability = params.get<std::string>("Study") == "scalability";
+  ParameterList largest = params;
+  std::string field = params.get<std::string>("Problem");
+  if (scalability) {
+    const auto& sc = params.sublist("Scalability");
+    long long most = -1;
+    for (const auto& problem : sc.get<Array<std::string>>("Problems"))
+      for (int ratio : sc.get<Array<int>>("H over h"))
+        for (int hinv : sc.get<Array<int>>("Subdomains per side")) {
+          ParameterList run = params;
+          run.sublist("Mesh").set("Subdomains", arr<int>({hinv, hinv}));
+          run.sublist("Mesh").set("Elements per subdomain", arr<int>({ratio, ratio}));
+          problemFrom(run, problem);
+          std::ostringstream s;
+          s << "table row " << problem << " H = " << fraction(hinv)
+            << ", h = " << fraction(hinv * ratio) << ": " << hinv * hinv << " subdomains";
+          lines.push_back(s.str());
+          const long long size = static_cast<long long>(hinv) * hinv * ratio * ratio;
+          if (size > most) most = size, largest = run, field = problem;
+        }
+    lines.push_back("the largest row:");
+  }
+  const StructuredProblem sp = problemFrom(largest, field);
+  tfeti::FetiSolver::dualSolverFor(params.sublist("FETI"), 0);
+  std::ostringstream s;
+  s << "problem: " << field << " on [" << sp.x0 << ", " << sp.x1 << "] x [" << sp.y0 << ", "
+    << sp.y1 << "], " << sp.subdomainsX << " x " << sp.subdomainsY << " subdomains of "
+    << sp.elementsX << " x " << sp.elementsY << " Q1 elements; "
+    << largest.sublist("FETI").get<std::string>("Formulation") << ", preconditioner "
+    << largest.sublist("FETI").get<std::string>("Preconditioner");
+  lines.push_back(s.str());
+  printDryRunReport(*comm, lines, buildLocalSubdomains(sp, *comm), -1, out);
+}
+
 }  // namespace
+
+int checkDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
+                std::ostream& out) {
+  const std::string problem = params.get<std::string>("Problem");
+  const bool scalability = params.get<std::string>("Study") == "scalability";
+  if (scalability
+          ? params.sublist("Scalability").get<Array<std::string>>("Problems")[0] == "two_membranes"
+          : problem == "two_membranes")
+    checkTwoMembranes(comm, params, out);
+  else if (!scalability && (problem == "elastic_contact" || problem == "nonlinear_contact"))
+    checkContactProblem(comm, params, out);
+  else
+    checkStructured(comm, params, out);
+  if (comm->getRank() == 0)
+    out << "check passed: the input is complete and consistent (nothing was solved)\n";
+  return 0;
+}
 
 Teuchos::RCP<const ParameterList> validDriverParameters() {
   static Teuchos::RCP<ParameterList> pl;
@@ -260,7 +323,10 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
   out.set("Compare with direct solve", false,
           "solve the undecomposed problem directly on every rank and report the error "
           "(small problems only)");
-  out.set("Verbosity", 1, "0 silent, 1 summary lines", tfeti::strict::count(0));
+  out.set("Verbosity", 1,
+          "0 silent; 1 summary lines and a line per load step; 2 also a line per nonlinear "
+          "iteration and per SMALBE outer iteration",
+          tfeti::strict::count(0));
   out.set("Time dual operator", false,
           "time 10 extra applications of F and report the bandwidth they achieve (benchmarks)");
   auto& sc = pl->sublist("Scalability", false, "Study = scalability");
@@ -291,6 +357,12 @@ void validateDriverParameters(ParameterList& params, const std::string& source) 
       throw std::invalid_argument(
           "Scalability: \"Problems\": two_membranes is a study of its own, not combined with "
           "poisson or elasticity");
+    for (int hinv : sc.get<Array<int>>("Subdomains per side"))
+      for (int ratio : sc.get<Array<int>>("H over h"))
+        if (static_cast<long long>(hinv) * ratio > (1 << 15))
+          throw std::invalid_argument(
+              "Scalability: \"Subdomains per side\" " + std::to_string(hinv) + " x \"H over h\" " +
+              std::to_string(ratio) + " elements per side; at most " + std::to_string(1 << 15));
     for (const auto& p : sc.get<Array<std::string>>("Dual solvers"))
       if (p != "SMALBE" && p != "penalty")
         throw std::invalid_argument("Scalability: \"Dual solvers\" has \"" + p +
@@ -316,6 +388,12 @@ int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
               const std::string& outputDirectory) {
   if (comm->getRank() == 0) std::filesystem::create_directories(outputDirectory);
   comm->barrier();
+  // Output verbosity 2 shows the progress of every contact QP: a line per SMALBE outer
+  // iteration (unless the SMALBE sublist asks for its own verbosity).
+  auto& smalbe = params.sublist("FETI").sublist("SMALBE");
+  if (params.sublist("Output").get<int>("Verbosity") >= 2 &&
+      smalbe.getEntry("Verbosity").isDefault())
+    smalbe.set("Verbosity", 2);
   if (params.get<std::string>("Study") == "scalability") {
     if (params.sublist("Scalability").get<Array<std::string>>("Problems")[0] == "two_membranes")
       return runTwoMembranesScalability(comm, params, outputDirectory);

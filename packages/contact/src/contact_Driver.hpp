@@ -8,6 +8,7 @@
 //   Problem = two_membranes: the contact benchmark (contact_TwoMembranes.hpp)
 #include <Teuchos_ParameterList.hpp>
 
+#include <ostream>
 #include <string>
 
 #include "tfeti_Types.hpp"
@@ -25,5 +26,12 @@ void validateDriverParameters(Teuchos::ParameterList& params, const std::string&
 // (all output is still written).
 int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
               const std::string& outputDirectory);
+
+// The dry run (--check): the study's set-up (meshing, partitioning, distribution, contact
+// search) through the full run's own checks, without factorizing or solving; rank 0 reports
+// the bodies, boundaries, subdomains per rank, unknowns, contact rows and estimated memory to
+// `out`. Throws what the full run would throw before its first solve; returns 0.
+int checkDriver(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
+                std::ostream& out);
 
 }  // namespace contact

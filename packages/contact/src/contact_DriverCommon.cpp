@@ -36,6 +36,19 @@ Json arrayJson(const Teuchos::Array<T>& values) {
 
 }  // namespace
 
+void checkGridSize(const Teuchos::ParameterList& mesh) {
+  const auto subs = mesh.get<Teuchos::Array<int>>("Subdomains");
+  const auto elems = mesh.get<Teuchos::Array<int>>("Elements per subdomain");
+  // Node numbers are ints: (elements per side + 1)^2 must stay far below 2^31.
+  const long long limit = 1 << 15;
+  for (int d = 0; d < 2 && d < subs.size() && d < elems.size(); ++d)
+    if (static_cast<long long>(subs[d]) * elems[d] > limit)
+      throw std::invalid_argument(
+          "Mesh: \"Subdomains\" x \"Elements per subdomain\" = " + std::to_string(subs[d]) + " x " +
+          std::to_string(elems[d]) + " elements along " + (d == 0 ? "x" : "y") + "; at most " +
+          std::to_string(limit) + " per side");
+}
+
 Json parametersJson(const Teuchos::ParameterList& params) {
   Json j = Json::object();
   for (auto it = params.begin(); it != params.end(); ++it) {

@@ -10,6 +10,8 @@
 namespace contact {
 
 Json timingsJson(const tfeti::FetiTimings& t, int iterations);
+// Mesh/Subdomains times Mesh/Elements per subdomain within what the structured grids can number.
+void checkGridSize(const Teuchos::ParameterList& mesh);
 // The validated parameter list (defaults filled in) as JSON: sublists as objects, arrays as
 // arrays.
 Json parametersJson(const Teuchos::ParameterList& params);

@@ -10,12 +10,15 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <tuple>
 
 #include "contact_ContactOutput.hpp"
 #include "contact_DriverCommon.hpp"
+#include "contact_DryRun.hpp"
 #include "contact_ElasticContactProblem.hpp"
 #include "contact_ElasticContactRun.hpp"
+#include "contact_NonlinearContactRun.hpp"
 #include "plasticity_MaterialLaw.hpp"
 #include "tfeti_StrictParameters.hpp"
 
@@ -209,6 +212,69 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
     std::cerr << "tfeti_contact: " << result.method << " did not converge (" << result.qp.message
               << "); results written to " << dir << "\n";
   return result.converged ? 0 : 2;
+}
+
+void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
+                         std::ostream& out) {
+  // The full runs' set-up, in their order, up to the FETI solver.
+  const std::string kind = params.get<std::string>("Problem");
+  const bool nonlinear = kind == "nonlinear_contact";
+  if (nonlinear) checkNonlinearParameters(params);
+  const ElasticContactSpec spec = elasticContactSpec(params);
+  const ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
+  if (nonlinear) requireLoad(*comm, problem.local);
+  const auto rows = static_cast<long long>(problem.contact.rows.size());
+  const std::string solver = tfeti::FetiSolver::dualSolverFor(params.sublist("FETI"), rows);
+
+  std::vector<std::string> lines;
+  std::ostringstream s;
+  s << "problem: " << kind;
+  if (nonlinear) {
+    const auto& nl = params.sublist("Nonlinear");
+    const double yield = params.sublist("Material").get<double>("Yield stress");
+    s << " (" << nl.get<int>("Load steps") << " load steps, "
+      << (nl.get<bool>("Geometrically nonlinear") ? "total Lagrangian" : "small strain") << ", "
+      << (yield > 0.0 ? "J2 plastic" : "elastic") << ", stiffness "
+      << nl.get<std::string>("Stiffness") << ")";
+  }
+  s << "; dual solver " << solver;
+  lines.push_back(s.str());
+  s.str("");
+  s << "mesh: " << problem.mesh.source << ": " << problem.mesh.numNodes() << " nodes";
+  lines.push_back(s.str());
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    const GmshBody& gb = problem.mesh.body(spec.bodies[b].name);
+    s.str("");
+    s << "body \"" << gb.name << "\": " << gb.numElements() << " " << elementTypeName(gb.type)
+      << " elements, " << spec.bodies[b].subdomains << " METIS parts, "
+      << std::count(problem.bodyOfSubdomain.begin(), problem.bodyOfSubdomain.end(),
+                    static_cast<int>(b))
+      << " subdomains; E = " << spec.bodies[b].law.E << ", nu = " << spec.bodies[b].law.nu;
+    lines.push_back(s.str());
+  }
+  const auto boundary = [&](const std::string& role, const std::string& name) {
+    s.str("");
+    s << "boundary \"" << name << "\" (" << role << "): " << problem.mesh.boundary(name).numEdges()
+      << " edges";
+    lines.push_back(s.str());
+  };
+  for (const auto& name : spec.fixed) boundary("fixed", name);
+  for (const auto& [name, comp] : spec.symmetry)
+    boundary(comp == 0 ? "symmetry, u_x = 0" : "symmetry, u_y = 0", name);
+  for (const auto& [name, t] : spec.tractions) {
+    std::ostringstream role;
+    role << "traction {" << t[0] << ", " << t[1] << "}";
+    boundary(role.str(), name);
+  }
+  boundary("contact slave", spec.slave);
+  boundary("contact master", spec.master);
+  s.str("");
+  s << "contact pair: " << problem.slaveNodes.size() << " slave nodes of \"" << spec.slave
+    << "\" against the segments of \"" << spec.master << "\": " << rows
+    << " within the search radius " << problem.contactOptions.searchRadius << "; applied force {"
+    << problem.appliedForce[0] << ", " << problem.appliedForce[1] << "}";
+  lines.push_back(s.str());
+  printDryRunReport(*comm, lines, problem.local, rows, out);
 }
 
 }  // namespace contact

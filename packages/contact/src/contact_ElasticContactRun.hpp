@@ -2,6 +2,7 @@
 // Problem = elastic_contact of the tfeti_contact driver (see contact_ElasticContactProblem.hpp).
 #include <Teuchos_ParameterList.hpp>
 
+#include <ostream>
 #include <string>
 
 #include "contact_ElasticContactProblem.hpp"
@@ -17,5 +18,10 @@ ElasticContactSpec elasticContactSpec(const Teuchos::ParameterList& params);
 
 int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
                       const std::string& dir);
+
+// The dry run (--check, contact_DryRun.hpp) of Problem = elastic_contact and nonlinear_contact:
+// the runs' checks, meshing, partitioning and first contact search; rank 0 reports to `out`.
+void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm,
+                         Teuchos::ParameterList& params, std::ostream& out);
 
 }  // namespace contact

@@ -163,6 +163,21 @@ double plasticStrain(const plasticity::J2PlasticMaterial* law, const plasticity:
   return mx;
 }
 
+// step_NNNN: the files of a converged load step.
+std::string stepBaseName(int step) {
+  std::ostringstream base;
+  base << "step_" << std::setw(4) << std::setfill('0') << step;
+  return base.str();
+}
+// The ParaView collection of the converged steps' VTU files, the load factor as time (a
+// restarted run's history holds the steps of the run it continues).
+std::vector<PvdEntry> stepCollection(const NonlinearHistory& history) {
+  std::vector<PvdEntry> entries;
+  for (const auto& s : history.steps)
+    entries.push_back({s.loadFactor, stepBaseName(s.step) + ".pvtu"});
+  return entries;
+}
+
 struct StepOutcome {
   bool converged = false;
   std::string reason;  // why not
@@ -217,19 +232,40 @@ void addNonlinearContactParameters(ParameterList& pl) {
          "{dx, dy}: where the angle is zero (angle)", tfeti::strict::doubles(2));
 }
 
+void checkNonlinearParameters(const ParameterList& params) {
+  optionsFrom(params);
+  elasticContactSpec(params);
+  const auto& mat = params.sublist("Material");
+  if (mat.get<double>("Yield stress") < 0.0 || mat.get<double>("Hardening modulus") < 0.0)
+    throw std::invalid_argument(
+        "Material: \"Yield stress\" and \"Hardening modulus\" must be >= 0");
+}
+
+double requireLoad(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local) {
+  Field f;
+  for (const auto& s : local) f.push_back(s.f);
+  const double norm = globalNorm(comm, f);
+  if (!(norm > 0.0)) throw std::invalid_argument("Contact problem: no load is applied");
+  return norm;
+}
+
 int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
                         const std::string& dir) {
   const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&]() {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(1)
+      << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s";
+    return s.str();
+  };
   const bool root = comm->getRank() == 0;
   const int verbosity = params.sublist("Output").get<int>("Verbosity");
+  checkNonlinearParameters(params);
   const Options opt = optionsFrom(params);
   const ElasticContactSpec spec = elasticContactSpec(params);
   const auto& mat = params.sublist("Material");
   const double yield = mat.get<double>("Yield stress"),
                hardening = mat.get<double>("Hardening modulus");
-  if (yield < 0.0 || hardening < 0.0)
-    throw std::invalid_argument(
-        "Material: \"Yield stress\" and \"Hardening modulus\" must be >= 0");
 
   Model model;
   model.problem = buildElasticContactProblem(spec, *comm);
@@ -253,8 +289,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   const double loadDirection[2] = {
       appliedForce > 0.0 ? problem.appliedForce[0] / appliedForce : 0.0,
       appliedForce > 0.0 ? problem.appliedForce[1] / appliedForce : 0.0};
-  const double fNorm = globalNorm(*comm, model.externalLoad);
-  if (!(fNorm > 0.0)) throw std::invalid_argument("Contact problem: no load is applied");
+  const double fNorm = requireLoad(*comm, problem.local);
 
   const std::string restartDir = dir + "/restart";
   NonlinearHistory history;
@@ -352,7 +387,8 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
           std::cout << "  step " << step << " (t = " << t << ") iteration " << it
                     << ": ||res||/||f|| = " << rec.relativeResidual
                     << ", ||du||/||u|| = " << rec.relativeIncrement << ", "
-                    << rec.hessianMultiplications << " Hessian multiplications\n";
+                    << rec.hessianMultiplications << " Hessian multiplications [" << elapsed()
+                    << "]\n";
         if (rec.relativeIncrement < opt.eta1 && rec.relativeResidual < opt.eta2) {
           out.converged = true;
           return out;
@@ -444,7 +480,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
       model.revert();
       if (root && verbosity > 0)
         std::cout << "nonlinear_contact: step " << step << " at load factor " << t
-                  << " rejected: " << out.reason << "\n";
+                  << " rejected: " << out.reason << " [" << elapsed() << "]\n";
       if (cutbacks >= opt.maxCutbacks) {
         failed = true;
         std::ostringstream s;
@@ -483,10 +519,12 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
     // After a cut-back, grow the increment again towards the nominal one.
     history.stepSize = std::min(nominal, 2.0 * history.stepSize);
     cutbacks = 0;
-    std::ostringstream base;
-    base << "step_" << std::setw(4) << std::setfill('0') << step;
-    if (opt.vtuEveryStep) writeVtuFor(base.str(), model.u);
-    writeContactCsv(*comm, dir + "/contact_pressure_" + base.str() + ".csv", nodes);
+    const std::string base = stepBaseName(step);
+    if (opt.vtuEveryStep) {
+      writeVtuFor(base, model.u);
+      if (root) writePvd(dir + "/steps.pvd", stepCollection(history));
+    }
+    writeContactCsv(*comm, dir + "/contact_pressure_" + base + ".csv", nodes);
     writeTables();
     saveRestart();
     if (root && verbosity > 0)
@@ -494,7 +532,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
                 << rec.outerIterations << " iterations (" << rec.hessianMultiplications
                 << " Hessian multiplications); p_max " << rec.pMax << ", contact extent "
                 << rec.contactExtent << ", max von Mises " << rec.maxVonMises
-                << ", max plastic strain " << rec.maxPlasticStrain << "\n";
+                << ", max plastic strain " << rec.maxPlasticStrain << " [" << elapsed() << "]\n";
   }
 
   // The final state: the last converged step (outputs re-evaluated when this run converged no
@@ -594,7 +632,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   if (root && verbosity > 0)
     std::cout << "nonlinear_contact: " << (stopped ? "stopped after" : "finished") << " step "
               << history.step << " at load factor " << history.loadFactor << ", " << its
-              << " iterations, " << mults << " Hessian multiplications\n";
+              << " iterations, " << mults << " Hessian multiplications [" << elapsed() << "]\n";
   return 0;
 }
 

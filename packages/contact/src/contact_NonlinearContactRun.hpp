@@ -19,13 +19,20 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <string>
+#include <vector>
 
-#include "tfeti_Types.hpp"
+#include "tfeti_FetiSolver.hpp"
 
 namespace contact {
 
 // Adds "Nonlinear" and the plastic parameters of "Material" to the driver's valid parameters.
 void addNonlinearContactParameters(Teuchos::ParameterList& valid);
+
+// The checks of the "Nonlinear", "Material" and "Contact problem" parameters a run makes before
+// it meshes (throw std::invalid_argument as the run does).
+void checkNonlinearParameters(const Teuchos::ParameterList& params);
+// The norm of the external load of the subdomains (every rank); throws when no load is applied.
+double requireLoad(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local);
 
 // 0: converged at load factor 1 (or stopped as asked by "Stop after step"); 3: a load step did
 // not converge after the allowed cut-backs (everything up to the last converged step written).

@@ -7,6 +7,7 @@
 // two membranes' nodes at the same height:  u1 - u2 <= 0,  lambda >= 0.
 #include <Teuchos_ParameterList.hpp>
 
+#include <ostream>
 #include <vector>
 
 #include "tfeti_FetiSolver.hpp"
@@ -37,5 +38,8 @@ int runTwoMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::Parame
                     const std::string& dir);
 int runTwoMembranesScalability(const Teuchos::RCP<const tfeti::Comm>& comm,
                                Teuchos::ParameterList& params, const std::string& dir);
+// The dry run (--check) of both: the problem's checks and set-up; rank 0 reports to `out`.
+void checkTwoMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
+                       std::ostream& out);
 
 }  // namespace contact

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "contact_DriverCommon.hpp"
+#include "contact_DryRun.hpp"
 #include "contact_TwoMembranes.hpp"
 #include "tfeti_Gather.hpp"
 
@@ -33,6 +34,7 @@ TwoMembranes membranesFrom(const ParameterList& params) {
   if (subs.size() != 2 || elems.size() != 2)
     throw std::invalid_argument(
         "Mesh: \"Subdomains\" and \"Elements per subdomain\" take 2 values {x, y}");
+  checkGridSize(mesh);
   TwoMembranes tm;
   tm.subdomainsX = subs[0], tm.subdomainsY = subs[1];
   tm.elementsX = elems[0], tm.elementsY = elems[1];
@@ -225,6 +227,50 @@ int runTwoMembranesScalability(const Teuchos::RCP<const tfeti::Comm>& comm, Para
   s["table"] = std::move(table);
   writeSummary(*comm, dir, s, params);
   return allConverged ? 0 : 2;
+}
+
+void checkTwoMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
+                       std::ostream& out) {
+  const bool scalability = params.get<std::string>("Study") == "scalability";
+  std::vector<std::string> lines;
+  TwoMembranes largest;
+  if (scalability) {
+    const auto& sc = params.sublist("Scalability");
+    for (int ratio : sc.get<Array<int>>("H over h"))
+      for (int hinv : sc.get<Array<int>>("Subdomains per side")) {
+        TwoMembranes tm;
+        tm.subdomainsX = tm.subdomainsY = hinv;
+        tm.elementsX = tm.elementsY = ratio;
+        tm.validate();
+        std::ostringstream s;
+        s << "table row H = 1/" << hinv << ", h = 1/" << hinv * ratio << ": " << tm.numSubdomains()
+          << " subdomains";
+        lines.push_back(s.str());
+        if (tm.numSubdomains() * ratio * ratio >=
+            largest.numSubdomains() * largest.elementsX * largest.elementsY)
+          largest = tm;
+      }
+    lines.push_back("the largest row:");
+  } else {
+    largest = membranesFrom(params);
+  }
+  ContactProblemData data = buildTwoMembranes(largest, *comm);
+  long long mine = static_cast<long long>(data.inequalities.size()), rows = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine, &rows);
+  const auto methods =
+      scalability ? params.sublist("Scalability").get<Array<std::string>>("Dual solvers")
+                  : Array<std::string>(1, params.sublist("FETI").get<std::string>("Dual solver"));
+  for (const auto& m : methods) {
+    ParameterList feti = params.sublist("FETI");
+    feti.set("Dual solver", m);
+    tfeti::FetiSolver::dualSolverFor(feti, rows);
+  }
+  std::ostringstream s;
+  s << "problem: two_membranes, " << largest.subdomainsX << " x " << largest.subdomainsY
+    << " subdomains of " << largest.elementsX << " x " << largest.elementsY
+    << " elements per membrane; contact rows along x = 1: " << rows;
+  lines.push_back(s.str());
+  printDryRunReport(*comm, lines, data.local, rows, out);
 }
 
 }  // namespace contact

@@ -1,6 +1,8 @@
 #include "contact_VtuWriter.hpp"
 
+#include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <stdexcept>
 #include <string>
 
@@ -103,6 +105,23 @@ std::string writeVtu(const tfeti::Comm& comm, const std::string& directory,
   }
   comm.barrier();
   return index;
+}
+
+void writePvd(const std::string& path, const std::vector<PvdEntry>& datasets) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error("cannot write " + tmp);
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
+           "byte_order=\"LittleEndian\">\n  <Collection>\n"
+        << std::setprecision(17);
+    for (const auto& d : datasets)
+      out << "    <DataSet timestep=\"" << d.time << "\" group=\"\" part=\"0\" file=\"" << d.file
+          << "\"/>\n";
+    out << "  </Collection>\n</VTKFile>\n";
+    if (!out) throw std::runtime_error("error while writing " + tmp);
+  }
+  std::filesystem::rename(tmp, path);
 }
 
 }  // namespace contact

@@ -40,4 +40,14 @@ struct VtuPiece {
 std::string writeVtu(const tfeti::Comm& comm, const std::string& directory,
                      const std::string& basename, const VtuPiece& piece);
 
+// One dataset of a ParaView collection: its time and its file (relative to the collection).
+struct PvdEntry {
+  double time = 0.0;
+  std::string file;
+};
+// Writes the collection (.pvd) naming the datasets in the given order, so that ParaView plays
+// them as a time series. Written to a temporary file and renamed: a reader never sees half of
+// it. Throws naming the file when it cannot be written.
+void writePvd(const std::string& path, const std::vector<PvdEntry>& datasets);
+
 }  // namespace contact

@@ -267,14 +267,18 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
   u_.clear();
 }
 
-DualResult FetiSolver::solve() {
-  std::string method = params_.get<std::string>("Dual solver");
-  if (method == "auto") method = tearing_.numInequalityRows > 0 ? "SMALBE" : "PCPG";
-  if (method == "PCPG" && tearing_.numInequalityRows > 0)
+std::string FetiSolver::dualSolverFor(const Teuchos::ParameterList& feti, GO inequalityRows) {
+  std::string method = feti.get<std::string>("Dual solver");
+  if (method == "auto") method = inequalityRows > 0 ? "SMALBE" : "PCPG";
+  if (method == "PCPG" && inequalityRows > 0)
     throw std::invalid_argument(
         "FETI: \"Dual solver\" = PCPG handles equality constraints only, but the problem has " +
-        std::to_string(tearing_.numInequalityRows) +
-        " inequality (contact) rows: choose SMALBE or penalty");
+        std::to_string(inequalityRows) + " inequality (contact) rows: choose SMALBE or penalty");
+  return method;
+}
+
+DualResult FetiSolver::solve() {
+  const std::string method = dualSolverFor(params_, tearing_.numInequalityRows);
   lambda_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
   Vector g(tearing_.multiplierMap);
   DualResult result;

@@ -65,6 +65,10 @@ class FetiSolver {
   // klu2 | tacho), "Dual solver" (auto | PCPG | SMALBE | penalty) and the sublists "PCPG",
   // "MPRGP", "SMALBE" and "Penalty".
   static Teuchos::RCP<const Teuchos::ParameterList> validParameters();
+  // The dual solver "Dual solver" (a validated FETI list) selects for a problem with this many
+  // inequality rows; throws std::invalid_argument when it cannot handle them (checkable before
+  // any set-up, e.g. by a dry run).
+  static std::string dualSolverFor(const Teuchos::ParameterList& feti, GO inequalityRows);
 
   // local: the subdomains assigned to this rank (see subdomainsOfRank), in increasing id order.
   // inequalities: the non-penetration rows this rank contributes (see buildTearing).

@@ -2,6 +2,7 @@
 #include <Teuchos_Assert.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -92,6 +93,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
   MprgpIteration<S, MV, OP>::checkProblemData(qp_);
   const int verbosity = params_.get<int>("Verbosity");
   const bool root = BT::commRank(*qp_.x) == 0;
+  const auto start = std::chrono::steady_clock::now();
 
   normA_ = params_.get<double>("Norm of A");
   if (!(normA_ > 0))
@@ -195,7 +197,10 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
                 << "  ||A|| ||Qx||/||b|| = " << normA_ * qxNorm / scale
                 << "  M/||A|| = " << M_ / normA_ << "  MPRGP steps " << mprgp.getNumIters()
                 << "  L increase " << (k > 0 ? lagrangian - lagrangianPrev : S(0)) << " (needed "
-                << required << (reduceM ? ", M reduced)" : ")") << std::defaultfloat << std::endl;
+                << required << (reduceM ? ", M reduced)" : ")") << std::fixed
+                << std::setprecision(2) << "  ["
+                << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+                << " s]" << std::defaultfloat << std::endl;
     if (converged) {
       ++k;
       break;

@@ -5,6 +5,7 @@
 #include <Teuchos_StrUtils.hpp>
 #include <Teuchos_XMLObject.hpp>
 
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -129,9 +130,23 @@ void checkParameterNode(const std::string& file, const Teuchos::XMLObject& node,
     return;  // Teuchos reports malformed entries itself
   const std::string name = node.getAttribute("name"), type = node.getAttribute("type");
   const std::string& value = node.getAttribute("value");
+  const std::string where0 = file + ": " + (path.empty() ? "" : path + "/") + name + ": ";
+  if (type == "bool") {  // Teuchos's own message names neither the parameter nor the file
+    std::string upper;
+    for (char c : trim(value)) upper += static_cast<char>(std::toupper(c));
+    if (upper != "TRUE" && upper != "FALSE" && upper != "YES" && upper != "NO" && upper != "1" &&
+        upper != "0")
+      throw std::invalid_argument(where0 + "\"" + value +
+                                  "\" is not a bool; expected true or false");
+    return;
+  }
   const bool array = type.rfind("Array(", 0) == 0;
   const std::string scalar = array ? type.substr(6, type.size() - 7) : type;
   const bool integer = scalar == "int" || scalar == "short" || scalar == "long long";
+  const std::string braces = trim(value);
+  if (array && (braces.size() < 2 || braces.front() != '{' || braces.back() != '}'))
+    throw std::invalid_argument(where0 + "\"" + value +
+                                "\" is not an array; expected {item, ...} (type " + type + ")");
   if (!integer && scalar != "double" && scalar != "float") return;
   const bool nonFinite = nonFiniteAllowedFor(valid, name);
   const std::string where = file + ": " + (path.empty() ? "" : path + "/") + name + ": ";

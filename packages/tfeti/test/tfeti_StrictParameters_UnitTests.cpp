@@ -70,6 +70,9 @@ TEUCHOS_UNIT_TEST(StrictXml, NumbersInTheirWholeText) {
   for (const char* bad : {"nan", "-inf", "inf", "1e999", "-1e400"})
     TEST_ASSERT(contains(xmlMessage(p("double", bad)), "not a finite number"));
   TEST_EQUALITY(xmlMessage(p("int", "8")), "");
+  const std::string b = xmlMessage("<Parameter name=\"Flag\" type=\"bool\" value=\"maybe\"/>");
+  TEST_ASSERT(contains(b, "Material/Flag: \"maybe\" is not a bool"));
+  TEST_EQUALITY(xmlMessage("<Parameter name=\"Flag\" type=\"bool\" value=\"true\"/>"), "");
   for (const char* bad : {"8.5", "1e3", "8x", "99999999999"})
     TEST_ASSERT(contains(xmlMessage(p("int", bad)), "expected an integer"));
 }

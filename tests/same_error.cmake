@@ -1,0 +1,26 @@
+# Runs CMD (a ;-list) as a full run and again with --check, and requires both to fail with exit
+# code 1 and the same "tfeti_contact: error: ..." message: an error findable before a solve is
+# found by the dry run, in the full run's words.
+execute_process(COMMAND ${CMD} RESULT_VARIABLE rc_run OUTPUT_VARIABLE out_run ERROR_VARIABLE err_run)
+execute_process(COMMAND ${CMD} --check RESULT_VARIABLE rc_check OUTPUT_VARIABLE out_check
+                ERROR_VARIABLE err_check)
+message("full run (exit ${rc_run}):\n${err_run}\n--check (exit ${rc_check}):\n${out_check}${err_check}")
+if(NOT rc_run EQUAL 1 OR NOT rc_check EQUAL 1)
+  message(FATAL_ERROR "expected exit code 1 from both, got ${rc_run} (run) and ${rc_check} (--check)")
+endif()
+string(FIND "${err_run}" "tfeti_contact: error:" at)
+if(at LESS 0)
+  message(FATAL_ERROR "the full run printed no 'tfeti_contact: error:' message")
+endif()
+string(SUBSTRING "${err_run}" ${at} -1 msg_run)
+string(FIND "${err_check}" "tfeti_contact: error:" at)
+if(at LESS 0)
+  message(FATAL_ERROR "--check printed no 'tfeti_contact: error:' message")
+endif()
+string(SUBSTRING "${err_check}" ${at} -1 msg_check)
+if(NOT msg_run STREQUAL msg_check)
+  message(FATAL_ERROR "the messages differ")
+endif()
+if(out_check MATCHES "check passed")
+  message(FATAL_ERROR "--check reported success on bad input")
+endif()
