@@ -72,7 +72,17 @@ GROWTH = 1.5
 
 def load(d):
     with open(d + "/summary.json") as f:
-        return json.load(f)
+        s = json.load(f)
+    # Every summary echoes the validated parameter list, defaults filled in, and the study it
+    # ran is the one the parameters name.
+    p = s.get("parameters")
+    if not isinstance(p, dict) or not {"Study", "Problem", "FETI", "Output"} <= set(p):
+        fail(d + ": summary.json does not echo the validated parameters")
+    if p["Study"] != s.get("study", p["Study"]):
+        fail(d + ": echoed Study %s, ran %s" % (p["Study"], s.get("study")))
+    if "problem" in s and p["Study"] == "single" and p["Problem"] != s["problem"]:
+        fail(d + ": echoed Problem %s, ran %s" % (p["Problem"], s["problem"]))
+    return s
 
 
 def fail(msg):

@@ -12,10 +12,13 @@
 #include <Tpetra_Core.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <stdexcept>
 
 #include "contact_Driver.hpp"
+#include "contact_DriverCommon.hpp"
+#include "tfeti_StrictParameters.hpp"
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard tpetra(&argc, &argv);
@@ -23,6 +26,7 @@ int main(int argc, char** argv) {
   const bool root = comm->getRank() == 0;
 
   std::string input, output = "tfeti_output";
+  std::string echo;
   bool printParameters = false, check = false;
   Teuchos::CommandLineProcessor clp(false, true);
   clp.setDocString("Total FETI solver for the reference paper's problems.");
@@ -32,6 +36,9 @@ int main(int argc, char** argv) {
                 "print every valid parameter with its default and documentation, then exit");
   clp.setOption("check", "no-check", &check,
                 "dry run: validate, mesh, partition and report the problem without solving");
+  clp.setOption("echo-parameters", &echo,
+                "write the validated parameters (defaults filled in) as JSON to this file; "
+                "summary.json holds them too");
   clp.recogniseAllOptions(true);
   clp.throwExceptions(false);
   const auto parse = clp.parse(argc, argv);
@@ -52,6 +59,8 @@ int main(int argc, char** argv) {
   int code = 1;
   try {
     if (!std::filesystem::exists(input)) throw std::runtime_error(input + ": no such file");
+    // The raw text first: Teuchos converts numbers leniently ("1e-7e" -> 1e-7, "abc" -> 0).
+    tfeti::strict::checkXmlNumbers(input, *contact::validDriverParameters());
     Teuchos::RCP<Teuchos::ParameterList> params;
     try {
       params = Teuchos::getParametersFromXmlFile(input);
@@ -59,6 +68,11 @@ int main(int argc, char** argv) {
       throw std::runtime_error(input + ": not a valid ParameterList XML file: " + e.what());
     }
     contact::validateDriverParameters(*params, input);
+    if (!echo.empty() && root) {
+      std::ofstream file(echo);
+      file << contact::parametersJson(*params).dump();
+      if (!file) throw std::runtime_error("cannot write " + echo);
+    }
     try {
       code = check ? contact::checkDriver(comm, *params, std::cout)
                    : contact::runDriver(comm, *params, output);

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include "contact_DriverCommon.hpp"
@@ -21,6 +22,7 @@
 #include "contact_TwoMembranes.hpp"
 #include "contact_VtuWriter.hpp"
 #include "tfeti_FetiSolver.hpp"
+#include "tfeti_StrictParameters.hpp"
 
 namespace contact {
 
@@ -39,6 +41,12 @@ Teuchos::RCP<Teuchos::StringToIntegralParameterEntryValidator<int>> choice(
 template <class T>
 Array<T> arr(std::initializer_list<T> values) {
   return Array<T>(values.begin(), values.end());
+}
+
+// Arrays whose length is the problem's dimension (2 or 3 values per axis) or twice it.
+tfeti::strict::Validator withLength(tfeti::strict::Validator v, int lo, int hi) {
+  v->lengthBetween(lo, hi);
+  return v;
 }
 
 const char* kStoppingRule =
@@ -68,6 +76,13 @@ StructuredProblem problemFrom(const ParameterList& p, const std::string& field) 
   if (static_cast<int>(elems.size()) != dim)
     throw std::invalid_argument("Mesh: \"Elements per subdomain\" takes " + std::to_string(dim) +
                                 " values " + axes + why + std::to_string(elems.size()));
+  for (int d = 0; d < dim; ++d)
+    if (!(domain[2 * d + 1] > domain[2 * d]))
+      throw std::invalid_argument(
+          "Mesh/Domain: the upper bound of axis " + std::string(1, "xyz"[d]) + " (" +
+          std::to_string(domain[2 * d + 1]) + ") must exceed its lower bound (" +
+          std::to_string(domain[2 * d]) + ")");
+  checkGridSize(mesh);
   sp.lo.assign(dim, 0.0);
   sp.hi.assign(dim, 0.0);
   for (int d = 0; d < dim; ++d) sp.lo[d] = domain[2 * d], sp.hi[d] = domain[2 * d + 1];
@@ -146,7 +161,7 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
       std::cout << "max relative error against direct solve: " << err << "\n";
   }
   if (out.get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", vtuPiece(solver));
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   if (root && verbosity > 0)
     std::cout << field << " " << sp.dim() << "D: " << sp.numSubdomains() << " subdomains, primal "
               << solver.primalDimension() << ", dual " << solver.dualDimension() << ", "
@@ -244,7 +259,7 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
   s["local_solver"] = params.sublist("FETI").get<std::string>("Local solver");
   s["all_converged"] = allConverged;
   s["table"] = std::move(table);
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   return allConverged ? 0 : 2;
 }
 
@@ -336,17 +351,21 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
                            "structured Q1 mesh of a rectangle (2D) or a box (3D, trilinear "
                            "hexahedra), torn into a grid; Dirichlet face x = x0");
   mesh.set("Domain", arr<double>({0.0, 1.0, 0.0, 1.0}),
-           "{x0, x1, y0, y1} (2D) or {x0, x1, y0, y1, z0, z1} (3D): decides the dimension");
-  mesh.set("Subdomains", arr<int>({4, 4}), "subdomains per axis (1/H), one value per axis");
+           "{x0, x1, y0, y1} (2D) or {x0, x1, y0, y1, z0, z1} (3D): decides the dimension",
+           withLength(tfeti::strict::doubles(0), 4, 6));
+  mesh.set("Subdomains", arr<int>({4, 4}), "subdomains per axis (1/H), one value per axis",
+           withLength(tfeti::strict::positiveInts(0), 2, 3));
   mesh.set("Elements per subdomain", arr<int>({16, 16}),
-           "elements per subdomain per axis (H/h), one value per axis");
+           "elements per subdomain per axis (H/h), one value per axis",
+           withLength(tfeti::strict::positiveInts(0), 2, 3));
   auto& mat = pl->sublist("Material", false, "isotropic linear elasticity (plane strain in 2D)");
-  mat.set("Young's modulus", 1.0, "E");
-  mat.set("Poisson's ratio", 0.3, "nu");
+  mat.set("Young's modulus", 1.0, "E", tfeti::strict::positive());
+  mat.set("Poisson's ratio", 0.3, "nu", tfeti::strict::between(-1.0, 0.5, true, true));
   auto& load = pl->sublist("Load");
   load.set("Source", 1.0, "right-hand side of -Δu = source (poisson)");
   load.set("Body force", arr<double>({0.0, -1.0}),
-           "{bx, by} or {bx, by, bz} per unit volume (elasticity)");
+           "{bx, by} or {bx, by, bz} per unit volume (elasticity)",
+           withLength(tfeti::strict::doubles(0), 2, 3));
   pl->sublist("FETI").setParameters(*tfeti::FetiSolver::validParameters());
   addElasticContactParameters(*pl);
   addNonlinearContactParameters(*pl);
@@ -357,17 +376,21 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
           "(small problems only)");
   out.set("Verbosity", 1,
           "0 silent; 1 summary lines and a line per load step; 2 also a line per nonlinear "
-          "iteration and per SMALBE outer iteration");
+          "iteration and per SMALBE outer iteration",
+          tfeti::strict::count(0));
   out.set("Time dual operator", false,
           "time 10 extra applications of F and report the bandwidth they achieve (benchmarks)");
   auto& sc = pl->sublist("Scalability", false, "Study = scalability");
+  const auto atLeastOne = tfeti::strict::positiveInts(0);
+  atLeastOne->lengthBetween(1, std::numeric_limits<int>::max());
   sc.set("Problems", arr<std::string>({"poisson"}),
          "poisson and/or elasticity, or two_membranes alone");
-  sc.set("Subdomains per side", arr<int>({2, 4, 8, 16}), "values of 1/H");
-  sc.set("H over h", arr<int>({2, 4, 8}), "elements per subdomain side");
+  sc.set("Subdomains per side", arr<int>({2, 4, 8, 16}), "values of 1/H", atLeastOne);
+  sc.set("H over h", arr<int>({2, 4, 8}), "elements per subdomain side", atLeastOne);
   sc.set("Preconditioners", arr<std::string>({"none", "lumped", "dirichlet"}), "columns");
   sc.set("Dual solvers", arr<std::string>({"SMALBE", "penalty"}),
          "two_membranes: the QP solvers compared (SMALBE, penalty)");
+  tfeti::strict::requireNumbers(*pl);  // every number finite, also those without a range
   return pl;
 }
 
@@ -385,6 +408,12 @@ void validateDriverParameters(ParameterList& params, const std::string& source) 
       throw std::invalid_argument(
           "Scalability: \"Problems\": two_membranes is a study of its own, not combined with "
           "poisson or elasticity");
+    for (int hinv : sc.get<Array<int>>("Subdomains per side"))
+      for (int ratio : sc.get<Array<int>>("H over h"))
+        if (static_cast<long long>(hinv) * ratio > (1 << 15))
+          throw std::invalid_argument(
+              "Scalability: \"Subdomains per side\" " + std::to_string(hinv) + " x \"H over h\" " +
+              std::to_string(ratio) + " elements per side; at most " + std::to_string(1 << 15));
     for (const auto& p : sc.get<Array<std::string>>("Dual solvers"))
       if (p != "SMALBE" && p != "penalty")
         throw std::invalid_argument("Scalability: \"Dual solvers\" has \"" + p +

@@ -25,12 +25,74 @@ Json timingsJson(const tfeti::FetiTimings& t, int iterations) {
   return j;
 }
 
-void writeSummary(const tfeti::Comm& comm, const std::string& dir, const Json& summary) {
+namespace {
+
+template <class T>
+Json arrayJson(const Teuchos::Array<T>& values) {
+  Json a = Json::array();
+  for (const T& v : values) a.push(Json(v));
+  return a;
+}
+
+}  // namespace
+
+void checkGridSize(const Teuchos::ParameterList& mesh) {
+  const auto subs = mesh.get<Teuchos::Array<int>>("Subdomains");
+  const auto elems = mesh.get<Teuchos::Array<int>>("Elements per subdomain");
+  // Node numbers are ints: (elements per side + 1)^2 must stay far below 2^31, and so must the
+  // dofs of all nodes of a box (up to 3 per node).
+  const long long perSide = 1 << 15, nodes = 1LL << 29;
+  long long total = 1;
+  for (int d = 0; d < subs.size() && d < elems.size(); ++d) {
+    const long long n = static_cast<long long>(subs[d]) * elems[d];
+    if (n > perSide)
+      throw std::invalid_argument(
+          "Mesh: \"Subdomains\" x \"Elements per subdomain\" = " + std::to_string(subs[d]) + " x " +
+          std::to_string(elems[d]) + " elements along " + std::string(1, "xyz"[d % 3]) +
+          "; at most " + std::to_string(perSide) + " per side");
+    total *= n + 1;
+  }
+  if (total > nodes)
+    throw std::invalid_argument("Mesh: \"Subdomains\" x \"Elements per subdomain\" give " +
+                                std::to_string(total) + " nodes; at most " + std::to_string(nodes));
+}
+
+Json parametersJson(const Teuchos::ParameterList& params) {
+  Json j = Json::object();
+  for (auto it = params.begin(); it != params.end(); ++it) {
+    const std::string& name = params.name(it);
+    const auto& any = params.entry(it).getAny(false);
+    if (params.isSublist(name))
+      j[name] = parametersJson(params.sublist(name));
+    else if (any.type() == typeid(bool))
+      j[name] = Teuchos::any_cast<bool>(any);
+    else if (any.type() == typeid(int))
+      j[name] = Teuchos::any_cast<int>(any);
+    else if (any.type() == typeid(double))
+      j[name] = Teuchos::any_cast<double>(any);
+    else if (any.type() == typeid(std::string))
+      j[name] = Teuchos::any_cast<std::string>(any);
+    else if (any.type() == typeid(Teuchos::Array<int>))
+      j[name] = arrayJson(Teuchos::any_cast<Teuchos::Array<int>>(any));
+    else if (any.type() == typeid(Teuchos::Array<double>))
+      j[name] = arrayJson(Teuchos::any_cast<Teuchos::Array<double>>(any));
+    else if (any.type() == typeid(Teuchos::Array<std::string>))
+      j[name] = arrayJson(Teuchos::any_cast<Teuchos::Array<std::string>>(any));
+    else
+      j[name] = Teuchos::toString(any);  // a type no parameter uses today: its text
+  }
+  return j;
+}
+
+void writeSummary(const tfeti::Comm& comm, const std::string& dir, const Json& summary,
+                  const Teuchos::ParameterList& params) {
   if (comm.getRank() != 0) return;
   const std::string path = dir + "/summary.json";
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write " + path);
-  out << summary.dump();
+  Json s = summary;
+  s["parameters"] = parametersJson(params);  // what was solved, defaults filled in
+  out << s.dump();
 }
 
 // Largest resident set size over the ranks, in MiB.

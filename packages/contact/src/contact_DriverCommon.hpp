@@ -10,8 +10,14 @@
 namespace contact {
 
 Json timingsJson(const tfeti::FetiTimings& t, int iterations);
-// Rank 0 writes dir/summary.json.
-void writeSummary(const tfeti::Comm& comm, const std::string& dir, const Json& summary);
+// Mesh/Subdomains times Mesh/Elements per subdomain within what the structured grids can number.
+void checkGridSize(const Teuchos::ParameterList& mesh);
+// The validated parameter list (defaults filled in) as JSON: sublists as objects, arrays as
+// arrays.
+Json parametersJson(const Teuchos::ParameterList& params);
+// DIR/summary.json (rank 0): the summary plus "parameters", the list the run solved.
+void writeSummary(const tfeti::Comm& comm, const std::string& dir, const Json& summary,
+                  const Teuchos::ParameterList& params);
 // Largest resident set size over the ranks, in MiB.
 double peakRssMb(const tfeti::Comm& comm);
 // The solved subdomains of this rank: u (or displacement) per node, subdomain id per cell.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -62,6 +63,29 @@ double edgeLength(const GmshMesh& mesh, const int* nodes, int nodesPerEdge) {
                            : dist(nodes[0], nodes[1]);
 }
 
+// A body touching neither a Dirichlet boundary (fixed or symmetry) nor the contact pair floats
+// freely: its stiffness is singular with nothing to hold it, which the solver would only report
+// as a singular coarse problem. Name it before any solve.
+void requireEveryBodyHeld(const GmshMesh& mesh, const ElasticContactSpec& spec,
+                          const std::set<int>& fixedNodes,
+                          const std::set<std::pair<int, int>>& fixedComponents) {
+  std::set<int> held(fixedNodes);
+  for (const auto& nc : fixedComponents) held.insert(nc.first);
+  for (const GmshBoundary& b : mesh.boundaries)  // a missing name is reported later
+    if (b.name == spec.slave || b.name == spec.master) {
+      const auto nodes = nodesOf(b);
+      held.insert(nodes.begin(), nodes.end());
+    }
+  for (const auto& body : spec.bodies) {
+    const auto& c = mesh.body(body.name).connectivity;
+    if (std::none_of(c.begin(), c.end(), [&](int n) { return held.count(n) > 0; }))
+      throw std::invalid_argument(
+          "Bodies: body \"" + body.name +
+          "\" has no Dirichlet condition (Fixed boundaries, Symmetry boundaries) and is not on "
+          "the contact pair (Slave, Master): nothing holds it");
+  }
+}
+
 }  // namespace
 
 ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
@@ -72,6 +96,10 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   if (meshOptions.dimension == 0) meshOptions.dimension = 2;
   p.mesh = loadMesh(spec.meshFile, meshOptions);
   const GmshMesh& mesh = p.mesh;
+  for (const GmshBody& b : mesh.bodies)  // clockwise in the file: reoriented, said once
+    if (b.reoriented > 0 && comm.getRank() == 0)
+      std::cout << mesh.source << ": body \"" << b.name << "\": " << b.reoriented << " of "
+                << b.numElements() << " elements were clockwise and are reoriented\n";
 
   // Subdomains, body by body, numbered consecutively.
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
@@ -111,6 +139,8 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     for (int n : nodesOf(boundaryNamed(mesh, name, "Symmetry boundaries")))
       fixedComponents.insert({n, c});
   }
+
+  requireEveryBodyHeld(mesh, spec, fixedNodes, fixedComponents);
 
   // Subdomains to ranks: balance the dofs and keep neighbours together (Zoltan2 on the graph
   // whose edges join subdomains sharing interface nodes, weighted by their number).

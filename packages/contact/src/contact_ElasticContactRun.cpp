@@ -20,6 +20,7 @@
 #include "contact_ElasticContactRun.hpp"
 #include "contact_NonlinearContactRun.hpp"
 #include "plasticity_MaterialLaw.hpp"
+#include "tfeti_StrictParameters.hpp"
 
 namespace contact {
 
@@ -81,6 +82,9 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     spec.bodyLoads.push_back({bb[k], {bv[2 * k], bv[2 * k + 1]}});
   spec.slave = cp.get<std::string>("Slave");
   spec.master = cp.get<std::string>("Master");
+  if (spec.slave == spec.master)
+    throw std::invalid_argument("Contact problem: \"Slave\" and \"Master\" both name \"" +
+                                spec.slave + "\"; a contact pair needs two different boundaries");
   spec.searchRadius = cp.get<double>("Search radius");
   const auto& ro = cp.sublist("Rigid obstacle");
   const std::string type = ro.get<std::string>("Type");
@@ -116,26 +120,34 @@ void addElasticContactParameters(ParameterList& pl) {
   cp.set("Mesh file", "",
          "a .geo file (meshed now) or a .msh file; a relative path is looked up next to the input "
          "file, then in the working directory");
-  cp.set("Element order", 1, "1 or 2 (.geo only)");
+  cp.set("Element order", 1, "1 or 2 (.geo only)", tfeti::strict::intBetween(1, 2));
   cp.set("Quadrilaterals", false, "recombine into quadrilaterals (.geo only)");
-  cp.set("Mesh size factor", 1.0, "scales every mesh size (.geo only)");
+  cp.set("Mesh size factor", 1.0, "scales every mesh size (.geo only)", tfeti::strict::positive());
   cp.set("Bodies", Array<std::string>(), "the 2D physical groups that are bodies");
-  cp.set("Subdomains per body", Array<int>(), "METIS parts of each body");
+  cp.set("Subdomains per body", Array<int>(), "METIS parts of each body",
+         tfeti::strict::positiveInts(0));
   cp.set("Fixed boundaries", Array<std::string>(), "1D groups where u = 0");
+  const auto components = Teuchos::rcp(
+      new tfeti::strict::NumberValidator(tfeti::strict::NumberValidator::Kind::IntArray));
+  components->atLeast(0).atMost(1);
   cp.set("Symmetry boundaries", Array<std::string>(), "1D groups with one component zero");
-  cp.set("Symmetry components", Array<int>(), "the zero component (0: x, 1: y) of each");
+  cp.set("Symmetry components", Array<int>(), "the zero component (0: x, 1: y) of each",
+         components);
   cp.set("Traction boundaries", Array<std::string>(), "1D groups under a constant traction");
-  cp.set("Tractions", Array<double>(), "{tx, ty} per traction boundary (force per unit length)");
+  cp.set("Tractions", Array<double>(), "{tx, ty} per traction boundary (force per unit length)",
+         tfeti::strict::doubles(0));
   cp.set("Body load bodies", Array<std::string>(), "bodies under a uniform body force");
   cp.set("Body loads", Array<double>(),
          "{Fx, Fy} per body load body: its total force per unit thickness, spread uniformly over "
-         "its area");
+         "its area",
+         tfeti::strict::doubles(0));
   cp.set("Slave", "", "the contact pair's slave boundary (its nodes)");
   cp.set("Master", "",
          "the contact pair's master boundary (its segments); empty with a Rigid obstacle");
   cp.set("Search radius", 0.0,
          "slave nodes farther from the master get no row; 0: a tenth of "
-         "the mesh's extent");
+         "the mesh's extent",
+         tfeti::strict::nonNegative());
   auto& ro = cp.sublist("Rigid obstacle", false,
                         "a rigid master given analytically instead of a Master boundary: the "
                         "Slave boundary is pressed against it");
@@ -153,9 +165,10 @@ void addElasticContactParameters(ParameterList& pl) {
              Teuchos::tuple<std::string>("graph", "block"), "Subdomain distribution")));
   auto& h = cp.sublist("Hertz", false, "compare with Hertz's line contact of two cylinders");
   h.set("Compare", false, "report Hertz's p_max and half-width and the errors");
-  h.set("Radius 1", 1.0, "R1");
-  h.set("Radius 2", 0.0, "R2; 0 means infinity (a flat body)");
-  h.set("Line load", 0.0, "l, force per unit length of the full (not the half) model");
+  h.set("Radius 1", 1.0, "R1", tfeti::strict::positive());
+  h.set("Radius 2", 0.0, "R2; 0 means infinity (a flat body)", tfeti::strict::nonNegative());
+  h.set("Line load", 0.0, "l, force per unit length of the full (not the half) model",
+        tfeti::strict::nonNegative());
 }
 
 int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
@@ -221,7 +234,7 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   writeContactCsv(*comm, dir + "/contact_pressure.csv", nodes);
   s["contact_csv"] = dir + "/contact_pressure.csv";
   if (params.sublist("Output").get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", piece);
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   if (root && verbosity > 0)
     std::cout << "elastic_contact: " << problem.numSubdomains() << " subdomains, primal "
               << solver.primalDimension() << ", dual " << solver.dualDimension() << " ("

@@ -472,29 +472,50 @@ FacetKey facetKey(const int* nodes, int corners) {
 
 // A surface whose normal is -z (a clockwise curve loop) gives clockwise elements, which the
 // element kernels reject as inverted: renumber them counter-clockwise (corners reversed, the
-// edge midpoints and the centre following their edges). Returns the twice signed areas after
-// reorientation (for the degeneracy check).
-void orientCounterClockwise(ElementType type, const std::vector<double>& coords,
-                            std::vector<int>& connectivity) {
+// edge midpoints and the centre following their edges) and count them for the log. An element
+// with a corner angle of 0 or 180 degrees (zero area, repeated or collinear corners) or a
+// non-convex quadrilateral is an error naming the file and its Gmsh tag.
+int orientCounterClockwise(GmshBody& body, const std::vector<double>& coords,
+                           const std::string& path) {
   static const int tri3[] = {0, 2, 1}, tri6[] = {0, 2, 1, 5, 4, 3}, quad4[] = {0, 3, 2, 1},
                    quad9[] = {0, 3, 2, 1, 7, 6, 5, 4, 8};
+  const ElementType type = body.type;
   const int* perm = type == ElementType::Tri3    ? tri3
                     : type == ElementType::Tri6  ? tri6
                     : type == ElementType::Quad4 ? quad4
                                                  : quad9;
   const int npe = numNodes(type), corners = numCorners(type);
+  auto x = [&](int node, int c) { return coords[2 * node + c]; };
   std::vector<int> old(npe);
-  for (std::size_t e = 0; e * npe < connectivity.size(); ++e) {
-    int* el = &connectivity[e * npe];
-    double twiceArea = 0.0;  // shoelace over the corners
+  int reversed = 0;
+  for (int e = 0; e < body.numElements(); ++e) {
+    int* el = &body.connectivity[static_cast<std::size_t>(e) * npe];
+    double twiceArea = 0.0, longest = 0.0;  // shoelace over the corners; longest side squared
     for (int k = 0; k < corners; ++k) {
       const int a = el[k], b = el[(k + 1) % corners];
-      twiceArea += coords[2 * a] * coords[2 * b + 1] - coords[2 * b] * coords[2 * a + 1];
+      twiceArea += x(a, 0) * x(b, 1) - x(b, 0) * x(a, 1);
+      longest = std::max(longest, std::pow(x(b, 0) - x(a, 0), 2) + std::pow(x(b, 1) - x(a, 1), 2));
     }
-    if (twiceArea >= 0.0) continue;
-    std::copy(el, el + npe, old.begin());
-    for (int k = 0; k < npe; ++k) el[k] = old[perm[k]];
+    if (twiceArea < 0.0) {
+      std::copy(el, el + npe, old.begin());
+      for (int k = 0; k < npe; ++k) el[k] = old[perm[k]];
+      ++reversed;
+    }
+    // Every corner turns left, by more than rounding relative to the element's size.
+    for (int k = 0; k < corners; ++k) {
+      const int a = el[(k + corners - 1) % corners], b = el[k], c = el[(k + 1) % corners];
+      const double turn =
+          (x(b, 0) - x(a, 0)) * (x(c, 1) - x(b, 1)) - (x(b, 1) - x(a, 1)) * (x(c, 0) - x(b, 0));
+      if (!(turn > 1e-12 * longest))
+        throw std::runtime_error(path + ": body \"" + body.name + "\": " + elementTypeName(type) +
+                                 " element " + std::to_string(body.gmshTags[e]) +
+                                 " (Gmsh element tag) is " +
+                                 (corners == 4 && turn < 0.0 && longest > 0.0
+                                      ? "not convex"
+                                      : "degenerate (zero area or collinear corners)"));
+    }
   }
+  return reversed;
 }
 
 // The largest corner-to-corner distance of an element: the length scale of its Jacobian.
@@ -520,23 +541,6 @@ double cornerDiameter(const std::vector<double>& coords, int dim, const int* el,
 
 // Relative to the element's size: a determinant below this fraction of diameter^dim is zero.
 constexpr double kDegenerate = 1e-10;
-
-// 2D (after orientCounterClockwise): the corner polygon's area must not vanish.
-void checkPlanarElements(const std::string& path, const GmshBody& body,
-                         const std::vector<double>& coords) {
-  const int npe = body.nodesPerElement(), nc = numCorners(body.type);
-  for (int e = 0; e < body.numElements(); ++e) {
-    const int* el = &body.connectivity[static_cast<std::size_t>(e) * npe];
-    double twiceArea = 0.0;
-    for (int k = 0; k < nc; ++k) {
-      const int a = el[k], b = el[(k + 1) % nc];
-      twiceArea += coords[2 * a] * coords[2 * b + 1] - coords[2 * b] * coords[2 * a + 1];
-    }
-    const double h = cornerDiameter(coords, 2, el, nc);
-    if (!(twiceArea > kDegenerate * h * h))
-      badElement(path, body.name, body.gmshTags[e], body.type, "degenerate (zero area)");
-  }
-}
 
 // 3D: Gmsh's Jacobian determinants at every node of every element of the group (the reference
 // element's nodes: corners and, for quadratic elements, the midside and face points where a
@@ -711,12 +715,10 @@ GmshMesh extract(const std::string& path, const MeshOptions& options, int dim) {
     body.type = static_cast<ElementType>(bodyElements[g].type);
     body.connectivity = toCompact(bodyElements[g].nodes);
     body.gmshTags = std::move(bodyElements[g].tags);
-    if (dim == 2) {
-      orientCounterClockwise(body.type, mesh.coords, body.connectivity);
-      checkPlanarElements(path, body, mesh.coords);
-    } else {
+    if (dim == 2)
+      body.reoriented = orientCounterClockwise(body, mesh.coords, path);
+    else
       checkSolidElements(path, body, bodyGroups[g], mesh.coords);
-    }
     mesh.bodies.push_back(std::move(body));
   }
   for (std::size_t g = 0; g < boundaryGroups.size(); ++g) {

@@ -86,6 +86,7 @@ struct GmshBody {
   ElementType type = ElementType::Tri3;
   std::vector<int> connectivity;      // numNodes(type) node ids per element
   std::vector<std::size_t> gmshTags;  // Gmsh element tag of each element, for messages
+  int reoriented = 0;                 // clockwise elements of the file renumbered counter-clockwise
   int nodesPerElement() const { return numNodes(type); }
   int numElements() const { return static_cast<int>(gmshTags.size()); }
 };

@@ -20,6 +20,7 @@
 #include "plasticity_J2Plasticity.hpp"
 #include "plasticity_TotalLagrangian.hpp"
 #include "tfeti_Gather.hpp"
+#include "tfeti_StrictParameters.hpp"
 
 namespace contact {
 
@@ -189,18 +190,23 @@ struct StepOutcome {
 void addNonlinearContactParameters(ParameterList& pl) {
   auto& mat = pl.sublist("Material");
   mat.set("Yield stress", 0.0,
-          "nonlinear_contact: initial uniaxial yield stress of J2 plasticity; 0: elastic");
+          "nonlinear_contact: initial uniaxial yield stress of J2 plasticity; 0: elastic",
+          tfeti::strict::nonNegative());
   mat.set("Hardening modulus", 0.0,
-          "nonlinear_contact: linear isotropic hardening modulus H (0: perfect plasticity)");
+          "nonlinear_contact: linear isotropic hardening modulus H (0: perfect plasticity)",
+          tfeti::strict::nonNegative());
   auto& nl = pl.sublist("Nonlinear", false, "Problem = nonlinear_contact: load steps, iterations");
   nl.set("Geometrically nonlinear", true,
          "total Lagrangian kinematics (Green-Lagrange strain); false: small strain");
-  nl.set("Load steps", 1, "equal load increments up to the full load");
-  nl.set("Maximum iterations", 50, "iterations per load step before it is cut back");
-  nl.set("Eta 1", 1e-6, "stop when ||du|| / ||u|| < Eta 1 ...");
-  nl.set("Eta 2", 1e-6, "... and ||f - B^T lambda - f_int|| / ||f|| < Eta 2");
+  nl.set("Load steps", 1, "equal load increments up to the full load", tfeti::strict::count());
+  nl.set("Maximum iterations", 50, "iterations per load step before it is cut back",
+         tfeti::strict::count());
+  nl.set("Eta 1", 1e-6, "stop when ||du|| / ||u|| < Eta 1 ...", tfeti::strict::positive());
+  nl.set("Eta 2", 1e-6, "... and ||f - B^T lambda - f_int|| / ||f|| < Eta 2",
+         tfeti::strict::positive());
   nl.set("Maximum cutbacks", 4,
-         "consecutive halvings of a load increment that does not converge before the run stops");
+         "consecutive halvings of a load increment that does not converge before the run stops",
+         tfeti::strict::count(0));
   nl.set("Stiffness", "initial",
          "initial: K of the undeformed elastic body, factorized once (the paper's algorithm); "
          "step: the material tangent at the start of every load step; iteration: at every "
@@ -211,7 +217,8 @@ void addNonlinearContactParameters(ParameterList& pl) {
          "continue from the last converged load step saved in the output directory's restart/");
   nl.set("Stop after step", 0,
          "stop (successfully) once this load step has converged, to be continued with Restart; "
-         "0: run to the full load");
+         "0: run to the full load",
+         tfeti::strict::count(0));
   nl.set("VTU every step", true, "write step_NNNN.pvtu at every converged step");
   auto& ex = nl.sublist("Contact extent", false, "how contact_extent is measured");
   ex.set("Measure", "half_width",
@@ -219,9 +226,10 @@ void addNonlinearContactParameters(ParameterList& pl) {
          "seen from Centre, from Direction",
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
              Teuchos::tuple<std::string>("half_width", "angle"), "Measure")));
-  ex.set("Centre", Array<double>(std::vector<double>{0.0, 0.0}), "{x, y} (angle)");
+  ex.set("Centre", Array<double>(std::vector<double>{0.0, 0.0}), "{x, y} (angle)",
+         tfeti::strict::doubles(2));
   ex.set("Direction", Array<double>(std::vector<double>{0.0, -1.0}),
-         "{dx, dy}: where the angle is zero (angle)");
+         "{dx, dy}: where the angle is zero (angle)", tfeti::strict::doubles(2));
 }
 
 void checkNonlinearParameters(const ParameterList& params) {
@@ -613,7 +621,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   s["wall_time"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   s["peak_rss_mb"] = peakRssMb(*comm);
   writeTables();
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   if (failed) {
     if (root)
       std::cerr << "tfeti_contact: " << failure << "; results up to the last converged step ("

@@ -34,6 +34,7 @@ TwoMembranes membranesFrom(const ParameterList& params) {
   if (subs.size() != 2 || elems.size() != 2)
     throw std::invalid_argument(
         "Mesh: \"Subdomains\" and \"Elements per subdomain\" take 2 values {x, y}");
+  checkGridSize(mesh);
   TwoMembranes tm;
   tm.subdomainsX = subs[0], tm.subdomainsY = subs[1];
   tm.elementsX = elems[0], tm.elementsY = elems[1];
@@ -141,7 +142,7 @@ int runTwoMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& 
   writeContactCsv(*comm, solver, dir + "/contact.csv");
   s["contact_csv"] = dir + "/contact.csv";
   if (out.get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", membranePiece(solver));
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   if (root && verbosity > 0)
     std::cout << "two_membranes: " << tm.numSubdomains() << " subdomains, primal "
               << solver.primalDimension() << ", dual " << solver.dualDimension() << " ("
@@ -224,7 +225,7 @@ int runTwoMembranesScalability(const Teuchos::RCP<const tfeti::Comm>& comm, Para
   s["ranks"] = comm->getSize();
   s["all_converged"] = allConverged;
   s["table"] = std::move(table);
-  writeSummary(*comm, dir, s);
+  writeSummary(*comm, dir, s, params);
   return allConverged ? 0 : 2;
 }
 

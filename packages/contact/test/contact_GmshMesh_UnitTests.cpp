@@ -475,6 +475,7 @@ TEUCHOS_UNIT_TEST(GmshMesh, ClockwiseSurfaceIsReoriented) {
     for (bool quads : {false, true}) {
       const contact::GmshMesh m = loadMesh(meshFile("clockwise_square.geo"), opts(order, quads));
       const contact::GmshBody& b = m.body("square");
+      TEST_EQUALITY(b.reoriented, b.numElements());  // every element, and counted
       const plasticity::ElementMesh em{contact::toPlasticityType(b.type), m.coords, b.connectivity};
       // assembleStiffness rejects an element with a non-positive Jacobian, naming it.
       TEST_NOTHROW(plasticity::assembleStiffness(em, plasticity::ElasticLaw(1.0, 0.3)));
@@ -494,6 +495,20 @@ TEUCHOS_UNIT_TEST(GmshMesh, ClockwiseSurfaceIsReoriented) {
           << " elements, area " << area << "\n";
       TEST_FLOATING_EQUALITY(area, 1.0, 1e-12);
     }
+}
+
+// A .msh file with one clockwise triangle (tag 12) of two: reoriented and counted; with a
+// triangle whose corners are collinear (tag 17): an error naming the file and the Gmsh tag.
+TEUCHOS_UNIT_TEST(GmshMesh, ReversedAndDegenerateElementsOfAMshFile) {
+  const contact::GmshMesh m = loadMesh(meshFile("reversed_triangles.msh"));
+  TEST_EQUALITY(m.body("plate").reoriented, 1);
+  TEST_EQUALITY(m.body("plate").numElements(), 2);
+  const std::string path = meshFile("degenerate_triangle.msh");
+  const std::string msg = errorOf([&] { loadMesh(path); });
+  out << msg << "\n";
+  TEST_ASSERT(contains(msg, path));
+  TEST_ASSERT(contains(msg, "triangle element 17 (Gmsh element tag) is degenerate"));
+  TEST_THROW(loadMesh(path), std::runtime_error);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "tfeti_MprgpSolMgr_decl.hpp"
 #include "tfeti_ProjectedOperators.hpp"
 #include "tfeti_SmalbeSolMgr_decl.hpp"
+#include "tfeti_StrictParameters.hpp"
 
 namespace tfeti {
 
@@ -96,18 +97,22 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
     // multiplications (8192 subdomains: 117 against 157 at 100 ||P F P||; 101k-unknown
     // two-cylinder case: 306 against 587), at the price of more, cheap, outer iterations.
     smalbe.set("Penalty", 10.0,
-               "rho = value * ||P F P|| (FETI default 10; the component's default is 1)");
+               "rho = value * ||P F P|| (FETI default 10; the component's default is 1)",
+               strict::positive());
     projectedCg(smalbe.sublist("MPRGP"), "FETI default: projected CG (the component's: fixed)");
     // At rho = 10 ||P F P|| the outer iterations grow with the subdomains per side (25 at 64 x 64
     // per membrane, 35 at 88 x 88; 3-6 multiplications each): the component's limit of 100
     // would be reached near 250 x 250.
     smalbe.set("Maximum outer iterations", 1000,
-               "limit on multiplier updates (FETI default 1000; the component's default is 100)");
+               "limit on multiplier updates (FETI default 1000; the component's default is 100)",
+               strict::count());
     auto& pen = pl->sublist("Penalty", false, "Dual solver = penalty");
     pen.set("Penalty", 1e4,
             "rho relative to the estimate of ||P F P||; the constraint error G lambda falls like "
-            "1/rho (about 1e-5 relative at the default)");
-    pen.set("Power iterations", 20, "power iterations for the estimate of ||P F P||");
+            "1/rho (about 1e-5 relative at the default)",
+            strict::positive());
+    pen.set("Power iterations", 20, "power iterations for the estimate of ||P F P||",
+            strict::count());
     pl->set(
         "Preconditioning in face", true,
         "SMALBE / penalty: precondition MPRGP's conjugate gradient steps by P M P + Q / rho (M the "

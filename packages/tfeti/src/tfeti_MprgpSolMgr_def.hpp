@@ -14,6 +14,7 @@
 #include "tfeti_MprgpIteration_def.hpp"
 #include "tfeti_MprgpSolMgr_decl.hpp"
 #include "tfeti_QpStatusTests.hpp"
+#include "tfeti_StrictParameters.hpp"
 
 namespace tfeti {
 
@@ -22,10 +23,14 @@ Teuchos::RCP<const Teuchos::ParameterList> MprgpSolMgr<S, MV, OP>::getValidParam
   static Teuchos::RCP<Teuchos::ParameterList> pl;
   if (pl.is_null()) {
     pl = Teuchos::rcp(new Teuchos::ParameterList("MPRGP"));
-    pl->set("Relative tolerance", 1e-6, "stop when ||g^P|| <= tolerance * ||b||");
-    pl->set("Maximum iterations", 10000, "limit on MPRGP steps; reaching it is Unconverged");
-    pl->set("Gamma", 1.0, "proportioning: proportional when ||beta||^2 <= Gamma^2 phi~^T phi");
-    pl->set("Step length factor", 1.9, "alphaBar = factor / ||A||, in (0, 2]");
+    pl->set("Relative tolerance", 1e-6, "stop when ||g^P|| <= tolerance * ||b||",
+            strict::positive());
+    pl->set("Maximum iterations", 10000, "limit on MPRGP steps; reaching it is Unconverged",
+            strict::count());
+    pl->set("Gamma", 1.0, "proportioning: proportional when ||beta||^2 <= Gamma^2 phi~^T phi",
+            strict::positive());
+    pl->set("Step length factor", 1.9, "alphaBar = factor / ||A||, in (0, 2]",
+            strict::between(0.0, 2.0, true, false));
     pl->set(
         "Expansion step", "fixed",
         "fixed: x = P(x - alphaBar phi) (Dostál-Schöberl); optimal: the step minimizing f "
@@ -36,11 +41,11 @@ Teuchos::RCP<const Teuchos::ParameterList> MprgpSolMgr<S, MV, OP>::getValidParam
         "step from the half step (one more multiplication)",
         Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
             Teuchos::tuple<std::string>("fixed", "optimal", "projected CG"), "Expansion step")));
-    pl->set("Norm of A", 0.0, "||A||; 0: estimate by power iterations");
-    pl->set("Power iterations", 20, "power iterations for estimating ||A||");
+    pl->set("Norm of A", 0.0, "||A||; 0: estimate by power iterations", strict::nonNegative());
+    pl->set("Power iterations", 20, "power iterations for estimating ||A||", strict::count());
     pl->set("Preconditioning in face", false,
             "CG directions from the preconditioner restricted to the free set");
-    pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every step (rank 0)");
+    pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every step (rank 0)", strict::intBetween(0, 2));
   }
   return pl;
 }

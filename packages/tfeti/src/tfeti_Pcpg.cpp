@@ -6,15 +6,20 @@
 #include <iomanip>
 #include <iostream>
 
+#include "tfeti_StrictParameters.hpp"
+
 namespace tfeti {
 
 Teuchos::RCP<const Teuchos::ParameterList> Pcpg::validParameters() {
   static Teuchos::RCP<Teuchos::ParameterList> pl;
   if (pl.is_null()) {
     pl = Teuchos::rcp(new Teuchos::ParameterList("PCPG"));
-    pl->set("Relative tolerance", 1e-6, "stop when ||P(F l - d)|| <= tolerance * ||P d||");
-    pl->set("Maximum iterations", 1000, "iteration limit; reaching it is a failure");
-    pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every iteration (rank 0)");
+    pl->set("Relative tolerance", 1e-6, "stop when ||P(F l - d)|| <= tolerance * ||P d||",
+            strict::positive());
+    pl->set("Maximum iterations", 1000, "iteration limit; reaching it is a failure",
+            strict::count());
+    pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every iteration (rank 0)",
+            strict::intBetween(0, 2));
   }
   return pl;
 }

@@ -15,6 +15,7 @@
 #include "tfeti_OperatorSum.hpp"
 #include "tfeti_QpStatusTests.hpp"
 #include "tfeti_SmalbeSolMgr_decl.hpp"
+#include "tfeti_StrictParameters.hpp"
 
 namespace tfeti {
 
@@ -23,12 +24,15 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
   static Teuchos::RCP<Teuchos::ParameterList> pl;
   if (pl.is_null()) {
     pl = Teuchos::rcp(new Teuchos::ParameterList("SMALBE"));
-    pl->set("Relative tolerance", 1e-6, "stop when ||g^P|| <= tolerance * ||b|| ...");
-    pl->set("Equality tolerance", 1e-6, "... and ||A|| ||Q x|| <= tolerance * ||b||");
-    pl->set("Maximum outer iterations", 100, "limit on multiplier updates");
-    pl->set("Penalty", 1.0, "rho = Penalty * ||A||");
-    pl->set("Initial M", 1.0, "M_0 = value * ||A||");
-    pl->set("Beta", 10.0, "M is divided by Beta when the Lagrangian does not increase enough");
+    pl->set("Relative tolerance", 1e-6, "stop when ||g^P|| <= tolerance * ||b|| ...",
+            strict::positive());
+    pl->set("Equality tolerance", 1e-6, "... and ||A|| ||Q x|| <= tolerance * ||b||",
+            strict::positive());
+    pl->set("Maximum outer iterations", 100, "limit on multiplier updates", strict::count());
+    pl->set("Penalty", 1.0, "rho = Penalty * ||A||", strict::positive());
+    pl->set("Initial M", 1.0, "M_0 = value * ||A||", strict::positive());
+    pl->set("Beta", 10.0, "M is divided by Beta when the Lagrangian does not increase enough",
+            strict::between(1.0, std::numeric_limits<double>::infinity(), true, true));
     pl->set("Lagrangian test", "Dostal",
             "Dostal: L(x_k, mu_k) < L(x_{k-1}, mu_{k-1}) + rho/2 ||Q x_k||^2 divides M by Beta "
             "(SMALBE-M as published); shifted: the same with L(x_k, mu_{k+1}) and "
@@ -36,13 +40,14 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "which demands an increase of about rho ||Q x_{k-1}||^2 and fails almost always)",
             Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
                 Teuchos::tuple<std::string>("Dostal", "shifted"), "Lagrangian test")));
-    pl->set("Eta", 0.1, "eta = value * ||b||: inner precision bound");
+    pl->set("Eta", 0.1, "eta = value * ||b||: inner precision bound", strict::positive());
     pl->set("Reuse gradient", true,
             "start each inner solve from the last inner gradient plus rho Q x (the multiplier "
             "change) instead of a multiplication; false: recompute it (the earlier behaviour)");
-    pl->set("Norm of A", 0.0, "||A||; 0: estimate by power iterations");
-    pl->set("Power iterations", 20, "power iterations for estimating ||A||");
-    pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every outer iteration (rank 0)");
+    pl->set("Norm of A", 0.0, "||A||; 0: estimate by power iterations", strict::nonNegative());
+    pl->set("Power iterations", 20, "power iterations for estimating ||A||", strict::count());
+    pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every outer iteration (rank 0)",
+            strict::intBetween(0, 2));
     pl->sublist("MPRGP", false, "inner solver (MPRGP) parameters")
         .setParameters(*MprgpSolMgr<S, MV, OP>::getValidParameters());
   }

@@ -549,18 +549,8 @@ TEUCHOS_UNIT_TEST(Mprgp, IllConditioned) {
 // ---------------------------------------------------------------------------------------------
 // 4. Errors.
 
-std::string messageOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
-bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
+using tfeti_test::contains;
+using tfeti_test::messageOf;
 
 TEUCHOS_UNIT_TEST(Mprgp, IndefiniteHessianIsReported) {
   // Laplacian with A(5,5) = -10, unconstrained, b = e_5: the first direction is -e_5 with

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -148,6 +149,20 @@ inline long long globalSum(const tfeti::Comm& comm, long long local) {
   long long g = local;
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 1, &local, &g);
   return g;
+}
+
+// The message of the exception f throws ("" if none).
+inline std::string messageOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+inline bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
 }
 
 }  // namespace tfeti_test
