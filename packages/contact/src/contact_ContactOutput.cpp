@@ -99,7 +99,13 @@ void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pM
   const double E = mat.get<double>("Young's modulus"), nu = mat.get<double>("Poisson's ratio");
   const double R1 = hz.get<double>("Radius 1"), R2 = hz.get<double>("Radius 2");
   const double R = R2 > 0.0 ? R1 * R2 / (R1 + R2) : R1;
-  const double Estar = 1.0 / (2.0 * (1.0 - nu * nu) / E);
+  // Two bodies of one material: 1/E* = 2 (1 - nu^2) / E; against a rigid obstacle the body's
+  // compliance alone: E* = E / (1 - nu^2).
+  const auto& cp = params.sublist("Contact problem");
+  const bool rigid = cp.isSublist("Rigid obstacle") &&
+                     cp.sublist("Rigid obstacle").isParameter("Type") &&
+                     cp.sublist("Rigid obstacle").get<std::string>("Type") != "none";
+  const double Estar = E / ((rigid ? 1.0 : 2.0) * (1.0 - nu * nu));
   const double l = hz.get<double>("Line load");
   const double a = std::sqrt(4.0 * l * R / (M_PI * Estar));
   const double p0 = 2.0 * l / (M_PI * a);

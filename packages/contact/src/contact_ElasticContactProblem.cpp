@@ -23,8 +23,11 @@ plasticity::ElementType toPlasticityType(ElementType type) {
       return plasticity::ElementType::Tri6;
     case ElementType::Quad9:
       return plasticity::ElementType::Quad9;
+    default:
+      break;
   }
-  throw std::invalid_argument("unsupported element type");
+  throw std::invalid_argument(std::string("elastic contact: ") + elementTypeName(type) +
+                              " bodies are not supported (2D problem)");
 }
 
 namespace {
@@ -64,7 +67,10 @@ double edgeLength(const GmshMesh& mesh, const int* nodes, int nodesPerEdge) {
 ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
                                                  const tfeti::Comm& comm) {
   ElasticContactProblem p;
-  p.mesh = loadMesh(spec.meshFile, spec.meshOptions);
+  // This problem is plane strain: a 3D mesh is an error naming the file.
+  MeshOptions meshOptions = spec.meshOptions;
+  if (meshOptions.dimension == 0) meshOptions.dimension = 2;
+  p.mesh = loadMesh(spec.meshFile, meshOptions);
   const GmshMesh& mesh = p.mesh;
 
   // Subdomains, body by body, numbered consecutively.
@@ -198,35 +204,45 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 2, force, p.appliedForce);
 
   // Contact: the slave boundary's nodes against the master boundary's segments, oriented by
-  // the master body's elements so that the normals point out of it.
+  // the master body's elements so that the normals point out of it, or a rigid obstacle.
   const GmshBoundary& slave = boundaryNamed(mesh, spec.slave, "Slave");
-  const GmshBoundary& master = boundaryNamed(mesh, spec.master, "Master");
   const std::set<int> slaveSet = nodesOf(slave);
   p.slaveNodes.assign(slaveSet.begin(), slaveSet.end());
-  MasterSurface& ms = p.master;
-  ms.nodesPerSegment = master.nodesPerEdge;
-  ms.segments = master.edges;
-  int masterBody = -1;
-  for (int e = 0; e < master.numEdges(); ++e)
-    if (master.edgeBody[e] >= 0) masterBody = master.edgeBody[e];
-  if (masterBody < 0)
-    throw std::invalid_argument("Master: boundary \"" + spec.master + "\" is on no body");
-  const GmshBody& mb = mesh.bodies[masterBody];
-  orientSegmentsByElements(ms, mesh.coords, mb.type, mb.connectivity);
   double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
   for (int n = 0; n < mesh.numNodes(); ++n)
     for (int c = 0; c < 2; ++c) {
       lo[c] = std::min(lo[c], mesh.coords[2 * n + c]);
       hi[c] = std::max(hi[c], mesh.coords[2 * n + c]);
     }
+  ContactSearchOptions options;
   // A slave node on a symmetry line opposite the master's end (the contact point of a half
   // model) moves off that line by the solver's rounding once the contact is re-evaluated on the
   // deformed geometry; a relative tolerance far above rounding keeps its row.
-  p.contactOptions.endTolerance = 1e-4;
-  p.contactOptions.searchRadius =
+  options.endTolerance = 1e-4;
+  options.searchRadius =
       spec.searchRadius > 0.0 ? spec.searchRadius : 0.1 * std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  if (spec.obstacle) {
+    if (!spec.master.empty())
+      throw std::invalid_argument("Master: \"" + spec.master +
+                                  "\" is given together with a Rigid obstacle; the obstacle is "
+                                  "the master (leave Master empty)");
+    RigidObstacle obstacle = *spec.obstacle;
+    obstacle.dim = 2;
+    try {
+      p.master = makeObstacleMaster(obstacle, options);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("Contact problem/Rigid obstacle: ") + e.what());
+    }
+  } else {
+    const GmshBoundary& master = boundaryNamed(mesh, spec.master, "Master");
+    bool onBody = false;
+    for (int e = 0; e < master.numEdges(); ++e) onBody = onBody || master.edgeBody[e] >= 0;
+    if (!onBody)
+      throw std::invalid_argument("Master: boundary \"" + spec.master + "\" is on no body");
+    p.master = makeMeshContactMaster(mesh, spec.master, options);
+  }
   std::set<int> surface(slaveSet);
-  surface.insert(ms.segments.begin(), ms.segments.end());
+  for (int n : p.master->masterNodes()) surface.insert(n);
   p.surfaceNodes.assign(surface.begin(), surface.end());
   updateContact(p, {}, comm.getRank(), spec.slave, spec.master);
 
@@ -248,11 +264,11 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
 
 void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank,
                    const std::string& slaveName, const std::string& masterName) {
-  p.contact =
-      computeNodeToSegment(p.mesh.coords, p.slaveNodes, p.master, p.contactOptions, displacement);
+  p.contact = p.master->rows(p.mesh.coords, p.slaveNodes, displacement);
   if (p.contact.rows.empty())
-    throw std::invalid_argument("no slave node of \"" + slaveName +
-                                "\" is within the search radius of \"" + masterName + "\"");
+    throw std::invalid_argument(
+        "no slave node of \"" + slaveName + "\" is within the search radius of " +
+        (masterName.empty() ? std::string("the rigid obstacle") : "\"" + masterName + "\""));
   auto dofOf = [&](int node, int component) {
     return std::make_pair(p.copyOf[node].first, 2 * p.copyOf[node].second + component);
   };

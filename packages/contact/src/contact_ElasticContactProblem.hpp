@@ -4,9 +4,12 @@
 // (every subdomain floats, also a body held only by contact), and one slave/master pair of
 // named boundaries gives the node-to-segment non-penetration rows B_I.
 #include <array>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "contact_ContactMaster.hpp"
 #include "contact_GmshMesh.hpp"
 #include "contact_NodeToSegment.hpp"
 #include "contact_Partition.hpp"
@@ -30,7 +33,9 @@ struct ElasticContactSpec {
   std::vector<std::pair<std::string, std::array<double, 2>>> tractions;  // force / length
   // Body loads: the total force (per unit thickness) of a body, spread uniformly over its area.
   std::vector<std::pair<std::string, std::array<double, 2>>> bodyLoads;
-  std::string slave, master;           // the contact pair
+  std::string slave, master;  // the contact pair
+  // A rigid obstacle as the master instead of a Master boundary (its dim is set to 2 here).
+  std::optional<RigidObstacle> obstacle;
   double searchRadius = 0.0;           // 0: a tenth of the mesh's extent
   std::string distribution = "graph";  // subdomains to ranks: graph (Zoltan2) or block
 };
@@ -49,8 +54,8 @@ struct ElasticContactProblem {
   NodeToSegmentResult contact;
   std::vector<tfeti::InequalityRow> inequalities;
   // What re-evaluating the contact on another configuration needs (updateContact).
-  MasterSurface master;                     // oriented by the master body's elements
-  NodeToSegmentOptions contactOptions;      // the search radius
+  // The Master boundary's segments (oriented by the master body's elements) or the obstacle.
+  std::shared_ptr<const ContactMaster> master;
   std::vector<std::pair<int, int>> copyOf;  // node -> (subdomain, local node) of its first copy
   std::vector<int> surfaceNodes;            // slave and master nodes, sorted
   std::vector<int> slaveNodes;              // global node ids of the slave boundary, as in contact

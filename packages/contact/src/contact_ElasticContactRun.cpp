@@ -79,6 +79,30 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
   spec.slave = cp.get<std::string>("Slave");
   spec.master = cp.get<std::string>("Master");
   spec.searchRadius = cp.get<double>("Search radius");
+  const auto& ro = cp.sublist("Rigid obstacle");
+  const std::string type = ro.get<std::string>("Type");
+  if (type != "none") {
+    RigidObstacle o;
+    o.dim = 2;
+    o.shape = obstacleShapeFromName(type, 2);
+    const char* at = o.shape == RigidObstacle::Shape::Ball ? "Centre" : "Point";
+    const auto point = vec(ro.get<Array<double>>(at));
+    if (point.size() != 2)
+      throw std::invalid_argument(std::string("Contact problem/Rigid obstacle: \"") + at +
+                                  "\" needs 2 values {x, y} for a " + type);
+    o.point = {point[0], point[1], 0.0};
+    if (o.shape == RigidObstacle::Shape::HalfSpace) {
+      const auto normal = vec(ro.get<Array<double>>("Normal"));
+      if (normal.size() != 2)
+        throw std::invalid_argument(
+            "Contact problem/Rigid obstacle: \"Normal\" needs 2 values {nx, ny} (out of the "
+            "obstacle) for a line");
+      o.normal = {normal[0], normal[1], 0.0};
+    } else {
+      o.radius = ro.get<double>("Radius");
+    }
+    spec.obstacle = o;
+  }
   spec.distribution = cp.get<std::string>("Subdomain distribution");
   return spec;
 }
@@ -104,10 +128,21 @@ void addElasticContactParameters(ParameterList& pl) {
          "{Fx, Fy} per body load body: its total force per unit thickness, spread uniformly over "
          "its area");
   cp.set("Slave", "", "the contact pair's slave boundary (its nodes)");
-  cp.set("Master", "", "the contact pair's master boundary (its segments)");
+  cp.set("Master", "",
+         "the contact pair's master boundary (its segments); empty with a Rigid obstacle");
   cp.set("Search radius", 0.0,
          "slave nodes farther from the master get no row; 0: a tenth of "
          "the mesh's extent");
+  auto& ro = cp.sublist("Rigid obstacle", false,
+                        "a rigid master given analytically instead of a Master boundary: the "
+                        "Slave boundary is pressed against it");
+  ro.set("Type", "none", "none, line (a half-plane) or circle (a disc)",
+         Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+             Teuchos::tuple<std::string>("none", "line", "circle"), "Type")));
+  ro.set("Point", Array<double>(), "line: {x, y} of a point on it");
+  ro.set("Normal", Array<double>(), "line: {nx, ny}, pointing out of the obstacle");
+  ro.set("Centre", Array<double>(), "circle: {x, y} of its centre");
+  ro.set("Radius", 0.0, "circle: its radius (> 0)");
   cp.set("Subdomain distribution", "graph",
          "graph: Zoltan2 (Scotch) on the subdomain adjacency, balancing dofs; block: contiguous "
          "blocks of subdomain ids",

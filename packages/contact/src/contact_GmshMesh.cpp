@@ -3,6 +3,7 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <cmath>
@@ -16,39 +17,200 @@
 
 namespace contact {
 
+namespace {
+
+// Gmsh's reference coordinates of the nodes of the largest element of each family; the smaller
+// ones of the family are prefixes (Tet4 of Tet10, Hex8 and Hex20 of Hex27). They define which
+// nodes lie on which facet.
+const double kTetRef[10][3] = {{0, 0, 0},     {1, 0, 0},     {0, 1, 0},   {0, 0, 1},
+                               {0.5, 0, 0},   {0.5, 0.5, 0}, {0, 0.5, 0}, {0, 0, 0.5},
+                               {0, 0.5, 0.5}, {0.5, 0, 0.5}};
+const double kHexRef[27][3] = {
+    {-1, -1, -1}, {1, -1, -1}, {1, 1, -1},  {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1},
+    {-1, 1, 1},   {0, -1, -1}, {-1, 0, -1}, {-1, -1, 0}, {1, 0, -1},  {1, -1, 0}, {0, 1, -1},
+    {1, 1, 0},    {-1, 1, 0},  {0, -1, 1},  {-1, 0, 1},  {1, 0, 1},   {0, 1, 1},  {0, 0, -1},
+    {0, -1, 0},   {-1, 0, 0},  {1, 0, 0},   {0, 1, 0},   {0, 0, 1},   {0, 0, 0}};
+// Facet corners, counter-clockwise seen from outside the reference element.
+const int kTetFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+const int kHexFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                             {1, 2, 6, 5}, {2, 3, 7, 6}, {0, 4, 7, 3}};
+
+// The local node of a 3D element at reference point p (among nodes from..npe-1).
+int nodeAt(ElementType type, const double p[3], int from) {
+  const bool tet = numCorners(type) == 4;
+  for (int k = from; k < numNodes(type); ++k) {
+    const double* r = tet ? kTetRef[k] : kHexRef[k];
+    if (std::abs(r[0] - p[0]) + std::abs(r[1] - p[1]) + std::abs(r[2] - p[2]) < 1e-12) return k;
+  }
+  throw std::logic_error("elementFacetNodes: no node at a facet's reference point");
+}
+
+std::vector<int> solidFacetNodes(ElementType type, int facet) {
+  const bool tet = numCorners(type) == 4;
+  const int nfc = tet ? 3 : 4, nc = numCorners(type);
+  std::vector<int> nodes(tet ? kTetFaces[facet] : kHexFaces[facet],
+                         (tet ? kTetFaces[facet] : kHexFaces[facet]) + nfc);
+  if (numNodes(type) == nc) return nodes;
+  auto ref = [&](int k) { return tet ? kTetRef[k] : kHexRef[k]; };
+  double centre[3] = {0, 0, 0};
+  for (int j = 0; j < nfc; ++j) {
+    const double *a = ref(nodes[j]), *b = ref(nodes[(j + 1) % nfc]);
+    const double mid[3] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+    nodes.push_back(nodeAt(type, mid, nc));
+    for (int i = 0; i < 3; ++i) centre[i] += a[i] / nfc;
+  }
+  if (type == ElementType::Hex27) nodes.push_back(nodeAt(type, centre, nc));
+  return nodes;
+}
+
+}  // namespace
+
 int numNodes(ElementType type) {
   switch (type) {
+    case ElementType::Line2:
+      return 2;
     case ElementType::Tri3:
+    case ElementType::Line3:
       return 3;
     case ElementType::Quad4:
+    case ElementType::Tet4:
       return 4;
     case ElementType::Tri6:
       return 6;
+    case ElementType::Hex8:
+    case ElementType::Quad8:
+      return 8;
     case ElementType::Quad9:
       return 9;
+    case ElementType::Tet10:
+      return 10;
+    case ElementType::Hex20:
+      return 20;
+    case ElementType::Hex27:
+      return 27;
   }
   throw std::logic_error("numNodes: invalid element type");
 }
 
 int numCorners(ElementType type) {
-  return (type == ElementType::Tri3 || type == ElementType::Tri6) ? 3 : 4;
+  switch (type) {
+    case ElementType::Line2:
+    case ElementType::Line3:
+      return 2;
+    case ElementType::Tri3:
+    case ElementType::Tri6:
+      return 3;
+    case ElementType::Hex8:
+    case ElementType::Hex20:
+    case ElementType::Hex27:
+      return 8;
+    default:
+      return 4;  // quadrangles and tetrahedra
+  }
+}
+
+int elementDimension(ElementType type) {
+  switch (type) {
+    case ElementType::Line2:
+    case ElementType::Line3:
+      return 1;
+    case ElementType::Tet4:
+    case ElementType::Tet10:
+    case ElementType::Hex8:
+    case ElementType::Hex20:
+    case ElementType::Hex27:
+      return 3;
+    default:
+      return 2;
+  }
 }
 
 const char* elementTypeName(ElementType type) {
   switch (type) {
+    case ElementType::Line2:
+      return "2-node line";
+    case ElementType::Line3:
+      return "3-node line";
     case ElementType::Tri3:
       return "3-node triangle";
     case ElementType::Quad4:
       return "4-node quadrangle";
     case ElementType::Tri6:
       return "6-node triangle";
+    case ElementType::Quad8:
+      return "8-node quadrangle";
     case ElementType::Quad9:
       return "9-node quadrangle";
+    case ElementType::Tet4:
+      return "4-node tetrahedron";
+    case ElementType::Tet10:
+      return "10-node tetrahedron";
+    case ElementType::Hex8:
+      return "8-node hexahedron";
+    case ElementType::Hex20:
+      return "20-node hexahedron";
+    case ElementType::Hex27:
+      return "27-node hexahedron";
   }
   return "invalid element type";
 }
 
+int numFacets(ElementType type) {
+  const int dim = elementDimension(type);
+  if (dim == 2) return numCorners(type);
+  if (dim == 3) return numCorners(type) == 4 ? 4 : 6;
+  throw std::invalid_argument(std::string("numFacets: a ") + elementTypeName(type) +
+                              " is not a 2D or 3D element");
+}
+
+ElementType facetType(ElementType type) {
+  switch (type) {
+    case ElementType::Tri3:
+    case ElementType::Quad4:
+      return ElementType::Line2;
+    case ElementType::Tri6:
+    case ElementType::Quad9:
+      return ElementType::Line3;
+    case ElementType::Tet4:
+      return ElementType::Tri3;
+    case ElementType::Tet10:
+      return ElementType::Tri6;
+    case ElementType::Hex8:
+      return ElementType::Quad4;
+    case ElementType::Hex20:
+      return ElementType::Quad8;
+    case ElementType::Hex27:
+      return ElementType::Quad9;
+    default:
+      throw std::invalid_argument(std::string("facetType: a ") + elementTypeName(type) +
+                                  " is not a body element");
+  }
+}
+
+const std::vector<int>& elementFacetNodes(ElementType type, int facet) {
+  // Built once per type: the table is derived from the reference coordinates.
+  static const std::map<ElementType, std::vector<std::vector<int>>> tables = [] {
+    std::map<ElementType, std::vector<std::vector<int>>> t;
+    for (ElementType e : {ElementType::Tri3, ElementType::Quad4, ElementType::Tri6,
+                          ElementType::Quad9, ElementType::Tet4, ElementType::Tet10,
+                          ElementType::Hex8, ElementType::Hex20, ElementType::Hex27})
+      for (int f = 0; f < numFacets(e); ++f)
+        t[e].push_back(elementDimension(e) == 2 ? elementEdgeNodes(e, f) : solidFacetNodes(e, f));
+    return t;
+  }();
+  const auto it = tables.find(type);
+  if (it == tables.end())
+    throw std::invalid_argument(std::string("elementFacetNodes: a ") + elementTypeName(type) +
+                                " is not a body element");
+  if (facet < 0 || facet >= static_cast<int>(it->second.size()))
+    throw std::out_of_range("elementFacetNodes: no such facet");
+  return it->second[facet];
+}
+
 std::vector<int> elementEdgeNodes(ElementType type, int edge) {
+  if (elementDimension(type) != 2)
+    throw std::invalid_argument(std::string("elementEdgeNodes: a ") + elementTypeName(type) +
+                                " is not a 2D element");
   const int nc = numCorners(type);
   if (edge < 0 || edge >= nc) throw std::out_of_range("elementEdgeNodes: no such edge");
   std::vector<int> nodes{edge, (edge + 1) % nc};
@@ -83,18 +245,25 @@ std::vector<std::string> namesOf(const std::vector<Group>& groups) {
                               "\"; available: " + joinNames(available));
 }
 
+const char* bodyWhat(int dim) {
+  return dim == 3 ? "body (3D physical group)" : "body (2D physical group)";
+}
+const char* boundaryWhat(int dim) {
+  return dim == 3 ? "boundary (2D physical group)" : "boundary (1D physical group)";
+}
+
 }  // namespace
 
 int GmshMesh::bodyIndex(const std::string& name) const {
   for (std::size_t b = 0; b < bodies.size(); ++b)
     if (bodies[b].name == name) return static_cast<int>(b);
-  unknownGroup(source, "body (2D physical group)", name, namesOf(bodies));
+  unknownGroup(source, bodyWhat(dim), name, namesOf(bodies));
 }
 
 const GmshBoundary& GmshMesh::boundary(const std::string& name) const {
   for (const GmshBoundary& g : boundaries)
     if (g.name == name) return g;
-  unknownGroup(source, "boundary (1D physical group)", name, namesOf(boundaries));
+  unknownGroup(source, boundaryWhat(dim), name, namesOf(boundaries));
 }
 
 namespace {
@@ -158,6 +327,9 @@ std::string lowerExtension(const std::string& path) {
 }
 
 void validate(const std::string& path, const MeshOptions& options) {
+  if (options.dimension != 0 && options.dimension != 2 && options.dimension != 3)
+    throw std::invalid_argument(path + ": mesh option dimension = " +
+                                std::to_string(options.dimension) + " is not 0, 2 or 3");
   if (options.order != 1 && options.order != 2)
     throw std::invalid_argument(path + ": mesh option order = " + std::to_string(options.order) +
                                 " is not supported (1 or 2)");
@@ -279,16 +451,29 @@ GroupElements groupElements(const std::string& path, int dim, const NamedGroup& 
   return out;
 }
 
-std::uint64_t edgeKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
+// A facet's identity: its sorted corner nodes (2 in 2D, 3 or 4 in 3D; unused slots -1).
+using FacetKey = std::array<int, 4>;
+struct FacetKeyHash {
+  std::size_t operator()(const FacetKey& k) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (int v : k) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
+FacetKey facetKey(const int* nodes, int corners) {
+  FacetKey k{-1, -1, -1, -1};
+  for (int i = 0; i < corners; ++i) {  // insertion sort of at most 4 values
+    int j = i;
+    for (; j > 0 && k[j - 1] > nodes[i]; --j) k[j] = k[j - 1];
+    k[j] = nodes[i];
+  }
+  return k;
 }
 
-// Relates every boundary edge to the body element having it (same end nodes).
 // A surface whose normal is -z (a clockwise curve loop) gives clockwise elements, which the
 // element kernels reject as inverted: renumber them counter-clockwise (corners reversed, the
-// edge midpoints and the centre following their edges).
+// edge midpoints and the centre following their edges). Returns the twice signed areas after
+// reorientation (for the degeneracy check).
 void orientCounterClockwise(ElementType type, const std::vector<double>& coords,
                             std::vector<int>& connectivity) {
   static const int tri3[] = {0, 2, 1}, tri6[] = {0, 2, 1, 5, 4, 3}, quad4[] = {0, 3, 2, 1},
@@ -297,8 +482,7 @@ void orientCounterClockwise(ElementType type, const std::vector<double>& coords,
                     : type == ElementType::Tri6  ? tri6
                     : type == ElementType::Quad4 ? quad4
                                                  : quad9;
-  const int npe = numNodes(type),
-            corners = type == ElementType::Tri3 || type == ElementType::Tri6 ? 3 : 4;
+  const int npe = numNodes(type), corners = numCorners(type);
   std::vector<int> old(npe);
   for (std::size_t e = 0; e * npe < connectivity.size(); ++e) {
     int* el = &connectivity[e * npe];
@@ -313,58 +497,170 @@ void orientCounterClockwise(ElementType type, const std::vector<double>& coords,
   }
 }
 
-void relateEdgesToElements(GmshMesh& mesh) {
-  struct Side {
-    int body, element, edge;
-  };
-  std::unordered_map<std::uint64_t, Side> sides;
-  for (int b = static_cast<int>(mesh.bodies.size()) - 1; b >= 0; --b) {
-    // Later bodies first, so that the first body wins where two bodies share an edge.
-    const GmshBody& body = mesh.bodies[b];
-    const int npe = body.nodesPerElement(), nc = numCorners(body.type);
-    for (int e = body.numElements() - 1; e >= 0; --e)
-      for (int k = 0; k < nc; ++k) {
-        const int* el = &body.connectivity[static_cast<std::size_t>(e) * npe];
-        sides[edgeKey(el[k], el[(k + 1) % nc])] = Side{b, e, k};
+// The largest corner-to-corner distance of an element: the length scale of its Jacobian.
+double cornerDiameter(const std::vector<double>& coords, int dim, const int* el, int corners) {
+  double d2 = 0.0;
+  for (int a = 0; a < corners; ++a)
+    for (int b = a + 1; b < corners; ++b) {
+      double s = 0.0;
+      for (int i = 0; i < dim; ++i) {
+        const double t = coords[dim * el[a] + i] - coords[dim * el[b] + i];
+        s += t * t;
       }
+      d2 = std::max(d2, s);
+    }
+  return std::sqrt(d2);
+}
+
+[[noreturn]] void badElement(const std::string& path, const std::string& group, std::size_t tag,
+                             ElementType type, const std::string& what) {
+  throw std::runtime_error(path + ": element " + std::to_string(tag) + " (" +
+                           elementTypeName(type) + ") of body \"" + group + "\" is " + what);
+}
+
+// Relative to the element's size: a determinant below this fraction of diameter^dim is zero.
+constexpr double kDegenerate = 1e-10;
+
+// 2D (after orientCounterClockwise): the corner polygon's area must not vanish.
+void checkPlanarElements(const std::string& path, const GmshBody& body,
+                         const std::vector<double>& coords) {
+  const int npe = body.nodesPerElement(), nc = numCorners(body.type);
+  for (int e = 0; e < body.numElements(); ++e) {
+    const int* el = &body.connectivity[static_cast<std::size_t>(e) * npe];
+    double twiceArea = 0.0;
+    for (int k = 0; k < nc; ++k) {
+      const int a = el[k], b = el[(k + 1) % nc];
+      twiceArea += coords[2 * a] * coords[2 * b + 1] - coords[2 * b] * coords[2 * a + 1];
+    }
+    const double h = cornerDiameter(coords, 2, el, nc);
+    if (!(twiceArea > kDegenerate * h * h))
+      badElement(path, body.name, body.gmshTags[e], body.type, "degenerate (zero area)");
   }
-  for (GmshBoundary& g : mesh.boundaries) {
-    const int n = static_cast<int>(g.edges.size()) / g.nodesPerEdge;
-    g.edgeBody.assign(n, -1);
-    g.edgeElement.assign(n, -1);
-    g.edgeLocalEdge.assign(n, -1);
-    for (int i = 0; i < n; ++i) {
-      auto it = sides.find(edgeKey(g.edges[i * g.nodesPerEdge], g.edges[i * g.nodesPerEdge + 1]));
-      if (it == sides.end()) continue;
-      g.edgeBody[i] = it->second.body;
-      g.edgeElement[i] = it->second.element;
-      g.edgeLocalEdge[i] = it->second.edge;
+}
+
+// 3D: Gmsh's Jacobian determinants at every node of every element of the group (the reference
+// element's nodes: corners and, for quadratic elements, the midside and face points where a
+// curved element folds first). All negative: inverted; sign change: folded; all ~0: flat.
+void checkSolidElements(const std::string& path, const GmshBody& body, const NamedGroup& group,
+                        const std::vector<double>& coords) {
+  std::string name;
+  int d = 0, o = 0, n = 0, c = 0;
+  std::vector<double> ref;
+  gmsh::model::mesh::getElementProperties(static_cast<int>(body.type), name, d, o, n, ref, c);
+  std::unordered_map<std::size_t, int> indexOf;
+  for (int e = 0; e < body.numElements(); ++e) indexOf[body.gmshTags[e]] = e;
+  std::vector<int> entities;
+  gmsh::model::getEntitiesForPhysicalGroup(3, group.tag, entities);
+  const int npe = body.nodesPerElement();
+  for (int entity : entities) {
+    std::vector<std::size_t> tags, nodeTags;
+    gmsh::model::mesh::getElementsByType(static_cast<int>(body.type), tags, nodeTags, entity);
+    if (tags.empty()) continue;
+    std::vector<double> jac, det, xyz;
+    gmsh::model::mesh::getJacobians(static_cast<int>(body.type), ref, jac, det, xyz, entity);
+    if (det.size() != tags.size() * static_cast<std::size_t>(n))
+      throw std::runtime_error(path + ": Gmsh returned " + std::to_string(det.size()) +
+                               " Jacobians for " + std::to_string(tags.size()) + " elements");
+    for (std::size_t t = 0; t < tags.size(); ++t) {
+      const int e = indexOf.at(tags[t]);
+      const int* el = &body.connectivity[static_cast<std::size_t>(e) * npe];
+      const double h = cornerDiameter(coords, 3, el, numCorners(body.type));
+      const double* dt = &det[t * n];
+      const double lo = *std::min_element(dt, dt + n), hi = *std::max_element(dt, dt + n);
+      const double zero = kDegenerate * h * h * h;
+      if (std::max(std::abs(lo), std::abs(hi)) <= zero)
+        badElement(path, body.name, tags[t], body.type, "degenerate (zero volume)");
+      if (hi < 0.0)
+        badElement(path, body.name, tags[t], body.type,
+                   "inverted (negative Jacobian; its nodes are numbered against Gmsh's "
+                   "orientation)");
+      if (lo <= zero)
+        badElement(path, body.name, tags[t], body.type,
+                   "distorted (its Jacobian vanishes or changes sign inside the element)");
     }
   }
 }
 
-GmshMesh extract(const std::string& path, const MeshOptions& options) {
-  const auto bodyGroups =
-      selectGroups(path, namedGroups(path, 2), options.bodies, "body (2D physical group)");
+// Relates every boundary edge (face) to the body element having it as a facet.
+void relateFacetsToElements(GmshMesh& mesh) {
+  struct Side {
+    int body, element, facet;
+  };
+  std::unordered_map<FacetKey, Side, FacetKeyHash> sides;
+  for (int b = static_cast<int>(mesh.bodies.size()) - 1; b >= 0; --b) {
+    // Later bodies first, so that the first body wins where two bodies share a facet.
+    const GmshBody& body = mesh.bodies[b];
+    const int npe = body.nodesPerElement(), nf = numFacets(body.type);
+    const int fc = numCorners(facetType(body.type));
+    for (int e = body.numElements() - 1; e >= 0; --e) {
+      const int* el = &body.connectivity[static_cast<std::size_t>(e) * npe];
+      for (int f = 0; f < nf; ++f) {
+        const std::vector<int>& local = elementFacetNodes(body.type, f);
+        int corners[4];
+        for (int k = 0; k < fc; ++k) corners[k] = el[local[k]];
+        sides[facetKey(corners, fc)] = Side{b, e, f};
+      }
+    }
+  }
+  for (GmshBoundary& g : mesh.boundaries) {
+    const int n = static_cast<int>(g.edges.size()) / g.nodesPerEdge;
+    const int fc = numCorners(g.type);
+    g.edgeBody.assign(n, -1);
+    g.edgeElement.assign(n, -1);
+    g.edgeLocalEdge.assign(n, -1);
+    for (int i = 0; i < n; ++i) {
+      auto it = sides.find(facetKey(&g.edges[static_cast<std::size_t>(i) * g.nodesPerEdge], fc));
+      if (it == sides.end()) continue;
+      g.edgeBody[i] = it->second.body;
+      g.edgeElement[i] = it->second.element;
+      g.edgeLocalEdge[i] = it->second.facet;
+    }
+  }
+}
+
+// The dimension of the mesh in the model: 3 when it has a named physical volume.
+int meshDimension(const std::string& path) {
+  return namedGroups(path, 3).empty() ? 2 : 3;
+}
+
+[[noreturn]] void wrongDimension(const std::string& path, int found, int asked) {
+  throw std::invalid_argument(
+      path + ": the mesh is " + std::to_string(found) + "D (" +
+      (found == 3 ? "it defines volumes" : "it defines no named physical volume") + ") but a " +
+      std::to_string(asked) + "D problem is asked");
+}
+
+GmshMesh extract(const std::string& path, const MeshOptions& options, int dim) {
+  const auto bodyGroups = selectGroups(path, namedGroups(path, dim), options.bodies, bodyWhat(dim));
   const auto boundaryGroups =
-      selectGroups(path, namedGroups(path, 1), options.boundaries, "boundary (1D physical group)");
+      selectGroups(path, namedGroups(path, dim - 1), options.boundaries, boundaryWhat(dim));
   if (bodyGroups.empty())
-    throw std::runtime_error(path +
-                             ": no named 2D physical group (body); a body must be a "
-                             "Physical Surface with a name");
+    throw std::runtime_error(path + ": no named " + std::to_string(dim) +
+                             "D physical group (body); a body must be a Physical " +
+                             (dim == 3 ? "Volume" : "Surface") + " with a name");
 
   std::vector<GroupElements> bodyElements, boundaryElements;
   for (const NamedGroup& g : bodyGroups)
-    bodyElements.push_back(groupElements(path, 2, g, {2, 3, 9, 10},
-                                         "3-node triangle (2), 4-node quadrangle (3), 6-node "
-                                         "triangle (9), 9-node quadrangle (10)"));
+    bodyElements.push_back(
+        dim == 2 ? groupElements(path, 2, g, {2, 3, 9, 10},
+                                 "3-node triangle (2), 4-node quadrangle (3), 6-node "
+                                 "triangle (9), 9-node quadrangle (10)")
+                 : groupElements(path, 3, g, {4, 11, 5, 17, 12},
+                                 "4-node tetrahedron (4), 10-node tetrahedron (11), 8-node "
+                                 "hexahedron (5), 20-node hexahedron (17), 27-node "
+                                 "hexahedron (12)"));
   for (const NamedGroup& g : boundaryGroups)
     boundaryElements.push_back(
-        groupElements(path, 1, g, {1, 8}, "2-node line (1), 3-node line (8)"));
+        dim == 2 ? groupElements(path, 1, g, {1, 8}, "2-node line (1), 3-node line (8)")
+                 : groupElements(path, 2, g, {2, 9, 3, 16, 10},
+                                 "3-node triangle (2), 6-node triangle (9), 4-node "
+                                 "quadrangle (3), 8-node quadrangle (16), 9-node "
+                                 "quadrangle (10)"));
 
   // Compact numbering by increasing Gmsh tag: independent of the order groups are visited in.
   GmshMesh mesh;
   mesh.source = path;
+  mesh.dim = dim;
   for (const auto* list : {&bodyElements, &boundaryElements})
     for (const GroupElements& ge : *list)
       mesh.gmshNodes.insert(mesh.gmshNodes.end(), ge.nodes.begin(), ge.nodes.end());
@@ -384,7 +680,7 @@ GmshMesh extract(const std::string& path, const MeshOptions& options) {
   std::vector<std::size_t> allTags;
   std::vector<double> xyz, param;
   gmsh::model::mesh::getNodes(allTags, xyz, param, -1, -1, false, false);
-  mesh.coords.assign(2 * mesh.gmshNodes.size(), 0.0);
+  mesh.coords.assign(static_cast<std::size_t>(dim) * mesh.gmshNodes.size(), 0.0);
   std::vector<char> found(mesh.gmshNodes.size(), 0);
   double extent = 0.0;
   for (double c : xyz) extent = std::max(extent, std::abs(c));
@@ -394,14 +690,13 @@ GmshMesh extract(const std::string& path, const MeshOptions& options) {
     auto it = compact.find(allTags[i]);
     if (it == compact.end()) continue;
     const double z = xyz[3 * i + 2];
-    if (std::abs(z) > zTol) {
+    if (dim == 2 && std::abs(z) > zTol) {
       std::ostringstream s;
       s << path << ": node " << allTags[i] << " has z = " << z
         << "; a 2D mesh must lie in the plane z = 0";
       throw std::runtime_error(s.str());
     }
-    mesh.coords[2 * it->second] = xyz[3 * i];
-    mesh.coords[2 * it->second + 1] = xyz[3 * i + 1];
+    for (int c = 0; c < dim; ++c) mesh.coords[dim * it->second + c] = xyz[3 * i + c];
     found[it->second] = 1;
   }
   for (std::size_t i = 0; i < found.size(); ++i)
@@ -415,19 +710,25 @@ GmshMesh extract(const std::string& path, const MeshOptions& options) {
     body.physicalTag = bodyGroups[g].tag;
     body.type = static_cast<ElementType>(bodyElements[g].type);
     body.connectivity = toCompact(bodyElements[g].nodes);
-    orientCounterClockwise(body.type, mesh.coords, body.connectivity);
     body.gmshTags = std::move(bodyElements[g].tags);
+    if (dim == 2) {
+      orientCounterClockwise(body.type, mesh.coords, body.connectivity);
+      checkPlanarElements(path, body, mesh.coords);
+    } else {
+      checkSolidElements(path, body, bodyGroups[g], mesh.coords);
+    }
     mesh.bodies.push_back(std::move(body));
   }
   for (std::size_t g = 0; g < boundaryGroups.size(); ++g) {
     GmshBoundary boundary;
     boundary.name = boundaryGroups[g].name;
     boundary.physicalTag = boundaryGroups[g].tag;
-    boundary.nodesPerEdge = boundaryElements[g].type == 8 ? 3 : 2;
+    boundary.type = static_cast<ElementType>(boundaryElements[g].type);
+    boundary.nodesPerEdge = numNodes(boundary.type);
     boundary.edges = toCompact(boundaryElements[g].nodes);
     mesh.boundaries.push_back(std::move(boundary));
   }
-  relateEdgesToElements(mesh);
+  relateFacetsToElements(mesh);
   return mesh;
 }
 
@@ -445,6 +746,21 @@ GmshMesh loadMesh(const std::string& path, const MeshOptions& options) {
 
   GmshSession session(options.verbose);
   gmshCall(path, "reading the file", [&] { gmsh::open(path); });
+  int dim = 2;
+  if (ext == ".geo") {
+    gmsh::vectorpair volumes;
+    gmsh::model::getEntities(volumes, 3);
+    dim = volumes.empty() ? 2 : 3;
+  } else {
+    dim = meshDimension(path);
+  }
+  if (options.dimension != 0 && options.dimension != dim)
+    wrongDimension(path, dim, options.dimension);
+  if (dim == 3 && options.quads)
+    throw std::invalid_argument(path +
+                                ": mesh option quads (recombination into quadrilaterals) is 2D "
+                                "only; hexahedra come from the file's Transfinite Volume and "
+                                "Recombine commands");
   if (ext == ".geo") {
     gmshCall(path, "meshing", [&] {
       // Set after open so that they override the file's own global settings.
@@ -455,14 +771,15 @@ GmshMesh loadMesh(const std::string& path, const MeshOptions& options) {
         gmsh::option::setNumber("Mesh.RecombineAll", 1);
         gmsh::option::setNumber("Mesh.RecombinationAlgorithm", 1);
       }
-      // Complete (Lagrange) second-order elements: 9-node quads, not 8-node serendipity ones.
+      // Complete (Lagrange) second-order elements: 9-node quads and 27-node hexahedra, not the
+      // serendipity ones.
       gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 0);
-      gmsh::model::mesh::generate(2);
+      gmsh::model::mesh::generate(dim);
       gmsh::model::mesh::setOrder(options.order);
     });
   }
   try {
-    return extract(path, options);
+    return extract(path, options, dim);
   } catch (const std::string& s) {
     // Only Gmsh's own errors: the ones extract raises already name the file.
     throw std::runtime_error(path + ": reading the mesh failed: Gmsh: " + s);

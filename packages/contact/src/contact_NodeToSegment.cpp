@@ -1,5 +1,7 @@
 #include "contact_NodeToSegment.hpp"
 
+#include "contact_BucketGrid.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -121,53 +123,6 @@ Projection project(const SegmentGeometry& g, bool quadratic, const Vec& xs, int 
   return p;
 }
 
-// Hashed uniform grid of the segments' bounding boxes enlarged by the search radius: a slave
-// node's cell then lists every segment that can be within the search radius of it.
-class SegmentGrid {
- public:
-  SegmentGrid(const std::vector<std::array<double, 4>>& boxes, double cellSize) : h_(cellSize) {
-    lo_ = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-    Vec hi = {-lo_[0], -lo_[1]};
-    for (const auto& b : boxes) {
-      lo_ = {std::min(lo_[0], b[0]), std::min(lo_[1], b[1])};
-      hi = {std::max(hi[0], b[2]), std::max(hi[1], b[3])};
-    }
-    // Bounded cell counts keep the packed cell key within range for any input scale.
-    h_ = std::max(h_, std::max(hi[0] - lo_[0], hi[1] - lo_[1]) * 1e-6);
-    nx_ = static_cast<long long>(std::floor((hi[0] - lo_[0]) / h_)) + 1;
-    ny_ = static_cast<long long>(std::floor((hi[1] - lo_[1]) / h_)) + 1;
-    for (int s = 0; s < static_cast<int>(boxes.size()); ++s) {
-      const auto& b = boxes[s];
-      const long long i0 = index(b[0], lo_[0], nx_), i1 = index(b[2], lo_[0], nx_);
-      const long long j0 = index(b[1], lo_[1], ny_), j1 = index(b[3], lo_[1], ny_);
-      for (long long i = i0; i <= i1; ++i)
-        for (long long j = j0; j <= j1; ++j) cells_[i * ny_ + j].push_back(s);
-    }
-  }
-
-  // Segments of the cell containing (x, y), increasing; null when there are none.
-  const std::vector<int>* candidates(const Vec& x) const {
-    const double fx = (x[0] - lo_[0]) / h_, fy = (x[1] - lo_[1]) / h_;
-    if (!(fx >= 0.0 && fy >= 0.0 && fx < static_cast<double>(nx_) && fy < static_cast<double>(ny_)))
-      return nullptr;
-    const auto it = cells_.find(index(x[0], lo_[0], nx_) * ny_ + index(x[1], lo_[1], ny_));
-    return it == cells_.end() ? nullptr : &it->second;
-  }
-
-  long long occupiedCells() const { return static_cast<long long>(cells_.size()); }
-  double cellSize() const { return h_; }
-
- private:
-  long long index(double v, double lo, long long n) const {
-    const long long i = static_cast<long long>(std::floor((v - lo) / h_));
-    return std::clamp(i, 0LL, n - 1);
-  }
-  double h_;
-  Vec lo_;
-  long long nx_ = 1, ny_ = 1;
-  std::unordered_map<long long, std::vector<int>> cells_;
-};
-
 std::string nodeList(const std::vector<int>& nodes) {
   std::ostringstream s;
   const std::size_t shown = std::min<std::size_t>(nodes.size(), 10);
@@ -253,12 +208,7 @@ NodeToSegmentResult computeNodeToSegment(const std::vector<double>& coords,
     throw std::invalid_argument(
         "computeNodeToSegment: the displacement must be empty or hold x, y per node (" +
         std::to_string(coords.size()) + " values), not " + std::to_string(displacement.size()));
-  if (!(options.searchRadius > 0.0) || !std::isfinite(options.searchRadius))
-    throw std::invalid_argument("computeNodeToSegment: searchRadius must be positive and finite");
-  if (!(options.endTolerance >= 0.0))
-    throw std::invalid_argument("computeNodeToSegment: endTolerance must be >= 0");
-  if (options.maxNewtonIterations < 1)
-    throw std::invalid_argument("computeNodeToSegment: maxNewtonIterations must be >= 1");
+  validateSearchOptions(options, who);
   checkSurface(master, numNodes, who);
   for (int s : slaveNodes)
     if (s < 0 || s >= numNodes)
@@ -285,7 +235,7 @@ NodeToSegmentResult computeNodeToSegment(const std::vector<double>& coords,
   };
 
   std::vector<SegmentGeometry> geom(numSegments);
-  std::vector<std::array<double, 4>> boxes(numSegments);
+  std::vector<double> boxes(4 * static_cast<std::size_t>(numSegments));
   std::unordered_map<int, int> startsAt;  // node -> the segment whose a it is
   double extentSum = 0.0;
   for (int s = 0; s < numSegments; ++s) {
@@ -299,9 +249,10 @@ NodeToSegmentResult computeNodeToSegment(const std::vector<double>& coords,
     // The curve lies in the convex hull of its Bezier control points a, b and c0 - c2.
     const Vec q = geom[s].c0 - geom[s].c2;
     const double r = options.searchRadius;
-    boxes[s] = {std::min({a[0], b[0], q[0]}) - r, std::min({a[1], b[1], q[1]}) - r,
-                std::max({a[0], b[0], q[0]}) + r, std::max({a[1], b[1], q[1]}) + r};
-    extentSum += std::max(boxes[s][2] - boxes[s][0], boxes[s][3] - boxes[s][1]) - 2.0 * r;
+    double* box = &boxes[4 * static_cast<std::size_t>(s)];
+    box[0] = std::min({a[0], b[0], q[0]}) - r, box[1] = std::min({a[1], b[1], q[1]}) - r;
+    box[2] = std::max({a[0], b[0], q[0]}) + r, box[3] = std::max({a[1], b[1], q[1]}) + r;
+    extentSum += std::max(box[2] - box[0], box[3] - box[1]) - 2.0 * r;
     startsAt[segNode(s, 0)] = s;
   }
   std::vector<int> next(numSegments, -1), prev(numSegments, -1);
@@ -315,7 +266,7 @@ NodeToSegmentResult computeNodeToSegment(const std::vector<double>& coords,
 
   NodeToSegmentResult result;
   result.allPairs = static_cast<long long>(slaveNodes.size()) * numSegments;
-  std::unique_ptr<SegmentGrid> grid;
+  std::unique_ptr<BucketGrid> grid;
   std::vector<int> everySegment;
   if (options.bruteForce) {
     everySegment.resize(numSegments);
@@ -324,7 +275,7 @@ NodeToSegmentResult computeNodeToSegment(const std::vector<double>& coords,
     const double h = options.cellSize > 0.0
                          ? options.cellSize
                          : std::max(extentSum / numSegments, options.searchRadius);
-    grid = std::make_unique<SegmentGrid>(boxes, h);
+    grid = std::make_unique<BucketGrid>(2, boxes, h);
     result.gridCells = grid->occupiedCells();
     result.cellSize = grid->cellSize();
   }
@@ -333,7 +284,7 @@ NodeToSegmentResult computeNodeToSegment(const std::vector<double>& coords,
   for (int slave : slaveNodes) {
     const Vec xs = position(slave);
     const std::vector<int>* cand = options.bruteForce ? &everySegment : nullptr;
-    if (grid) cand = grid->candidates(xs);
+    if (grid) cand = grid->candidates(xs.data());
     int best = -1;
     Projection bestP;
     if (cand) {
@@ -388,11 +339,11 @@ NodeToSegmentResult computeNodeToSegment(const std::vector<double>& coords,
     }
     NodeToSegmentRow row;
     row.slaveNode = slave;
-    row.segment = best;
-    row.xi = bestP.xi;
+    row.facet = best;
+    row.xi = {bestP.xi, 0.0};
     row.kind = kind;
-    row.point = bestP.point;
-    row.normal = n;
+    row.point = {bestP.point[0], bestP.point[1], 0.0};
+    row.normal = {n[0], n[1], 0.0};
     row.gap = dot(d, n);
     shapeFunctions(nps, bestP.xi, shape.data());
     row.entries.reserve(2 + 2 * nps);
@@ -481,19 +432,6 @@ int orientSegmentsByElements(MasterSurface& master, const std::vector<double>& c
     points[2 * s + 1] = cy / nc;
   }
   return orientSegmentsByPoints(master, coords, points);
-}
-
-tfeti::InequalityRow toInequalityRow(const NodeToSegmentRow& row,
-                                     const std::function<std::pair<int, int>(int, int)>& dofOf) {
-  tfeti::InequalityRow out;
-  out.gap = row.gap;
-  for (const NodeEntry& e : row.entries) {
-    // The dual operator's cost grows with B's nonzeros; the zeros only served a fixed pattern.
-    if (e.coef == 0.0) continue;
-    const auto [subdomain, dof] = dofOf(e.node, e.component);
-    out.entries.push_back({subdomain, dof, e.coef});
-  }
-  return out;
 }
 
 }  // namespace contact

@@ -26,8 +26,8 @@
 #include <utility>
 #include <vector>
 
+#include "contact_ContactRows.hpp"
 #include "contact_GmshMesh.hpp"
-#include "tfeti_Tearing.hpp"
 
 namespace contact {
 
@@ -39,68 +39,12 @@ struct MasterSurface {
   }
 };
 
-// What to do with a slave node whose closest point is the free end of the master surface (an
-// end node with no neighbouring segment) while the node lies beyond that end, i.e. outside the
-// master's extent.
-enum class EndPolicy {
-  Drop,  // no row: the node is not opposite the master
-  Clamp  // a row at the end point with the end segment's normal: the master's tangent line is
-         // extended past its end (the gap is the distance to that line, not to the end point)
-};
-
-struct NodeToSegmentOptions {
-  // A slave node whose closest point on the master is farther than this gets no row, so every
-  // row has |gap| <= searchRadius. Must be positive; keep it below half the master body's
-  // thickness, or a deeply penetrated node may be projected onto the opposite face.
-  double searchRadius = 0.0;
-  EndPolicy endPolicy = EndPolicy::Drop;
-  // A node is beyond a free end when its offset past the end along the end tangent exceeds this
-  // fraction of the end segment's chord, so that a slave node exactly opposite the master's end
-  // (matching meshes) keeps its row despite rounding.
-  double endTolerance = 1e-8;
-  // Bucket grid cell size; <= 0 chooses max(mean segment extent, searchRadius).
-  double cellSize = 0.0;
-  // Compare every slave node with every segment (reference for testing the grid search).
-  bool bruteForce = false;
-  int maxNewtonIterations = 30;
-};
-
-// One term of a row: coef times component `component` (0: x, 1: y) of the displacement of `node`.
-struct NodeEntry {
-  int node;
-  int component;
-  double coef;
-};
-
-enum class ProjectionKind {
-  Interior,  // the closest point is inside a segment (or exactly opposite a free end)
-  Corner,    // the closest point is a node shared by two segments
-  End        // the node is beyond a free end, kept by EndPolicy::Clamp
-};
-
-struct NodeToSegmentRow {
-  int slaveNode = -1;
-  int segment = -1;  // index into MasterSurface::segments
-  double xi = 0.0;   // parametric coordinate of the closest point on that segment
-  ProjectionKind kind = ProjectionKind::Interior;
-  std::array<double, 2> point{};   // closest point x_m (current geometry)
-  std::array<double, 2> normal{};  // outward unit normal of the master used for the row
-  double gap = 0.0;
-  // The slave node's x, y, then each master node of the segment (segment order) x, y: always
-  // 2 + 2 * nodesPerSegment entries, zero coefficients included, so the row's pattern depends
-  // only on the segment.
-  std::vector<NodeEntry> entries;
-};
-
-struct NodeToSegmentResult {
-  std::vector<NodeToSegmentRow> rows;  // in the order of the slave node list
-  long long candidatePairs = 0;        // (slave node, segment) closest-point evaluations
-  long long allPairs = 0;              // slave nodes x segments, for comparison
-  int beyondRadius = 0;                // slave nodes without a row: nothing within searchRadius
-  int beyondEnd = 0;                   // slave nodes without a row: beyond a free end (Drop)
-  long long gridCells = 0;             // occupied cells of the bucket grid
-  double cellSize = 0.0;
-};
+// The 2D instances of the common contact-row types (contact_ContactRows.hpp): segment = facet,
+// xi[0] the segment's parametric coordinate, point and normal with z = 0, 2 + 2 * nodesPerSegment
+// entries per row.
+using NodeToSegmentOptions = ContactSearchOptions;
+using NodeToSegmentRow = ContactRow;
+using NodeToSegmentResult = ContactRowsResult;
 
 // Closest-point projection of every slave node onto the master surface and its
 // non-penetration row. Candidates come from a uniform bucket grid (hashed, so memory is
@@ -146,10 +90,5 @@ int orientSegmentsTowardPoint(MasterSurface& master, const std::vector<double>& 
 // element's edge or the edge of two elements (not on the boundary).
 int orientSegmentsByElements(MasterSurface& master, const std::vector<double>& coords,
                              ElementType type, const std::vector<int>& connectivity);
-
-// The row in the dual solver's form; dofOf(node, component) returns the (subdomain, local dof)
-// that carries it (for a torn node any of its copies: gluing makes them equal).
-tfeti::InequalityRow toInequalityRow(const NodeToSegmentRow& row,
-                                     const std::function<std::pair<int, int>(int, int)>& dofOf);
 
 }  // namespace contact

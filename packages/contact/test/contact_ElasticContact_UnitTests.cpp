@@ -72,8 +72,10 @@ plasticity::ElementType elementTypeOf(contact::ElementType t) {
       return plasticity::ElementType::Tri6;
     case contact::ElementType::Quad9:
       return plasticity::ElementType::Quad9;
+    default:
+      break;
   }
-  throw std::logic_error("unknown element type");
+  throw std::logic_error("not a 2D body element type");
 }
 
 struct Reference {

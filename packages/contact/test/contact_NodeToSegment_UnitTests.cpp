@@ -185,9 +185,9 @@ TEUCHOS_UNIT_TEST(NodeToSegment, FlatSurfacesGapsNormalsCoefficients) {
         TEST_EQUALITY(static_cast<int>(row.entries.size()), 2 + 2 * nps);
         // Segment i runs from node 10-i at x = (10-i)/10 to node 9-i: xi follows.
         const int seg = 9 - static_cast<int>(std::floor(xs[k] * 10));
-        TEST_EQUALITY(row.segment, seg);
+        TEST_EQUALITY(row.facet, seg);
         const double xa = (10 - seg) / 10.0;
-        TEST_COMPARE(std::abs(row.xi - (-1.0 + 20.0 * (xa - xs[k]))), <, 1e-12);
+        TEST_COMPARE(std::abs(row.xi[0] - (-1.0 + 20.0 * (xa - xs[k]))), <, 1e-12);
         TEST_EQUALITY(static_cast<int>(row.kind), static_cast<int>(ProjectionKind::Interior));
         // Slave entries are -n; the master weights are the shape functions (>= 0 on a straight
         // segment for linear) summing to 1, so every component's coefficients sum to 0.
@@ -321,7 +321,7 @@ TEUCHOS_UNIT_TEST(NodeToSegment, CornersConvexAndConcave) {
     TEST_FLOATING_EQUALITY(r.rows[2].normal[0], h, 1e-14);
     TEST_FLOATING_EQUALITY(r.rows[2].normal[1], h, 1e-14);
     // Penetrated: the nearer side (the top) wins.
-    TEST_EQUALITY(r.rows[3].segment, 2);
+    TEST_EQUALITY(r.rows[3].facet, 2);
     TEST_FLOATING_EQUALITY(r.rows[3].gap, -0.02, 1e-12);
     TEST_COMPARE(std::abs(r.rows[3].normal[1] - 1.0), <, 1e-14);
   }
@@ -382,10 +382,10 @@ TEUCHOS_UNIT_TEST(NodeToSegment, FreeEndsDropOrClamp) {
       TEST_EQUALITY(drop.rows[1].slaveNode, s.slaves[2]);
       TEST_EQUALITY(drop.rows[2].slaveNode, s.slaves[3]);
       // x = 0 is the second node of the last segment, x = 1 the first of the first.
-      TEST_EQUALITY(drop.rows[0].segment, 9);
-      TEST_EQUALITY(drop.rows[0].xi, 1.0);
-      TEST_EQUALITY(drop.rows[2].segment, 0);
-      TEST_EQUALITY(drop.rows[2].xi, -1.0);
+      TEST_EQUALITY(drop.rows[0].facet, 9);
+      TEST_EQUALITY(drop.rows[0].xi[0], 1.0);
+      TEST_EQUALITY(drop.rows[2].facet, 0);
+      TEST_EQUALITY(drop.rows[2].xi[0], -1.0);
       for (const auto& row : drop.rows) {
         TEST_EQUALITY(static_cast<int>(row.kind), static_cast<int>(ProjectionKind::Interior));
         TEST_FLOATING_EQUALITY(row.gap, 0.05, 1e-12);
@@ -400,8 +400,8 @@ TEUCHOS_UNIT_TEST(NodeToSegment, FreeEndsDropOrClamp) {
       for (int k : {0, 4}) {
         const NodeToSegmentRow& row = clamp.rows[k];
         TEST_EQUALITY(static_cast<int>(row.kind), static_cast<int>(ProjectionKind::End));
-        TEST_EQUALITY(row.xi, k == 0 ? 1.0 : -1.0);
-        TEST_EQUALITY(row.segment, k == 0 ? 9 : 0);
+        TEST_EQUALITY(row.xi[0], k == 0 ? 1.0 : -1.0);
+        TEST_EQUALITY(row.facet, k == 0 ? 9 : 0);
         // The distance to the master's tangent line, with its normal.
         TEST_FLOATING_EQUALITY(row.gap, 0.05, 1e-12);
         TEST_COMPARE(std::abs(row.normal[0]), <, 1e-15);
@@ -455,8 +455,7 @@ TEUCHOS_UNIT_TEST(NodeToSegment, BucketSearchMatchesAllPairs) {
     double minGap = 1.0, maxGap = 0.0;
     for (std::size_t k = 0; k < grid.rows.size(); ++k) {
       const auto &a = grid.rows[k], &b = ref.rows[k];
-      differ +=
-          a.slaveNode != b.slaveNode || a.segment != b.segment || a.xi != b.xi || a.gap != b.gap;
+      differ += a.slaveNode != b.slaveNode || a.facet != b.facet || a.xi != b.xi || a.gap != b.gap;
       minGap = std::min(minGap, a.gap);
       maxGap = std::max(maxGap, a.gap);
     }
@@ -521,8 +520,7 @@ TEUCHOS_UNIT_TEST(NodeToSegment, OrientationErrorsDetectedAndCorrected) {
     TEST_EQUALITY(again.rows.size(), good.rows.size());
     int differ = 0;
     for (std::size_t k = 0; k < std::min(again.rows.size(), good.rows.size()); ++k)
-      differ +=
-          again.rows[k].gap != good.rows[k].gap || again.rows[k].segment != good.rows[k].segment;
+      differ += again.rows[k].gap != good.rows[k].gap || again.rows[k].facet != good.rows[k].facet;
     TEST_EQUALITY(differ, 0);
     // An element list without one of the segments' edges is an error, as is a point on a
     // segment's line.

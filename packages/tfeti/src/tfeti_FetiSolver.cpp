@@ -58,6 +58,9 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
             "TFETI: Dirichlet conditions as multipliers, every subdomain floats; FETI: Dirichlet "
             "dofs eliminated in K",
             choice({"TFETI", "FETI"}));
+    pl->set("Kernel tolerance", 1e-8,
+            "largest ||K R|| / ||K|| accepted for the kernel R of a subdomain matrix K (rigid "
+            "modes of its pieces, or the kernel supplied); above it the subdomain is an error");
     pl->set("Gluing", "nonredundant",
             "nonredundant: m-1 rows at a node shared by m subdomains; redundant: m(m-1)/2",
             choice({"nonredundant", "redundant"}));
@@ -126,24 +129,45 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &localDpn, &dofsPerNode_);
   std::vector<std::vector<double>> coords;
   for (const auto& sd : data_) coords.push_back(sd.mesh.coords);
-  buildSubdomains(coords);
+  buildSubdomains(coords, true);
   buildConstraints(inequalities, true);
   buildDualRhs();
 }
 
-void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords) {
+void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords,
+                                 bool checkKernelResidual) {
   const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
   const std::string solver = params_.get<std::string>("Local solver");
   PhaseTimer t(*comm_, timings_.factorization);
   subdomains_.clear();
-  for (std::size_t i = 0; i < data_.size(); ++i) {
-    auto& sd = data_[i];
-    const std::vector<int> dirichletDofs = sd.mesh.dirichletDofs(sd.dofsPerNode);
-    subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, coords[i],
-                                                      std::move(sd.K), sd.f, dirichletDofs,
-                                                      formulation, solver));
-    // The subdomain keeps its own (possibly modified) copy of K.
-    sd.K = CsrMatrix();
+  // An error in one subdomain is reported on every rank (no rank left waiting in a collective).
+  std::string error;
+  try {
+    for (std::size_t i = 0; i < data_.size(); ++i) {
+      auto& sd = data_[i];
+      KernelOptions kernel;
+      kernel.dim = sd.mesh.dim;
+      kernel.elements = sd.mesh.connectivity();
+      kernel.kernel = sd.kernel;
+      kernel.residualTolerance =
+          checkKernelResidual ? params_.get<double>("Kernel tolerance") : 0.0;
+      const std::vector<int> dirichletDofs = sd.mesh.dirichletDofs(sd.dofsPerNode);
+      subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, coords[i],
+                                                        kernel, std::move(sd.K), sd.f,
+                                                        dirichletDofs, formulation, solver));
+    }
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  int failed = error.empty() ? 0 : 1, anyFailed = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &failed, &anyFailed);
+  if (anyFailed) {
+    std::vector<long long> chars(error.begin(), error.end());
+    if (!error.empty()) chars.push_back('\n');
+    const std::vector<long long> all = allGather(*comm_, chars);
+    std::string message(all.begin(), all.end());
+    if (!message.empty() && message.back() == '\n') message.pop_back();
+    throw std::runtime_error(message);
   }
 }
 
@@ -254,7 +278,7 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
   previousLambda_ = lambda_;
   previousEqualityMultiplier_ = equalityMultiplier_;
   previousNorm_ = 0.0;  // a new K: estimate ||P F P|| again
-  buildSubdomains(coords);
+  buildSubdomains(coords, false);
   buildConstraints(inequalities, true);
   buildDualRhs();
   u_vec_ = Teuchos::null;

@@ -24,11 +24,15 @@
 namespace tfeti {
 
 // What the physics layer hands over for one subdomain.
+// mesh.dim is the spatial dimension (coords: dim per node); dofsPerNode is 1 (scalar) or
+// mesh.dim (elasticity), or anything with a kernel given. The kernel of K is found from
+// mesh.quads / mesh.elements (or the graph of K) unless `kernel` is given.
 struct SubdomainData {
   SubdomainMesh mesh;
   int dofsPerNode = 1;
   CsrMatrix K;
   std::vector<double> f;
+  std::vector<double> kernel;  // optional: column-major numDofs x k, checked by ||K R||
 };
 
 struct DualResult : PcpgResult {
@@ -60,10 +64,10 @@ struct FetiTimings {
 
 class FetiSolver {
  public:
-  // "Formulation" (TFETI | FETI), "Gluing" (nonredundant | redundant), "Gluing at Dirichlet
-  // nodes" (true), "Preconditioner" (none | lumped | dirichlet), "Local solver" (cholmod |
-  // klu2 | tacho), "Dual solver" (auto | PCPG | SMALBE | penalty) and the sublists "PCPG",
-  // "MPRGP", "SMALBE" and "Penalty".
+  // "Formulation" (TFETI | FETI), "Kernel tolerance" (1e-8), "Gluing" (nonredundant | redundant),
+  // "Gluing at Dirichlet nodes" (true), "Preconditioner" (none | lumped | dirichlet), "Local
+  // solver" (cholmod | klu2 | tacho), "Dual solver" (auto | PCPG | SMALBE | penalty) and the
+  // sublists "PCPG", "MPRGP", "SMALBE" and "Penalty".
   static Teuchos::RCP<const Teuchos::ParameterList> validParameters();
 
   // local: the subdomains assigned to this rank (see subdomainsOfRank), in increasing id order.
@@ -81,7 +85,8 @@ class FetiSolver {
   void update(const std::vector<std::vector<double>>& loads,
               const std::vector<InequalityRow>& inequalities);
   // A new stiffness for every local subdomain (refactorized), its kernel from the rigid modes of
-  // `coords` (2 per node, e.g. the current configuration), with new loads and rows as update().
+  // `coords` (mesh.dim per node, e.g. the current configuration), with new loads and rows as
+  // update(). ||K R|| is not checked: the tangent of a loaded body does not annihilate rotations.
   void updateStiffness(std::vector<CsrMatrix> K, const std::vector<std::vector<double>>& coords,
                        const std::vector<std::vector<double>>& loads,
                        const std::vector<InequalityRow>& inequalities);
@@ -138,7 +143,7 @@ class FetiSolver {
   Teuchos::RCP<DualOperator> F_;
   Teuchos::RCP<DualPreconditioner> M_;
   DualResult solveQp(const std::string& method);
-  void buildSubdomains(const std::vector<std::vector<double>>& coords);
+  void buildSubdomains(const std::vector<std::vector<double>>& coords, bool checkKernelResidual);
   void buildConstraints(const std::vector<InequalityRow>& inequalities, bool newSubdomains);
   void buildDualRhs();
   Teuchos::RCP<Vector> d_, lambda0_, lambda_;

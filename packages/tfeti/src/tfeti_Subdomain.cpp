@@ -2,14 +2,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "tfeti_DenseUtils.hpp"
+#include "tfeti_Kernel.hpp"
 
 namespace tfeti {
 
 namespace {
+std::string sci(double v) {
+  std::ostringstream s;
+  s << std::scientific << std::setprecision(2) << v;
+  return s.str();
+}
+
 // The diagonal entry of row i (1 if it is structurally or numerically zero).
 double diagonalOrOne(const CsrMatrix& A, int i) {
   const long k = A.find(i, i);
@@ -35,28 +44,74 @@ CsrMatrix decoupleDofs(const CsrMatrix& A, const std::vector<int>& dofs) {
 Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords, CsrMatrix K,
                      std::vector<double> f, const std::vector<int>& dirichletDofs,
                      Formulation formulation, const std::string& localSolver)
+    : Subdomain(id, dofsPerNode, coords, KernelOptions{}, std::move(K), std::move(f), dirichletDofs,
+                formulation, localSolver) {}
+
+Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
+                     const KernelOptions& kernel, CsrMatrix K, std::vector<double> f,
+                     const std::vector<int>& dirichletDofs, Formulation formulation,
+                     const std::string& localSolver)
     : id_(id),
       dofsPerNode_(dofsPerNode),
       formulation_(formulation),
       K_(std::move(K)),
       f_(std::move(f)) {
-  if (dofsPerNode != 1 && dofsPerNode != 2)
-    throw std::invalid_argument("subdomain " + std::to_string(id) +
-                                ": only 1 (scalar) or 2 (2D elasticity) dofs per node");
+  // Sizes first, in the caller's terms: everything below indexes by them.
+  const auto fail = [&](const std::string& what) { throw std::invalid_argument(name() + what); };
+  if (dofsPerNode < 1) fail(": " + std::to_string(dofsPerNode) + " dofs per node");
+  if (kernel.kernel.empty()) {
+    try {
+      rigidModesPerPiece(kernel.dim, dofsPerNode);
+    } catch (const std::invalid_argument& e) {
+      fail(std::string(": ") + e.what());
+    }
+    if (coords.size() % kernel.dim != 0 ||
+        static_cast<long long>(coords.size() / kernel.dim) * dofsPerNode != K_.rows)
+      fail(": K has " + std::to_string(K_.rows) + " rows, the coordinates give " +
+           std::to_string(coords.size() / kernel.dim) + " nodes x " + std::to_string(dofsPerNode) +
+           " dofs (" + std::to_string(coords.size()) + " values, " + std::to_string(kernel.dim) +
+           " per node)");
+  }
+  if (K_.rows != K_.cols || K_.rows % dofsPerNode != 0)
+    fail(": K is " + std::to_string(K_.rows) + " x " + std::to_string(K_.cols) +
+         ", not square with whole nodes of " + std::to_string(dofsPerNode) + " dofs");
+  if (static_cast<int>(f_.size()) != K_.rows)
+    fail(": the load has " + std::to_string(f_.size()) + " entries, K has " +
+         std::to_string(K_.rows) + " rows");
+  for (int d : dirichletDofs)
+    if (d < 0 || d >= K_.rows)
+      fail(": Dirichlet dof " + std::to_string(d) + " is not one of its " +
+           std::to_string(K_.rows) + " dofs");
+  // The pieces come from K as given: eliminating Dirichlet dofs below cuts its graph there.
+  std::vector<std::vector<int>> pieces;
+  if (kernel.kernel.empty())
+    pieces = kernel.elements.empty() ? matrixGraphPieces(K_, dofsPerNode_)
+                                     : rigidPieces(kernel.dim, dofsPerNode_, coords,
+                                                   kernel.elements, K_.rows / dofsPerNode_);
   if (formulation_ == Formulation::FETI && !dirichletDofs.empty()) {
     dirichlet_ = dirichletDofs;
     K_ = decoupleDofs(K_, dirichletDofs);
     for (int d : dirichletDofs) f_[d] = 0.0;
   }
-  computeKernel(coords, formulation_ == Formulation::FETI ? dirichletDofs : std::vector<int>{});
+  computeKernel(coords, kernel, pieces,
+                formulation_ == Formulation::FETI ? dirichletDofs : std::vector<int>{});
+  checkKernelResidual(kernel.residualTolerance);
   chooseFixingDofs();
   factor_ = createLocalSolver(localSolver);
   try {
     factor_->factorize(fixing_.empty() ? K_ : decoupleDofs(K_, fixing_));
   } catch (const std::exception& e) {
-    throw std::runtime_error("subdomain " + std::to_string(id_) + ": " + e.what());
+    throw std::runtime_error(name() + ": K with its " + std::to_string(kernelDim_) +
+                             " kernel dofs fixed is not positive definite, so K has a larger "
+                             "kernel than the " +
+                             std::to_string(kernelDim_) + " modes found (" + e.what() + ")");
   }
   work_.resize(K_.rows);
+  checkNoExtraKernel();
+}
+
+std::string Subdomain::name() const {
+  return "subdomain " + std::to_string(id_);
 }
 
 void Subdomain::setLoad(std::vector<double> f) {
@@ -67,52 +122,80 @@ void Subdomain::setLoad(std::vector<double> f) {
   for (int d : dirichlet_) f_[d] = 0.0;
 }
 
-void Subdomain::computeKernel(const std::vector<double>& coords,
+void Subdomain::computeKernel(const std::vector<double>& coords, const KernelOptions& options,
+                              const std::vector<std::vector<int>>& pieces,
                               const std::vector<int>& dirichletDofs) {
-  const int n = K_.rows;
-  const int nodes = n / dofsPerNode_;
-  int k = dofsPerNode_ == 1 ? 1 : 3;
-  std::vector<double> R(static_cast<std::size_t>(n) * k, 0.0);
-  double xc = 0.0, yc = 0.0;
-  for (int a = 0; a < nodes; ++a) {
-    xc += coords[2 * a] / nodes;
-    yc += coords[2 * a + 1] / nodes;
+  if (!options.kernel.empty()) {
+    if (options.kernel.size() % K_.rows != 0)
+      throw std::invalid_argument(name() + ": the given kernel has " +
+                                  std::to_string(options.kernel.size()) +
+                                  " values, not whole columns of " + std::to_string(K_.rows));
+    kernelDim_ = restrictedKernel(K_.rows, options.kernel, dirichletDofs, R_);
+    return;
   }
-  for (int a = 0; a < nodes; ++a) {
-    if (dofsPerNode_ == 1) {
-      R[a] = 1.0;
-    } else {
-      // Translations in x and y, and the rotation about the centroid (centred for conditioning).
-      R[2 * a] = 1.0;
-      R[n + 2 * a + 1] = 1.0;
-      R[2 * n + 2 * a] = -(coords[2 * a + 1] - yc);
-      R[2 * n + 2 * a + 1] = coords[2 * a] - xc;
-    }
+  kernelDim_ = rigidBodyKernel(options.dim, dofsPerNode_, coords, pieces, dirichletDofs, R_);
+}
+
+void Subdomain::checkKernelResidual(double tolerance) {
+  const int n = K_.rows, k = kernelDim_;
+  // ||K R||: R must be in the kernel (a supplied kernel, elements that are not rigid, ...).
+  const double normK = K_.frobeniusNorm();
+  std::vector<double> y(n);
+  double kr = 0.0;
+  for (int q = 0; q < k; ++q) {
+    K_.multiply(&R_[static_cast<std::size_t>(q) * n], y.data());
+    for (double v : y) kr += v * v;
   }
-  if (!dirichletDofs.empty()) {
-    // Only the combinations of rigid modes that vanish on the Dirichlet dofs remain in the
-    // kernel: the null space of C = R(D, :), from the eigenvectors of C^T C.
-    std::vector<double> CtC(k * k, 0.0);
-    for (int p = 0; p < k; ++p)
-      for (int q = 0; q < k; ++q)
-        for (int d : dirichletDofs) CtC[q * k + p] += R[p * n + d] * R[q * n + d];
-    std::vector<double> w, V;
-    dense::symmetricEigen(k, CtC, w, V);
-    double wmax = *std::max_element(w.begin(), w.end());
-    std::vector<double> Rn;
-    for (int e = 0; e < k; ++e) {
-      if (w[e] > 1e-10 * wmax) continue;
-      std::vector<double> col(n, 0.0);
-      for (int p = 0; p < k; ++p)
-        for (int i = 0; i < n; ++i) col[i] += R[p * n + i] * V[e * k + p];
-      for (int d : dirichletDofs) col[d] = 0.0;
-      Rn.insert(Rn.end(), col.begin(), col.end());
-    }
-    R = std::move(Rn);
-    k = static_cast<int>(R.size() / n);
+  kernelResidual_ = normK > 0.0 ? std::sqrt(kr) / normK : 0.0;
+  if (tolerance > 0.0 && kernelResidual_ > tolerance)
+    throw std::runtime_error(name() + ": the " + std::to_string(k) +
+                             " kernel vectors are not in the kernel of K: ||K R|| / ||K|| = " +
+                             sci(kernelResidual_) + " > " + sci(tolerance));
+}
+
+void Subdomain::checkNoExtraKernel() {
+  const int n = K_.rows, k = kernelDim_;
+  // A kernel vector that R misses makes K with the fixing dofs decoupled singular; the
+  // factorization may still succeed on rounding-level pivots. Three power iterations on K+ from
+  // a fixed pseudo-random start expose it: such a direction is amplified by ~1e15 per step,
+  // against at most the condition number of K for the others.
+  double maxDiag = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const long p = K_.find(i, i);
+    if (p >= 0) maxDiag = std::max(maxDiag, std::abs(K_.values[p]));
   }
-  kernelDim_ = dense::orthonormalizeColumns(n, k, R);
-  R_ = std::move(R);
+  if (n == k || maxDiag == 0.0) {
+    lambdaMinRelative_ = 1.0;
+    return;
+  }
+  std::vector<double> x(n), z(n);
+  unsigned long long state = 88172645463325252ull;
+  for (double& v : x) {
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    v = static_cast<double>(state % 2000003) / 1000001.5 - 1.0;
+  }
+  double growth = 0.0;
+  for (int it = 0; it < 3; ++it) {
+    double nx = 0.0;
+    for (double v : x) nx += v * v;
+    nx = std::sqrt(nx);
+    for (double& v : x) v /= nx;
+    applyPseudoInverse(x.data(), z.data());
+    double nz = 0.0;
+    for (double v : z) nz += v * v;
+    growth = std::sqrt(nz);
+    x.swap(z);
+  }
+  lambdaMinRelative_ = growth > 0.0 ? 1.0 / (growth * maxDiag) : 1.0;
+  if (!(lambdaMinRelative_ > 1e-11))
+    throw std::runtime_error(
+        name() + ": K has a larger kernel than the " + std::to_string(k) +
+        " modes found (with the kernel dofs fixed its smallest eigenvalue is ~" +
+        sci(lambdaMinRelative_) +
+        " of its largest diagonal entry): a part of the subdomain touches the rest at a node or "
+        "an edge only (give its elements), or a kernel is missing");
 }
 
 void Subdomain::chooseFixingDofs() {

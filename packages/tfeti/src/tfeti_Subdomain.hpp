@@ -1,6 +1,7 @@
 #pragma once
 // One subdomain of the torn problem: its stiffness matrix K and load f, the kernel R of K
-// (rigid body modes, orthonormal columns), and a generalized inverse K+ with K K+ K = K.
+// (rigid body modes of its pieces, or supplied; orthonormal columns), and a generalized inverse
+// K+ with K K+ K = K.
 //
 // K+ comes from fixing-dof regularization, which keeps the sparsity of K: a set F of
 // kernelDim() dofs is chosen so that R(F, :) is well conditioned; K_reg is K with the rows and
@@ -12,6 +13,7 @@
 
 #include "tfeti_CsrMatrix.hpp"
 #include "tfeti_LocalSolver.hpp"
+#include "tfeti_SubdomainMesh.hpp"
 
 namespace tfeti {
 
@@ -22,9 +24,29 @@ enum class Formulation { TFETI, FETI };
 
 enum class PreconditionerType { None, Lumped, Dirichlet };
 
+// Where the kernel of K comes from and how it is checked (see tfeti_Kernel.hpp).
+struct KernelOptions {
+  int dim = 2;  // coordinates per node
+  // The subdomain's elements: rigid pieces and where they touch. Empty: the connected
+  // components of the graph of K (pieces touching at a node are then an error, not detected).
+  ElementConnectivity elements;
+  // A kernel supplied by the caller (column-major numDofs x k, any basis): used instead of the
+  // rigid modes, and checked like them.
+  std::vector<double> kernel;
+  // ||K R||_F / ||K||_F above this is an error naming the subdomain. <= 0: not checked (the
+  // tangent stiffness of a loaded body, whose rotations are not exactly in its kernel).
+  double residualTolerance = 1e-8;
+};
+
 class Subdomain {
  public:
-  // coords: 2 per node; dofs are interleaved (dof = dofsPerNode * node + component).
+  // coords: kernel.dim per node; dofs are interleaved (dof = dofsPerNode * node + component).
+  // Throws (naming the subdomain) on inconsistent sizes, a kernel that K does not annihilate,
+  // and a K whose kernel is larger than the one found.
+  Subdomain(int id, int dofsPerNode, const std::vector<double>& coords, const KernelOptions& kernel,
+            CsrMatrix K, std::vector<double> f, const std::vector<int>& dirichletDofs,
+            Formulation formulation, const std::string& localSolver);
+  // 2D, kernel from the graph of K (the release-1 interface).
   Subdomain(int id, int dofsPerNode, const std::vector<double>& coords, CsrMatrix K,
             std::vector<double> f, const std::vector<int>& dirichletDofs, Formulation formulation,
             const std::string& localSolver);
@@ -40,6 +62,12 @@ class Subdomain {
   // Column-major numDofs() x kernelDim(), orthonormal columns.
   const std::vector<double>& kernel() const { return R_; }
   const std::vector<int>& fixingDofs() const { return fixing_; }
+  // ||K R||_F / ||K||_F of the kernel used.
+  double kernelResidual() const { return kernelResidual_; }
+  // Estimate of the smallest eigenvalue of the regularized K (K with the fixing dofs decoupled)
+  // relative to the largest diagonal entry of K: near machine precision when K has a kernel
+  // vector that R misses.
+  double regularizedConditionEstimate() const { return lambdaMinRelative_; }
 
   // x = K+ b for nrhs columns (leading dimension numDofs()).
   void applyPseudoInverse(const double* b, double* x, int nrhs = 1);
@@ -55,8 +83,13 @@ class Subdomain {
   std::size_t preconditionerFactorBytes() const;
 
  private:
-  void computeKernel(const std::vector<double>& coords, const std::vector<int>& dirichletDofs);
+  void computeKernel(const std::vector<double>& coords, const KernelOptions& options,
+                     const std::vector<std::vector<int>>& pieces,
+                     const std::vector<int>& dirichletDofs);
   void chooseFixingDofs();
+  void checkKernelResidual(double tolerance);
+  void checkNoExtraKernel();
+  std::string name() const;
 
   int id_;
   int dofsPerNode_;
@@ -67,6 +100,7 @@ class Subdomain {
   int kernelDim_ = 0;
   std::vector<double> R_;
   std::vector<int> fixing_;
+  double kernelResidual_ = 0.0, lambdaMinRelative_ = 0.0;
   std::unique_ptr<LocalSolver> factor_;
   std::vector<double> work_;
 

@@ -11,6 +11,8 @@ namespace tfeti {
 std::vector<int> SubdomainMesh::boundaryNodes() const {
   if (quads.empty()) {
     std::vector<int> nodes = interfaceCandidates;
+    if (nodes.empty())
+      for (int n = 0; n < numNodes(); ++n) nodes.push_back(n);
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     return nodes;
@@ -28,6 +30,16 @@ std::vector<int> SubdomainMesh::boundaryNodes() const {
   for (int n = 0; n < numNodes(); ++n)
     if (onBoundary[n]) nodes.push_back(n);
   return nodes;
+}
+
+ElementConnectivity SubdomainMesh::connectivity() const {
+  ElementConnectivity c;
+  for (int e = 0; e < numElements(); ++e)
+    c.add({quads[4 * e], quads[4 * e + 1], quads[4 * e + 2], quads[4 * e + 3]});
+  c.nodes.insert(c.nodes.end(), elements.nodes.begin(), elements.nodes.end());
+  for (int e = 0; e < elements.size(); ++e)
+    c.offsets.push_back(c.offsets.back() + elements.offsets[e + 1] - elements.offsets[e]);
+  return c;
 }
 
 std::vector<int> SubdomainMesh::dirichletMasks(int dofsPerNode) const {

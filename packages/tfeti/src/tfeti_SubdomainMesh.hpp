@@ -9,22 +9,46 @@
 
 namespace tfeti {
 
+// Elements of any type and dimension (mixed too) as lists of local nodes: element e has the
+// nodes nodes[offsets[e] .. offsets[e + 1]). The order of nodes within an element does not
+// matter here: the kernel detection only asks which nodes elements share.
+struct ElementConnectivity {
+  std::vector<int> offsets{0};
+  std::vector<int> nodes;
+  int size() const { return static_cast<int>(offsets.size()) - 1; }
+  bool empty() const { return size() <= 0; }
+  void add(const std::vector<int>& elementNodes) {
+    nodes.insert(nodes.end(), elementNodes.begin(), elementNodes.end());
+    offsets.push_back(static_cast<int>(nodes.size()));
+  }
+};
+
 struct SubdomainMesh {
   int id = -1;
-  std::vector<double> coords;       // x0, y0, x1, y1, ... per local node
-  std::vector<int> quads;           // 4 local nodes per element, counter-clockwise
+  // Spatial dimension (2 or 3): coords holds dim values per node. The dofs per node of the
+  // problem are 1 (scalar) or dim (elasticity).
+  int dim = 2;
+  std::vector<double> coords;  // x0, y0[, z0], x1, y1[, z1], ... per local node
+  std::vector<int> quads;      // 2D structured Q1: 4 local nodes per element, counter-clockwise
+  // Any other mesh (2D or 3D): its elements. With quads or elements the kernel of K is found
+  // from the rigidly connected pieces of the mesh (pieces touching at a node or an edge are
+  // handled); with neither, from the connected components of the graph of K.
+  ElementConnectivity elements;
   std::vector<GO> globalNode;       // untorn id of each local node
   std::vector<int> dirichletNodes;  // local nodes where every component is prescribed zero
   // Single components prescribed zero, (local node, component): symmetry conditions, e.g. the
   // normal displacement on a symmetry line.
   std::vector<std::pair<int, int>> fixedComponents;
   // Meshes other than the structured Q1 one (quads empty) list the nodes that may be shared
-  // with other subdomains here; boundaryNodes() returns them.
+  // with other subdomains here; boundaryNodes() returns them (every node when the list is empty:
+  // correct for any mesh, only more data for the tearing to gather).
   std::vector<int> interfaceCandidates;
   int numNodes() const { return static_cast<int>(globalNode.size()); }
   int numElements() const { return static_cast<int>(quads.size() / 4); }
-  // Local nodes on the subdomain's boundary (on an element edge that no other element of the
-  // subdomain shares): the only nodes that can be shared with another subdomain.
+  // quads and elements as one list (quads first).
+  ElementConnectivity connectivity() const;
+  // Local nodes that may be shared with another subdomain: for quads those on an element edge
+  // that no other element of the subdomain shares; otherwise interfaceCandidates (or all).
   std::vector<int> boundaryNodes() const;
   // Prescribed dofs (dofsPerNode * node + component), sorted: every component of the Dirichlet
   // nodes and the fixed components.

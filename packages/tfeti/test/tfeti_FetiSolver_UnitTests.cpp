@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tfeti_FetiSolver.hpp"
+#include "tfeti_Test3d.hpp"
 #include "tfeti_TestHelpers.hpp"
 
 namespace {
@@ -49,10 +50,7 @@ void minMax(const tfeti::Comm& comm, long long v, long long& lo, long long& hi) 
 
 const double kTolerance = 1e-10;
 
-// Solves with FetiSolver and compares with the reference on every local subdomain copy.
-Outcome solveAndCompare(const tfeti::StructuredRectangle& rect, const Physics& ph, const Options& o,
-                        const std::vector<double>& reference) {
-  auto comm = Tpetra::getDefaultComm();
+Teuchos::ParameterList solverParameters(const Options& o) {
   Teuchos::ParameterList params;
   params.set("Formulation", o.formulation);
   params.set("Preconditioner", o.preconditioner);
@@ -63,15 +61,24 @@ Outcome solveAndCompare(const tfeti::StructuredRectangle& rect, const Physics& p
   pcpg.set("Relative tolerance", kTolerance);
   pcpg.set("Maximum iterations", 200);
   pcpg.set("Verbosity", 0);
-  tfeti::FetiSolver solver(comm, rect.numSubdomains(),
-                           tfeti_test::localSubdomains(rect, *comm, ph, o.constrain), params);
+  return params;
+}
+
+std::vector<double> boxLoad(const tfeti_test::Material3d& mat, double scale) {
+  return mat.dofsPerNode == 1 ? std::vector<double>{scale} : std::vector<double>{0, 0, -scale};
+}
+
+// Solves with FetiSolver and compares with the reference on every local subdomain copy.
+Outcome solveAndCompare(int numSubdomains, std::vector<tfeti::SubdomainData> local, int dpn,
+                        const Options& o, const std::vector<double>& reference) {
+  auto comm = Tpetra::getDefaultComm();
+  tfeti::FetiSolver solver(comm, numSubdomains, std::move(local), solverParameters(o));
   Outcome out;
   minMax(*comm, solver.dualDimension(), out.dualMin, out.dualMax);
   minMax(*comm, solver.primalDimension(), out.primalMin, out.primalMax);
   minMax(*comm, solver.coarseDimension(), out.coarseMin, out.coarseMax);
   out.result = solver.solve();
 
-  const int dpn = ph.dofsPerNode();
   const double scale = tfeti_test::maxAbs(reference);
   double err = 0.0, dir = 0.0;
   tfeti::Vector u(solver.tearing().primalMap);
@@ -97,10 +104,11 @@ Outcome solveAndCompare(const tfeti::StructuredRectangle& rect, const Physics& p
   return out;
 }
 
-Outcome check(const tfeti::StructuredRectangle& rect, const Physics& ph, const Options& o,
+Outcome check(int numSubdomains, std::vector<tfeti::SubdomainData> local, int dpn,
+              const std::string& description, const Options& o,
               const std::vector<double>& reference, Teuchos::FancyOStream& out, bool& success) {
-  const Outcome r = solveAndCompare(rect, ph, o, reference);
-  out << describe(ph, o) << ": " << (r.result.converged ? "converged" : "NOT converged") << " in "
+  const Outcome r = solveAndCompare(numSubdomains, std::move(local), dpn, o, reference);
+  out << description << ": " << (r.result.converged ? "converged" : "NOT converged") << " in "
       << r.result.iterations << " iterations, error " << r.solutionError << ", ||Bu||/||u|| "
       << r.constraint << "\n";
   TEST_EQUALITY(r.dualMin, r.dualMax);
@@ -115,6 +123,30 @@ Outcome check(const tfeti::StructuredRectangle& rect, const Physics& ph, const O
   TEST_COMPARE(r.constraint, <, 1e-6);
   TEST_COMPARE(r.dirichlet, <, 1e-6);
   return r;
+}
+
+Outcome check(const tfeti::StructuredRectangle& rect, const Physics& ph, const Options& o,
+              const std::vector<double>& reference, Teuchos::FancyOStream& out, bool& success) {
+  auto comm = Tpetra::getDefaultComm();
+  return check(rect.numSubdomains(), tfeti_test::localSubdomains(rect, *comm, ph, o.constrain),
+               ph.dofsPerNode(), describe(ph, o), o, reference, out, success);
+}
+
+// The subdomains of a 3D box on this rank, assembled with the test Tet4/Hex8 kernels; unit body
+// load (1 for the Laplacian, (0, 0, -1) for elasticity) times loadScale.
+std::vector<tfeti::SubdomainData> localBoxSubdomains(const tfeti_test::Box3d& box,
+                                                     const tfeti_test::Material3d& mat,
+                                                     double loadScale = 1.0) {
+  auto comm = Tpetra::getDefaultComm();
+  std::vector<tfeti::SubdomainData> local;
+  for (int s : tfeti::subdomainsOfRank(comm->getRank(), box.numSubdomains(), comm->getSize())) {
+    tfeti::SubdomainData d;
+    d.mesh = box.subdomain(s);
+    d.dofsPerNode = mat.dofsPerNode;
+    tfeti_test::assemble3d(d.mesh.coords, d.mesh.elements, mat, boxLoad(mat, loadScale), d.K, d.f);
+    local.push_back(std::move(d));
+  }
+  return local;
 }
 
 tfeti::StructuredRectangle square() {
@@ -296,4 +328,94 @@ TEUCHOS_UNIT_TEST(FetiSolver, InvalidParametersThrow) {
   Teuchos::ParameterList pcpgTypo;
   pcpgTypo.sublist("PCPG").set("Tolerance", 1e-8);
   TEST_THROW(make(pcpgTypo), Teuchos::Exceptions::InvalidParameter);
+}
+
+// 3D: the box (0,4)^3 of 2x2x2 subdomains of 2x2x2 cubes (Hex8, or six Tet4 each), clamped at
+// x = 0; nodes are shared by up to 8 subdomains. Scalar (1 mode per subdomain) and elasticity (6),
+// TFETI and FETI, nonredundant and redundant gluing, against a direct solve of the untorn box.
+TEUCHOS_UNIT_TEST(FetiSolver, ThreeDimensionalBoxes) {
+  const int N = 8;
+  for (bool tets : {false, true})
+    for (int dpn : {1, 3}) {
+      const tfeti_test::Box3d box(2, 2, 2, 2, 2, 2, tets);
+      tfeti_test::Material3d mat;
+      mat.dofsPerNode = dpn;
+      const std::vector<double> reference =
+          tfeti_test::referenceSolution3d(box, mat, boxLoad(mat, 1.0));
+      TEST_COMPARE(tfeti_test::maxAbs(reference), >, 1e-2);
+      for (const std::string form : {"TFETI", "FETI"})
+        for (const std::string gluing : {"nonredundant", "redundant"}) {
+          Options o;
+          o.formulation = form;
+          o.gluing = gluing;
+          const std::string what = std::string(tets ? "Tet4" : "Hex8") +
+                                   (dpn == 1 ? " Laplacian, " : " elasticity, ") + form + ", " +
+                                   gluing;
+          const Outcome r =
+              check(N, localBoxSubdomains(box, mat), dpn, what, o, reference, out, success);
+          // 8 x 27 node copies of 125 nodes: 91 nonredundant gluing rows per component; TFETI
+          // adds 36 Dirichlet rows (4 subdomains x 9 nodes on x = 0).
+          TEST_EQUALITY(r.primalMax, 8LL * 27 * dpn);
+          if (gluing == "nonredundant")
+            TEST_EQUALITY(r.dualMax, (form == "TFETI" ? 127LL : 91LL) * dpn);
+          TEST_EQUALITY(r.coarseMax, (dpn == 1 ? 1LL : 6LL) * (form == "TFETI" ? N : N - 4));
+        }
+    }
+}
+
+// A subdomain error found on one rank (here a supplied kernel that K does not annihilate, in the
+// last subdomain) is the same clear error on every rank: no rank is left in a collective.
+TEUCHOS_UNIT_TEST(FetiSolver, SubdomainErrorIsRaisedOnEveryRank) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(2, 2, 2, 1, 1, 1, false);
+  tfeti_test::Material3d mat;
+  mat.dofsPerNode = 3;
+  std::vector<tfeti::SubdomainData> local = localBoxSubdomains(box, mat);
+  for (auto& d : local)
+    if (d.mesh.id == box.numSubdomains() - 1) {
+      d.kernel.assign(d.K.rows, 0.0);
+      for (int a = 0; a < d.K.rows / 3; ++a) d.kernel[3 * a] = d.mesh.coords[3 * a];  // u = (x,0,0)
+    }
+  std::string message;
+  try {
+    tfeti::FetiSolver solver(comm, box.numSubdomains(), std::move(local), Teuchos::ParameterList());
+  } catch (const std::runtime_error& e) {
+    message = e.what();
+  }
+  out << "rank " << comm->getRank() << ": " << message << "\n";
+  TEST_INEQUALITY(message.find("subdomain 7"), std::string::npos);
+  TEST_INEQUALITY(message.find("not in the kernel of K"), std::string::npos);
+}
+
+// A zero load gives exactly lambda = 0 and u = 0: PCPG, SMALBE and the penalty method (with
+// inequality rows u_z <= 0 of zero gap on the top face, which a zero load leaves inactive).
+TEUCHOS_UNIT_TEST(FetiSolver, ZeroLoadGivesTheExactZeroSolution) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(2, 2, 2, 2, 2, 2, false);
+  tfeti_test::Material3d mat;
+  mat.dofsPerNode = 3;
+  std::vector<tfeti::InequalityRow> rows;
+  if (comm->getRank() == 0)
+    for (int s = 4; s < 8; ++s) {  // top layer of subdomains: local nodes on z = 4
+      const tfeti::SubdomainMesh m = box.subdomain(s);
+      for (int n = 0; n < m.numNodes(); ++n)
+        if (m.coords[3 * n + 2] == 4.0) rows.push_back({{{s, 3 * n + 2, 1.0}}, 0.0});
+    }
+  for (const std::string method : {"PCPG", "SMALBE", "penalty"}) {
+    Options o;
+    Teuchos::ParameterList params = solverParameters(o);
+    params.set("Dual solver", method);
+    tfeti::FetiSolver solver(comm, box.numSubdomains(), localBoxSubdomains(box, mat, 0.0), params,
+                             method == "PCPG" ? std::vector<tfeti::InequalityRow>{} : rows);
+    const tfeti::DualResult r = solver.solve();
+    double maxU = 0.0;
+    for (std::size_t i = 0; i < solver.data().size(); ++i)
+      maxU = std::max(maxU, tfeti_test::maxAbs(solver.solution(i)));
+    const double maxLambda = solver.multipliers().normInf();
+    out << method << ": converged " << r.converged << ", " << r.iterations
+        << " iterations, max |u| = " << maxU << ", max |lambda| = " << maxLambda << "\n";
+    TEST_ASSERT(r.converged);
+    TEST_EQUALITY(tfeti_test::globalMax(*comm, maxU), 0.0);
+    TEST_EQUALITY(maxLambda, 0.0);
+  }
 }

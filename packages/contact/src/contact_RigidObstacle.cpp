@@ -1,0 +1,109 @@
+#include "contact_RigidObstacle.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace contact {
+
+namespace {
+
+std::string vectorName(const char* field, int component) {
+  return std::string("rigid obstacle: ") + field + "[" + std::to_string(component) + "]";
+}
+
+}  // namespace
+
+void RigidObstacle::validate() const {
+  if (dim != 2 && dim != 3)
+    throw std::invalid_argument("rigid obstacle: dimension " + std::to_string(dim) +
+                                " is not 2 or 3");
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(point[i]))
+      throw std::invalid_argument(vectorName(shape == Shape::Ball ? "centre" : "point", i) +
+                                  " is not finite");
+    if (!std::isfinite(normal[i]))
+      throw std::invalid_argument(vectorName("normal", i) + " is not finite");
+  }
+  if (dim == 2 && (point[2] != 0.0 || (shape == Shape::HalfSpace && normal[2] != 0.0)))
+    throw std::invalid_argument("rigid obstacle: a 2D obstacle has no z component");
+  if (shape == Shape::HalfSpace) {
+    const double len =
+        std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+    if (!(len > 0.0)) throw std::invalid_argument("rigid obstacle: the normal is zero");
+  } else if (!(radius > 0.0) || !std::isfinite(radius)) {
+    throw std::invalid_argument("rigid obstacle: radius = " + std::to_string(radius) +
+                                " must be positive and finite");
+  }
+}
+
+RigidObstacle::Shape obstacleShapeFromName(const std::string& name, int dim) {
+  const char* half = dim == 3 ? "plane" : "line";
+  const char* ball = dim == 3 ? "sphere" : "circle";
+  if (name == half) return RigidObstacle::Shape::HalfSpace;
+  if (name == ball) return RigidObstacle::Shape::Ball;
+  throw std::invalid_argument("rigid obstacle type \"" + name + "\" is not valid in " +
+                              std::to_string(dim) + "D; valid: \"" + half + "\", \"" + ball + "\"");
+}
+
+ContactRowsResult computeObstacleRows(const RigidObstacle& obstacle,
+                                      const std::vector<double>& coords,
+                                      const std::vector<int>& slaveNodes,
+                                      const ContactSearchOptions& options,
+                                      const std::vector<double>& displacement) {
+  obstacle.validate();
+  validateSearchOptions(options, "computeObstacleRows");
+  const int dim = obstacle.dim;
+  if (coords.size() % dim != 0)
+    throw std::invalid_argument("computeObstacleRows: coords must hold " + std::to_string(dim) +
+                                " values per node");
+  if (!displacement.empty() && displacement.size() != coords.size())
+    throw std::invalid_argument("computeObstacleRows: the displacement must be empty or hold " +
+                                std::to_string(dim) + " values per node");
+  const int numNodes = static_cast<int>(coords.size()) / dim;
+  std::array<double, 3> n0{};
+  if (obstacle.shape == RigidObstacle::Shape::HalfSpace) {
+    double len = 0.0;
+    for (int i = 0; i < dim; ++i) len += obstacle.normal[i] * obstacle.normal[i];
+    len = std::sqrt(len);
+    for (int i = 0; i < dim; ++i) n0[i] = obstacle.normal[i] / len;
+  }
+  ContactRowsResult result;
+  result.allPairs = static_cast<long long>(slaveNodes.size());
+  for (int s : slaveNodes) {
+    if (s < 0 || s >= numNodes)
+      throw std::invalid_argument("computeObstacleRows: slave node " + std::to_string(s) +
+                                  " outside 0.." + std::to_string(numNodes - 1));
+    ++result.candidatePairs;
+    std::array<double, 3> x{};
+    for (int i = 0; i < dim; ++i)
+      x[i] = coords[dim * s + i] + (displacement.empty() ? 0.0 : displacement[dim * s + i]);
+    ContactRow row;
+    row.slaveNode = s;
+    if (obstacle.shape == RigidObstacle::Shape::HalfSpace) {
+      row.normal = n0;
+      for (int i = 0; i < dim; ++i) row.gap += (x[i] - obstacle.point[i]) * n0[i];
+      for (int i = 0; i < dim; ++i) row.point[i] = x[i] - row.gap * n0[i];
+    } else {
+      double dist = 0.0;
+      for (int i = 0; i < dim; ++i) dist += (x[i] - obstacle.point[i]) * (x[i] - obstacle.point[i]);
+      dist = std::sqrt(dist);
+      if (!(dist > 1e-12 * obstacle.radius))
+        throw std::invalid_argument("computeObstacleRows: slave node " + std::to_string(s) +
+                                    " is at the obstacle's centre (no normal)");
+      for (int i = 0; i < dim; ++i) {
+        row.normal[i] = (x[i] - obstacle.point[i]) / dist;
+        row.point[i] = obstacle.point[i] + obstacle.radius * row.normal[i];
+      }
+      row.gap = dist - obstacle.radius;
+    }
+    if (std::abs(row.gap) > options.searchRadius) {
+      ++result.beyondRadius;
+      continue;
+    }
+    for (int i = 0; i < dim; ++i) row.entries.push_back({s, i, -row.normal[i]});
+    result.rows.push_back(std::move(row));
+  }
+  return result;
+}
+
+}  // namespace contact

@@ -1,0 +1,20 @@
+// The box (0,2)x(0,1)x(0,1) in 2 x 2 x 2 hexahedra (a transfinite square extruded in layers).
+lc = 1.0;
+Point(1) = {0, 0, 0, lc};
+Point(2) = {2, 0, 0, lc};
+Point(3) = {2, 1, 0, lc};
+Point(4) = {0, 1, 0, lc};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Transfinite Curve{1, 2, 3, 4} = 3;
+Transfinite Surface{1};
+Recombine Surface{1};
+out[] = Extrude {0, 0, 1} { Surface{1}; Layers{2}; Recombine; };
+Physical Volume("box") = {out[1]};
+Physical Surface("bottom") = {1};
+Physical Surface("top") = {out[0]};
+Physical Surface("sides") = {out[2], out[3], out[4], out[5]};
