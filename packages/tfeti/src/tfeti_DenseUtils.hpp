@@ -1,5 +1,6 @@
 #pragma once
-// Small dense linear algebra for the few places that need it: rigid-body kernels (3 columns),
+// Small dense linear algebra for the few places that need it: rigid-body kernels (1-6 columns
+// per piece, and the constraint systems between touching pieces),
 // the pseudo-inverse of one interface node's B B^T block (a handful of rows). Column-major.
 #include <vector>
 

@@ -129,13 +129,12 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &localDpn, &dofsPerNode_);
   std::vector<std::vector<double>> coords;
   for (const auto& sd : data_) coords.push_back(sd.mesh.coords);
-  buildSubdomains(coords, true);
+  buildSubdomains(coords);
   buildConstraints(inequalities, true);
   buildDualRhs();
 }
 
-void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords,
-                                 bool checkKernelResidual) {
+void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords) {
   const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
   const std::string solver = params_.get<std::string>("Local solver");
   PhaseTimer t(*comm_, timings_.factorization);
@@ -149,8 +148,7 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords,
       kernel.dim = sd.mesh.dim;
       kernel.elements = sd.mesh.connectivity();
       kernel.kernel = sd.kernel;
-      kernel.residualTolerance =
-          checkKernelResidual ? params_.get<double>("Kernel tolerance") : 0.0;
+      kernel.residualTolerance = params_.get<double>("Kernel tolerance");
       const std::vector<int> dirichletDofs = sd.mesh.dirichletDofs(sd.dofsPerNode);
       subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, coords[i],
                                                         kernel, std::move(sd.K), sd.f,
@@ -278,7 +276,7 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
   previousLambda_ = lambda_;
   previousEqualityMultiplier_ = equalityMultiplier_;
   previousNorm_ = 0.0;  // a new K: estimate ||P F P|| again
-  buildSubdomains(coords, false);
+  buildSubdomains(coords);
   buildConstraints(inequalities, true);
   buildDualRhs();
   u_vec_ = Teuchos::null;

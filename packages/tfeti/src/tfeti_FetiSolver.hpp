@@ -86,7 +86,8 @@ class FetiSolver {
               const std::vector<InequalityRow>& inequalities);
   // A new stiffness for every local subdomain (refactorized), its kernel from the rigid modes of
   // `coords` (mesh.dim per node, e.g. the current configuration), with new loads and rows as
-  // update(). ||K R|| is not checked: the tangent of a loaded body does not annihilate rotations.
+  // update(). K must annihilate those modes (||K R|| is checked as in the constructor): the
+  // material tangent does, the full tangent of a stressed body does not.
   void updateStiffness(std::vector<CsrMatrix> K, const std::vector<std::vector<double>>& coords,
                        const std::vector<std::vector<double>>& loads,
                        const std::vector<InequalityRow>& inequalities);
@@ -143,7 +144,7 @@ class FetiSolver {
   Teuchos::RCP<DualOperator> F_;
   Teuchos::RCP<DualPreconditioner> M_;
   DualResult solveQp(const std::string& method);
-  void buildSubdomains(const std::vector<std::vector<double>>& coords, bool checkKernelResidual);
+  void buildSubdomains(const std::vector<std::vector<double>>& coords);
   void buildConstraints(const std::vector<InequalityRow>& inequalities, bool newSubdomains);
   void buildDualRhs();
   Teuchos::RCP<Vector> d_, lambda0_, lambda_;

@@ -33,8 +33,7 @@ struct KernelOptions {
   // A kernel supplied by the caller (column-major numDofs x k, any basis): used instead of the
   // rigid modes, and checked like them.
   std::vector<double> kernel;
-  // ||K R||_F / ||K||_F above this is an error naming the subdomain. <= 0: not checked (the
-  // tangent stiffness of a loaded body, whose rotations are not exactly in its kernel).
+  // ||K R||_F / ||K||_F above this is an error naming the subdomain. <= 0: not checked.
   double residualTolerance = 1e-8;
 };
 

@@ -125,6 +125,23 @@ std::vector<Crafted> craftedSubdomains() {
   return all;
 }
 
+// K and load of a crafted subdomain: 3D elasticity (dpn 3) or the Laplacian (dpn 1), unit body
+// load in x (elasticity) or 1.
+struct Assembled {
+  tfeti::CsrMatrix K;
+  std::vector<double> f;
+};
+Assembled assemble(const std::vector<double>& coords, const tfeti::ElementConnectivity& elements,
+                   int dpn) {
+  tfeti_test::Material3d mat;
+  mat.dofsPerNode = dpn;
+  Assembled a;
+  std::vector<double> force(dpn, 0.0);
+  force[0] = 1.0;
+  tfeti_test::assemble3d(coords, elements, mat, force, a.K, a.f);
+  return a;
+}
+
 tfeti::KernelOptions options3d(const tfeti::ElementConnectivity& elements) {
   tfeti::KernelOptions k;
   k.dim = 3;
@@ -135,11 +152,7 @@ tfeti::KernelOptions options3d(const tfeti::ElementConnectivity& elements) {
 TEUCHOS_UNIT_TEST(Kernel, Crafted3dSubdomainsHaveTheExactKernel) {
   for (const Crafted& c : craftedSubdomains())
     for (int dpn : {3, 1}) {
-      tfeti_test::Material3d mat;
-      mat.dofsPerNode = dpn;
-      tfeti::CsrMatrix K;
-      std::vector<double> f;
-      tfeti_test::assemble3d(c.coords, c.elements, mat, std::vector<double>(dpn, 1.0), K, f);
+      const auto [K, f] = assemble(c.coords, c.elements, dpn);
       const int expected = dpn == 3 ? c.elasticKernel : c.scalarKernel;
       out << c.name << (dpn == 3 ? ", elasticity" : ", Laplacian") << ": expected kernel "
           << expected << "\n";
@@ -179,11 +192,7 @@ TEUCHOS_UNIT_TEST(Kernel, TwoQuadsTouchingAtANodeIn2d) {
 // without their elements (the graph of K is connected, so 6 modes are found, not 9).
 TEUCHOS_UNIT_TEST(Kernel, LargerKernelThanFoundIsAnErrorNamingTheSubdomain) {
   const Crafted c = craftedSubdomains()[2];
-  tfeti_test::Material3d mat;
-  mat.dofsPerNode = 3;
-  tfeti::CsrMatrix K;
-  std::vector<double> f;
-  tfeti_test::assemble3d(c.coords, c.elements, mat, {0, 0, 1}, K, f);
+  const auto [K, f] = assemble(c.coords, c.elements, 3);
   for (const std::string solver : {"cholmod", "klu2"}) {
     bool threw = false;
     try {
@@ -204,11 +213,7 @@ TEUCHOS_UNIT_TEST(Kernel, LargerKernelThanFoundIsAnErrorNamingTheSubdomain) {
 // FETI eliminates Dirichlet dofs: the kernel keeps the rigid motions that vanish on them.
 TEUCHOS_UNIT_TEST(Kernel, FetiDirichletDofsLeaveTheRemainingModes3d) {
   const Crafted c = craftedSubdomains()[5];  // strip of three Hex8
-  tfeti_test::Material3d mat;
-  mat.dofsPerNode = 3;
-  tfeti::CsrMatrix K;
-  std::vector<double> f;
-  tfeti_test::assemble3d(c.coords, c.elements, mat, {1, 0, 0}, K, f);
+  const auto [K, f] = assemble(c.coords, c.elements, 3);
   struct Case {
     std::vector<int> dofs;
     int kernel;
@@ -233,11 +238,7 @@ TEUCHOS_UNIT_TEST(Kernel, FetiDirichletDofsLeaveTheRemainingModes3d) {
 // outside the kernel of K and a kernel missing a mode are errors naming the subdomain.
 TEUCHOS_UNIT_TEST(Kernel, SuppliedKernelIsCheckedByKR) {
   const Crafted c = craftedSubdomains()[5];
-  tfeti_test::Material3d mat;
-  mat.dofsPerNode = 3;
-  tfeti::CsrMatrix K;
-  std::vector<double> f;
-  tfeti_test::assemble3d(c.coords, c.elements, mat, {1, 0, 0}, K, f);
+  const auto [K, f] = assemble(c.coords, c.elements, 3);
   const int n = K.rows, nodes = n / 3;
   // Raw modes about the origin, mixed: column j = mode j + mode (j+1) mod 6 / 2 (independent).
   std::vector<std::vector<double>> raw(6, std::vector<double>(n, 0.0));
@@ -282,11 +283,9 @@ TEUCHOS_UNIT_TEST(Kernel, SuppliedKernelIsCheckedByKR) {
 // Sizes that do not match are errors in the caller's terms.
 TEUCHOS_UNIT_TEST(Kernel, InconsistentSizesAreErrors) {
   const Crafted c = craftedSubdomains()[1];
-  tfeti_test::Material3d mat;
-  mat.dofsPerNode = 3;
-  tfeti::CsrMatrix K;
-  std::vector<double> f;
-  tfeti_test::assemble3d(c.coords, c.elements, mat, {1, 0, 0}, K, f);
+  const Assembled a = assemble(c.coords, c.elements, 3);
+  const tfeti::CsrMatrix& K = a.K;
+  const std::vector<double>& f = a.f;
   const std::vector<double> shortCoords(c.coords.begin(), c.coords.end() - 3);
   const std::vector<double> shortLoad(f.begin(), f.end() - 1);
   auto throws = [&](const std::vector<double>& coords, const std::vector<double>& load, int dim,
@@ -319,11 +318,7 @@ TEUCHOS_UNIT_TEST(Kernel, LargeSubdomainsPassTheExtraKernelCheck) {
   for (int e : {4, 8, 12})
     for (int dpn : {1, 3}) {
       const tfeti::SubdomainMesh m = tfeti_test::Box3d(1, 1, 1, e, e, e, false).subdomain(0);
-      tfeti_test::Material3d mat;
-      mat.dofsPerNode = dpn;
-      tfeti::CsrMatrix K;
-      std::vector<double> f;
-      tfeti_test::assemble3d(m.coords, m.elements, mat, std::vector<double>(dpn, 1.0), K, f);
+      const auto [K, f] = assemble(m.coords, m.elements, dpn);
       tfeti::Subdomain sd(0, dpn, m.coords, options3d(m.elements), K, f, {}, Formulation::TFETI,
                           "cholmod");
       out << e << "^3 Hex8, " << (dpn == 1 ? "Laplacian" : "elasticity")

@@ -13,6 +13,7 @@
 #include "tfeti_CsrMatrix.hpp"
 #include "tfeti_LocalSolver.hpp"
 #include "tfeti_SubdomainMesh.hpp"
+#include "tfeti_TestHelpers.hpp"
 
 namespace tfeti_test {
 
@@ -219,18 +220,7 @@ inline std::vector<double> referenceSolution3d(const Box3d& box, const Material3
   tfeti::CsrMatrix K;
   std::vector<double> f;
   assemble3d(whole.coords, whole.elements, mat, force, K, f);
-  std::vector<char> fixed(K.rows, 0);
-  for (int d : whole.dirichletDofs(mat.dofsPerNode)) fixed[d] = 1;
-  for (int i = 0; i < K.rows; ++i)
-    for (int k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k)
-      if (fixed[i] || fixed[K.colInd[k]]) K.values[k] = i == K.colInd[k] ? 1.0 : 0.0;
-  for (int i = 0; i < K.rows; ++i)
-    if (fixed[i]) f[i] = 0.0;
-  auto solver = tfeti::createLocalSolver("cholmod");
-  solver->factorize(K);
-  std::vector<double> u(K.rows);
-  solver->solve(f.data(), u.data());
-  return u;
+  return solveWithDirichlet(std::move(K), std::move(f), whole.dirichletDofs(mat.dofsPerNode));
 }
 
 }  // namespace tfeti_test

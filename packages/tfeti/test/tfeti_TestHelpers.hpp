@@ -75,6 +75,9 @@ inline std::vector<int> dirichletDofs(const tfeti::SubdomainMesh& mesh, int dpn)
   return mesh.dirichletDofs(dpn);
 }
 
+inline std::vector<double> solveWithDirichlet(tfeti::CsrMatrix K, std::vector<double> f,
+                                              const std::vector<int>& dirichlet);
+
 // Direct solve of the undecomposed problem: the whole mesh assembled with the same kernels, the
 // Dirichlet dofs (x = x0) replaced by identity rows and columns, factorized by CHOLMOD. Indexed
 // by untorn dof (dofsPerNode * global node + component).
@@ -86,8 +89,14 @@ inline std::vector<double> referenceSolution(const tfeti::StructuredRectangle& r
   const int dpn = ph.dofsPerNode();
   tfeti::CsrMatrix K = plasticity::assembleStiffness(quadMesh(whole), ph.field, ph.law);
   std::vector<double> f = plasticity::assembleBodyLoad(quadMesh(whole), ph.field, ph.source);
+  return solveWithDirichlet(std::move(K), std::move(f), dirichletDofs(whole, dpn));
+}
+
+// K u = f with the given dofs held at zero (rows and columns replaced by identity), by CHOLMOD.
+inline std::vector<double> solveWithDirichlet(tfeti::CsrMatrix K, std::vector<double> f,
+                                              const std::vector<int>& dirichlet) {
   std::vector<char> fixed(K.rows, 0);
-  for (int d : dirichletDofs(whole, dpn)) fixed[d] = 1;
+  for (int d : dirichlet) fixed[d] = 1;
   for (int i = 0; i < K.rows; ++i)
     for (int k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k) {
       const int j = K.colInd[k];
