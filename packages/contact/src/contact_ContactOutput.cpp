@@ -27,28 +27,44 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
   for (std::size_t i = 0; i < rows.size(); ++i) byRow[key(rows[i])] = lambdas[i];
   std::map<int, std::size_t> slaveIndex;
   for (std::size_t k = 0; k < problem.slaveNodes.size(); ++k) slaveIndex[problem.slaveNodes[k]] = k;
+  const int dim = problem.dim();
   auto dofOf = [&](int n, int c) {
-    return std::make_pair(problem.copyOf[n].first, 2 * problem.copyOf[n].second + c);
+    return std::make_pair(problem.copyOf[n].first, dim * problem.copyOf[n].second + c);
   };
   std::vector<ContactNode> nodes;
   for (const auto& row : problem.contact.rows) {
     const double lambda = byRow.at(key(toInequalityRow(row, dofOf)));
     const double w = problem.slaveWeights[slaveIndex.at(row.slaveNode)];
-    double x = problem.mesh.coords[2 * row.slaveNode],
-           y = problem.mesh.coords[2 * row.slaveNode + 1];
-    if (!surfaceDisplacement.empty()) {
-      x += surfaceDisplacement[2 * row.slaveNode];
-      y += surfaceDisplacement[2 * row.slaveNode + 1];
+    double x[3] = {0.0, 0.0, 0.0};
+    for (int c = 0; c < dim; ++c) {
+      x[c] = problem.mesh.coords[dim * row.slaveNode + c];
+      if (!surfaceDisplacement.empty()) x[c] += surfaceDisplacement[dim * row.slaveNode + c];
     }
-    const double rx = x - rule.centre[0], ry = y - rule.centre[1];
+    const double rx = x[0] - rule.centre[0], ry = x[1] - rule.centre[1];
     const double d0 = rule.direction[0], d1 = rule.direction[1];
     // Signed angle from the direction to the node, counter-clockwise positive (towards +x for
     // the default direction (0, -1)).
     const double angle = std::atan2(d0 * ry - d1 * rx, d0 * rx + d1 * ry) * 180.0 / M_PI;
-    nodes.push_back(
-        {x, y, lambda, w > 0.0 ? lambda / w : 0.0, angle, {row.normal[0], row.normal[1]}});
+    double radius = 0.0;
+    if (dim == 3) {
+      const double r[3] = {rx, ry, x[2] - rule.centre[2]};
+      const double along = r[0] * rule.axis[0] + r[1] * rule.axis[1] + r[2] * rule.axis[2];
+      double r2 = 0.0;
+      for (int c = 0; c < 3; ++c)
+        r2 += (r[c] - along * rule.axis[c]) * (r[c] - along * rule.axis[c]);
+      radius = std::sqrt(r2);
+    }
+    nodes.push_back({x[0],
+                     x[1],
+                     x[2],
+                     lambda,
+                     w > 0.0 ? lambda / w : 0.0,
+                     angle,
+                     radius,
+                     {row.normal[0], row.normal[1], row.normal[2]}});
   }
   std::sort(nodes.begin(), nodes.end(), [&](const ContactNode& a, const ContactNode& b) {
+    if (dim == 3) return a.radius < b.radius;
     return rule.angle ? a.angle < b.angle : a.x < b.x;
   });
   return nodes;
@@ -60,39 +76,64 @@ double maxPressure(const std::vector<ContactNode>& nodes) {
   return p;
 }
 
-double resultantForce(const std::vector<ContactNode>& nodes, const double direction[2]) {
+double resultantForce(const std::vector<ContactNode>& nodes, const double direction[], int dim) {
   double f = 0.0;
   for (const auto& n : nodes)
-    f += n.lambda * (n.normal[0] * direction[0] + n.normal[1] * direction[1]);
+    for (int c = 0; c < dim; ++c) f += n.lambda * n.normal[c] * direction[c];
   return std::abs(f);
 }
 
-double contactExtent(const std::vector<ContactNode>& nodes, const ContactExtentRule& rule) {
+double contactExtent(const std::vector<ContactNode>& nodes, const ContactExtentRule& rule,
+                     int dim) {
+  auto measure = [&](const ContactNode& n) {
+    return dim == 3 ? n.radius : rule.angle ? std::abs(n.angle) : std::abs(n.x);
+  };
   double extent = 0.0;
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     if (!(nodes[k].lambda > 0.0)) continue;
-    const double here = rule.angle ? std::abs(nodes[k].angle) : std::abs(nodes[k].x);
+    const double here = measure(nodes[k]);
     double next = here;
     // The zone ends between the outermost loaded node and its unloaded neighbour outwards.
-    if (k + 1 < nodes.size() && !(nodes[k + 1].lambda > 0.0))
-      next = rule.angle ? std::abs(nodes[k + 1].angle) : std::abs(nodes[k + 1].x);
+    if (k + 1 < nodes.size() && !(nodes[k + 1].lambda > 0.0)) next = measure(nodes[k + 1]);
     extent = std::max(extent, 0.5 * (here + next));
   }
   return extent;
 }
 
 void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
-                     const std::vector<ContactNode>& nodes) {
+                     const std::vector<ContactNode>& nodes, int dim) {
   if (comm.getRank() != 0) return;
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write " + path);
-  csv << "x,y,lambda,pressure,angle\n" << std::setprecision(12);
-  for (const auto& n : nodes)
-    csv << n.x << "," << n.y << "," << n.lambda << "," << n.pressure << "," << n.angle << "\n";
+  csv << (dim == 3 ? "x,y,z,lambda,pressure,radius\n" : "x,y,lambda,pressure,angle\n")
+      << std::setprecision(12);
+  for (const auto& n : nodes) {
+    csv << n.x << "," << n.y << ",";
+    if (dim == 3) csv << n.z << ",";
+    csv << n.lambda << "," << n.pressure << "," << (dim == 3 ? n.radius : n.angle) << "\n";
+  }
 }
 
+namespace {
+
+// The largest von Mises stress under a Hertz point contact: on the axis (where it peaks for
+// nu = 0.3) sigma_z = -p0 / (1 + s^2), sigma_r = -p0 [(1 + nu)(1 - s atan(1/s)) - 1 / (2 (1 +
+// s^2))] at depth s a, von Mises |sigma_r - sigma_z|, maximized over a fine grid of depths.
+double hertzSphereMaxVonMises(double p0, double nu) {
+  double best = 0.0;
+  for (int k = 1; k <= 30000; ++k) {
+    const double s = 1e-4 * k;
+    const double sz = -p0 / (1 + s * s);
+    const double sr = -p0 * ((1 + nu) * (1 - s * std::atan(1 / s)) - 0.5 / (1 + s * s));
+    best = std::max(best, std::abs(sr - sz));
+  }
+  return best;
+}
+
+}  // namespace
+
 void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pMax,
-                        double halfWidth) {
+                        double halfWidth, int dim) {
   const auto& hz = params.sublist("Contact problem").sublist("Hertz");
   if (!hz.get<bool>("Compare")) return;
   const auto& mat = params.sublist("Material");
@@ -106,17 +147,28 @@ void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pM
                      cp.sublist("Rigid obstacle").isParameter("Type") &&
                      cp.sublist("Rigid obstacle").get<std::string>("Type") != "none";
   const double Estar = E / ((rigid ? 1.0 : 2.0) * (1.0 - nu * nu));
-  const double l = hz.get<double>("Line load");
-  const double a = std::sqrt(4.0 * l * R / (M_PI * Estar));
-  const double p0 = 2.0 * l / (M_PI * a);
+  double a = 0.0, p0 = 0.0, vm = 0.0;
+  const char* extent = dim == 3 ? "contact_radius" : "half_width";
+  if (dim == 3) {
+    // Point contact: a = (3 F R / (4 E*))^(1/3), p0 = 3 F / (2 pi a^2).
+    const double F = hz.get<double>("Force");
+    a = std::cbrt(3.0 * F * R / (4.0 * Estar));
+    p0 = 3.0 * F / (2.0 * M_PI * a * a);
+    vm = hertzSphereMaxVonMises(p0, nu);
+  } else {
+    const double l = hz.get<double>("Line load");
+    a = std::sqrt(4.0 * l * R / (M_PI * Estar));
+    p0 = 2.0 * l / (M_PI * a);
+    vm = 0.557 * p0;  // Hertz line contact, nu = 0.3, at depth 0.78 a
+  }
   Json h = Json::object();
   h["p_max"] = p0;
-  h["half_width"] = a;
-  h["max_von_mises"] = 0.557 * p0;  // Hertz line contact, nu = 0.3, at depth 0.78 a
+  h[extent] = a;
+  h["max_von_mises"] = vm;
   c["hertz"] = std::move(h);
   Json err = Json::object();
   err["p_max"] = std::abs(pMax - p0) / p0;
-  err["half_width"] = std::abs(halfWidth - a) / a;
+  err[extent] = std::abs(halfWidth - a) / a;
   c["relative_error"] = std::move(err);
 }
 
@@ -130,33 +182,82 @@ int vtkCellType(plasticity::ElementType type) {
       return kVtkQuadraticTriangle;
     case plasticity::ElementType::Quad9:
       return kVtkBiquadraticQuad;
-    default:  // 3D cells need their VTK node permutations first (Tet10, Hex27 differ from Gmsh)
+    case plasticity::ElementType::Tet4:
+      return kVtkTetra;
+    case plasticity::ElementType::Tet10:
+      return kVtkQuadraticTetra;
+    case plasticity::ElementType::Hex8:
+      return kVtkHexahedron;
+    case plasticity::ElementType::Hex27:
+      return kVtkTriquadraticHexahedron;
+    default:
       break;
   }
-  throw std::invalid_argument("vtkCellType: no VTK cell for " +
-                              plasticity::elementTypeName(type));
+  throw std::invalid_argument("vtkCellType: no VTK cell for " + plasticity::elementTypeName(type));
+}
+
+const std::vector<int>& vtkNodeOrder(plasticity::ElementType type) {
+  // Gmsh's Tet10 has the midside nodes of edges 3-2 and 3-1 at 8 and 9, VTK's quadratic tetra
+  // those of 1-3 and 2-3. Gmsh's Hex27 numbers the edges 0-1, 0-3, 0-4, 1-2, 1-5, 2-3, 2-6,
+  // 3-7, 4-5, 4-7, 5-6, 6-7 and the faces z-, y-, x-, x+, y+, z+; VTK's triquadratic hexahedron
+  // the edges 0-1, 1-2, 2-3, 3-0, 4-5, 5-6, 6-7, 7-4, 0-4, 1-5, 2-6, 3-7 and the faces x-, x+,
+  // y-, y+, z-, z+. Corners and the centre agree.
+  static const std::vector<int> tet10{0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
+  static const std::vector<int> hex27{0,  1,  2,  3,  4,  5,  6,  7,  8,  11, 13, 9,  16, 18,
+                                      19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20, 25, 26};
+  static std::vector<std::vector<int>> identity(plasticity::kMaxElementNodes + 1);
+  if (type == plasticity::ElementType::Tet10) return tet10;
+  if (type == plasticity::ElementType::Hex27) return hex27;
+  const int n = plasticity::nodesPerElement(type);
+  auto& id = identity[n];
+  if (id.empty())
+    for (int k = 0; k < n; ++k) id.push_back(k);
+  return id;
 }
 
 VtuPiece stressPiece(const std::vector<SubdomainFields>& subdomains,
                      const std::vector<std::string>& extraNames) {
   VtuPiece piece;
-  VtuField disp{"displacement", 3, {}}, sxx{"sxx", 1, {}}, syy{"syy", 1, {}}, sxy{"sxy", 1, {}},
-      vm{"von_mises", 1, {}}, sub{"subdomain", 1, {}};
+  const int dim = subdomains.empty() ? 2 : subdomains.front().mesh->dim();
+  piece.dim = dim;
+  // The stress components written: the in-plane ones in 2D, all six in 3D; then von Mises.
+  const std::vector<std::pair<const char*, int>> components =
+      dim == 3 ? std::vector<std::pair<const char*, int>>{{"sxx", plasticity::kSxx},
+                                                          {"syy", plasticity::kSyy},
+                                                          {"szz", plasticity::kSzz},
+                                                          {"syz", plasticity::kSyz},
+                                                          {"sxz", plasticity::kSxz},
+                                                          {"sxy", plasticity::kSxy},
+                                                          {"von_mises", plasticity::kVonMises}}
+               : std::vector<std::pair<const char*, int>>{{"sxx", plasticity::kSxx},
+                                                          {"syy", plasticity::kSyy},
+                                                          {"sxy", plasticity::kSxy},
+                                                          {"von_mises", plasticity::kVonMises}};
+  VtuField disp{"displacement", 3, {}}, sub{"subdomain", 1, {}};
+  std::vector<VtuField> stress;
+  for (const auto& [name, c] : components) stress.push_back({name, 1, {}});
   std::vector<VtuField> extra;
   for (const auto& name : extraNames) extra.push_back({name, 1, {}});
   for (const auto& s : subdomains) {
     const auto& em = *s.mesh;
+    if (em.dim() != dim)
+      throw std::invalid_argument("stressPiece: subdomain " + std::to_string(s.id) + " is " +
+                                  std::to_string(em.dim()) + "D, the others " +
+                                  std::to_string(dim) + "D");
     const auto& u = *s.displacement;
-    const int base = static_cast<int>(piece.points.size() / 2);
+    const int base = static_cast<int>(piece.points.size() / dim);
     piece.points.insert(piece.points.end(), em.coords.begin(), em.coords.end());
     piece.cellTypes.insert(piece.cellTypes.end(), em.numElements(), vtkCellType(em.type));
-    for (int c : em.connectivity) piece.cellPoints.push_back(base + c);
+    const std::vector<int>& order = vtkNodeOrder(em.type);
+    const int npe = plasticity::nodesPerElement(em.type);
+    for (int e = 0; e < em.numElements(); ++e)
+      for (int k = 0; k < npe; ++k)
+        piece.cellPoints.push_back(base +
+                                   em.connectivity[static_cast<std::size_t>(e) * npe + order[k]]);
     for (int n = 0; n < em.numNodes(); ++n) {
-      disp.values.insert(disp.values.end(), {u[2 * n], u[2 * n + 1], 0.0});
-      sxx.values.push_back(s.stress->atNode(n, plasticity::kSxx));
-      syy.values.push_back(s.stress->atNode(n, plasticity::kSyy));
-      sxy.values.push_back(s.stress->atNode(n, plasticity::kSxy));
-      vm.values.push_back(s.stress->atNode(n, plasticity::kVonMises));
+      for (int c = 0; c < 3; ++c) disp.values.push_back(c < dim ? u[dim * n + c] : 0.0);
+      for (std::size_t k = 0; k < components.size(); ++k)
+        stress[k].values.push_back(s.stress->atNode(n, components[k].second));
     }
     if (s.extra.size() != extra.size())
       throw std::invalid_argument("stressPiece: subdomain " + std::to_string(s.id) + " has " +
@@ -166,7 +267,8 @@ VtuPiece stressPiece(const std::vector<SubdomainFields>& subdomains,
       extra[k].values.insert(extra[k].values.end(), s.extra[k].begin(), s.extra[k].end());
     sub.values.insert(sub.values.end(), em.numElements(), s.id);
   }
-  piece.pointData = {disp, sxx, syy, sxy, vm};
+  piece.pointData = {disp};
+  piece.pointData.insert(piece.pointData.end(), stress.begin(), stress.end());
   piece.pointData.insert(piece.pointData.end(), extra.begin(), extra.end());
   piece.cellData = {sub};
   return piece;

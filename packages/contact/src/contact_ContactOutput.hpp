@@ -16,24 +16,29 @@
 namespace contact {
 
 struct ContactNode {
-  double x, y;       // position (reference, or current when a displacement is given)
-  double lambda;     // the row's multiplier: force per unit thickness at the node
-  double pressure;   // lambda over the node's share of the slave boundary length
-  double angle;      // degrees, seen from ContactExtentRule::centre, from its direction
-  double normal[2];  // the master's outward normal of the row: lambda * normal is the force
+  double x, y, z;    // position (reference, or current when a displacement is given); z = 0 in 2D
+  double lambda;     // the row's multiplier: force (per unit thickness in 2D) at the node
+  double pressure;   // lambda over the node's share of the slave boundary length (area in 3D)
+  double angle;      // 2D: degrees, seen from ContactExtentRule::centre, from its direction
+  double radius;     // 3D: distance from the contact axis (ContactExtentRule::centre, axis)
+  double normal[3];  // the master's outward normal of the row: lambda * normal is the force
                      // on the slave node
 };
 
-// How the contact zone's extent is measured: the half-width along x (a contact centred at
+// How the contact zone's extent is measured. 2D: the half-width along x (a contact centred at
 // x = 0 on a symmetry line), or the half-angle seen from a centre, measured from a direction.
+// 3D: the radius from the contact axis, the line through centre along axis (an axisymmetric
+// contact, e.g. a sphere pressed along -z onto a flat at the origin).
 struct ContactExtentRule {
   bool angle = false;
-  double centre[2] = {0.0, 0.0};
+  double centre[3] = {0.0, 0.0, 0.0};
   double direction[2] = {0.0, -1.0};
+  double axis[3] = {0.0, 0.0, 1.0};  // a unit vector
 };
 
-// The multiplier of every row of the last solve at its slave node, sorted by x (or angle).
-// surfaceDisplacement: 2 per mesh node (only surface nodes read) or empty for the reference.
+// The multiplier of every row of the last solve at its slave node, sorted by x (or angle; the
+// radius in 3D). surfaceDisplacement: dim per mesh node (only surface nodes read) or empty for
+// the reference.
 std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                                       const tfeti::FetiSolver& solver,
                                       const ContactExtentRule& rule,
@@ -42,26 +47,36 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
 double maxPressure(const std::vector<ContactNode>& nodes);
 // The resultant contact force on the slave body, sum of lambda * normal, along `direction`
 // (a unit vector; e.g. the applied load's direction: symmetry rows carry the other component
-// of the contact force on a half model).
-double resultantForce(const std::vector<ContactNode>& nodes, const double direction[2]);
-// Between the outermost loaded node and the next one (metres, or degrees for an angle rule).
-double contactExtent(const std::vector<ContactNode>& nodes, const ContactExtentRule& rule);
+// of the contact force on a half model). 2D: direction has 2 entries, 3D: 3.
+double resultantForce(const std::vector<ContactNode>& nodes, const double direction[], int dim = 2);
+// Between the outermost loaded node and the next one outwards (metres, or degrees for an angle
+// rule); in 3D between the largest radius of a node with a positive multiplier and the next
+// larger radius if that node's multiplier is zero (nodes sorted by radius).
+double contactExtent(const std::vector<ContactNode>& nodes, const ContactExtentRule& rule,
+                     int dim = 2);
 
-// Rank 0 writes the nodes as CSV (x,y,lambda,pressure,angle); throws naming the file.
+// Rank 0 writes the nodes as CSV: x,y,lambda,pressure,angle (2D) or x,y,z,lambda,pressure,radius
+// (3D); throws naming the file.
 void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
-                     const std::vector<ContactNode>& nodes);
+                     const std::vector<ContactNode>& nodes, int dim = 2);
 
-// When "Contact problem"/"Hertz"/"Compare" is set: Hertz's line contact of two cylinders
+// When "Contact problem"/"Hertz"/"Compare" is set: in 2D Hertz's line contact of two cylinders
 // (radii, line load l of the full model, E and nu of "Material" for both bodies) as
-// c["hertz"] = {p_max, half_width, max_von_mises} and c["relative_error"] = {p_max, half_width}.
+// c["hertz"] = {p_max, half_width, max_von_mises} and c["relative_error"] = {p_max, half_width};
+// in 3D the point contact of two spheres (radii, total force F of the full model) as
+// c["hertz"] = {p_max, contact_radius, max_von_mises}, c["relative_error"] = {p_max,
+// contact_radius}.
 void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pMax,
-                        double halfWidth);
+                        double halfWidth, int dim = 2);
 
-// The VTK cell type of a plane element.
+// The VTK cell type of an element; vtkNodeOrder(type)[k] is the element's local node at VTK's
+// position k (the identity but for Tet10 and Hex27, whose Gmsh order differs from VTK's).
 int vtkCellType(plasticity::ElementType type);
+const std::vector<int>& vtkNodeOrder(plasticity::ElementType type);
 
-// One VTU piece for this rank's subdomains: displacement, the stress components and von Mises
-// (from the nodal fields of `stress`), extra nodal fields, and the subdomain id per cell.
+// One VTU piece for this rank's subdomains: displacement, the stress components (2D: sxx, syy,
+// sxy; 3D: sxx, syy, szz, syz, sxz, sxy) and von Mises (from the nodal fields of `stress`), extra
+// nodal fields, and the subdomain id per cell.
 struct SubdomainFields {
   const plasticity::ElementMesh* mesh;
   int id;

@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "contact_SurfaceWeights.hpp"
 #include "tfeti_SubdomainDistribution.hpp"
 #include "tfeti_SubdomainMesh.hpp"
 
@@ -24,11 +25,20 @@ plasticity::ElementType toPlasticityType(ElementType type) {
       return plasticity::ElementType::Tri6;
     case ElementType::Quad9:
       return plasticity::ElementType::Quad9;
+    case ElementType::Tet4:
+      return plasticity::ElementType::Tet4;
+    case ElementType::Tet10:
+      return plasticity::ElementType::Tet10;
+    case ElementType::Hex8:
+      return plasticity::ElementType::Hex8;
+    case ElementType::Hex27:
+      return plasticity::ElementType::Hex27;
     default:
       break;
   }
   throw std::invalid_argument(std::string("elastic contact: ") + elementTypeName(type) +
-                              " bodies are not supported (2D problem)");
+                              " bodies are not supported (Tri3, Quad4, Tri6, Quad9, Tet4, Tet10, "
+                              "Hex8 or Hex27)");
 }
 
 namespace {
@@ -52,15 +62,15 @@ int localIndex(const UnstructuredSubdomain& s, int globalNode) {
                                                        : -1;
 }
 
-double edgeLength(const GmshMesh& mesh, const int* nodes, int nodesPerEdge) {
-  auto dist = [&](int a, int b) {
-    return std::hypot(mesh.coords[2 * a] - mesh.coords[2 * b],
-                      mesh.coords[2 * a + 1] - mesh.coords[2 * b + 1]);
-  };
-  // A quadratic edge as the polyline through its middle node: second-order accurate, enough
-  // for the lumping weights of the contact pressure.
-  return nodesPerEdge == 3 ? dist(nodes[0], nodes[2]) + dist(nodes[2], nodes[1])
-                           : dist(nodes[0], nodes[1]);
+// A load given per boundary or body must have one value per component of the mesh's dimension.
+void checkComponents(const std::vector<std::pair<std::string, std::vector<double>>>& loads,
+                     const std::string& what, const std::string& owner, const GmshMesh& mesh) {
+  for (const auto& [name, v] : loads)
+    if (static_cast<int>(v.size()) != mesh.dim)
+      throw std::invalid_argument(
+          what + ": " + std::to_string(v.size()) + " values for " + owner + " \"" + name +
+          "\"; the mesh " + mesh.source + " is " + std::to_string(mesh.dim) + "D and needs " +
+          std::to_string(mesh.dim) + " (" + (mesh.dim == 3 ? "x, y, z" : "x, y") + ")");
 }
 
 // A body touching neither a Dirichlet boundary (fixed or symmetry) nor the contact pair floats
@@ -91,15 +101,16 @@ void requireEveryBodyHeld(const GmshMesh& mesh, const ElasticContactSpec& spec,
 ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
                                                  const tfeti::Comm& comm) {
   ElasticContactProblem p;
-  // This problem is plane strain: a 3D mesh is an error naming the file.
-  MeshOptions meshOptions = spec.meshOptions;
-  if (meshOptions.dimension == 0) meshOptions.dimension = 2;
-  p.mesh = loadMesh(spec.meshFile, meshOptions);
+  // The problem's dimension is the mesh's (spec.meshOptions.dimension may demand one).
+  p.mesh = loadMesh(spec.meshFile, spec.meshOptions);
   const GmshMesh& mesh = p.mesh;
   for (const GmshBody& b : mesh.bodies)  // clockwise in the file: reoriented, said once
     if (b.reoriented > 0 && comm.getRank() == 0)
       std::cout << mesh.source << ": body \"" << b.name << "\": " << b.reoriented << " of "
                 << b.numElements() << " elements were clockwise and are reoriented\n";
+  const int dim = mesh.dim;
+  checkComponents(spec.tractions, "Tractions", "traction boundary", mesh);
+  checkComponents(spec.bodyLoads, "Body loads", "body", mesh);
 
   // Subdomains, body by body, numbered consecutively.
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
@@ -133,9 +144,11 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   }
   std::set<std::pair<int, int>> fixedComponents;
   for (const auto& [name, c] : spec.symmetry) {
-    if (c < 0 || c > 1)
+    if (c < 0 || c >= dim)
       throw std::invalid_argument("Symmetry components: " + std::to_string(c) + " for boundary \"" +
-                                  name + "\" is not 0 (x) or 1 (y)");
+                                  name + "\" is not " +
+                                  (dim == 3 ? "0 (x), 1 (y) or 2 (z)" : "0 (x) or 1 (y)") + " (a " +
+                                  std::to_string(dim) + "D mesh)");
     for (int n : nodesOf(boundaryNamed(mesh, name, "Symmetry boundaries")))
       fixedComponents.insert({n, c});
   }
@@ -156,7 +169,7 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     std::vector<tfeti::SubdomainEdge> edges;
     for (const auto& [ab, w] : shared) edges.push_back({ab.first, ab.second, w});
     std::vector<double> weights;
-    for (const auto& s : p.subdomains) weights.push_back(2.0 * s.numNodes());
+    for (const auto& s : p.subdomains) weights.push_back(static_cast<double>(dim) * s.numNodes());
     p.ownerOfSubdomain =
         tfeti::distributeSubdomains(comm, tfeti::makeSubdomainGraph(weights, edges),
                                     tfeti::distributionMethodFromString(spec.distribution));
@@ -171,33 +184,38 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
       throw std::invalid_argument("Body load bodies: \"" + name + "\" is not one of \"Bodies\"");
     const GmshBody& gb = mesh.body(name);
     const plasticity::ElementMesh whole{toPlasticityType(gb.type), mesh.coords, gb.connectivity};
-    const double unit[2] = {1.0, 0.0};
+    const double unit[3] = {1.0, 0.0, 0.0};
     const auto fe = plasticity::assembleBodyForce(whole, unit);
-    double area = 0.0;
-    for (std::size_t i = 0; i < fe.size(); i += 2) area += fe[i];
+    double area = 0.0;  // the volume in 3D
+    for (std::size_t i = 0; i < fe.size(); i += dim) area += fe[i];
     bodyArea[name] = area;
   }
 
   // This rank's subdomains: meshes for the tearing, stiffness and traction loads.
-  double force[2] = {0.0, 0.0};
+  double force[3] = {0.0, 0.0, 0.0};
   for (int sid : tfeti::subdomainsOfRank(p.ownerOfSubdomain, comm.getRank())) {
     const UnstructuredSubdomain& s = p.subdomains[sid];
     const int b = p.bodyOfSubdomain[sid];
     plasticity::ElementMesh em{toPlasticityType(s.type), s.coords, s.connectivity};
     tfeti::SubdomainData sd;
-    sd.dofsPerNode = 2;
+    sd.dofsPerNode = dim;
     sd.mesh.id = s.id;
+    sd.mesh.dim = dim;
+    const int npe = s.nodesPerElement();
+    for (int e = 0; e < s.numElements(); ++e)
+      sd.mesh.elements.add(std::vector<int>(s.connectivity.begin() + e * npe,
+                                            s.connectivity.begin() + (e + 1) * npe));
     sd.mesh.coords = s.coords;
     sd.mesh.globalNode.assign(s.globalNode.begin(), s.globalNode.end());
     sd.mesh.interfaceCandidates = s.boundaryNodes();
     for (int n = 0; n < s.numNodes(); ++n) {
       if (fixedNodes.count(static_cast<int>(s.globalNode[n]))) sd.mesh.dirichletNodes.push_back(n);
-      for (int c = 0; c < 2; ++c)
+      for (int c = 0; c < dim; ++c)
         if (fixedComponents.count({static_cast<int>(s.globalNode[n]), c}))
           sd.mesh.fixedComponents.push_back({n, c});
     }
     sd.K = plasticity::assembleStiffness(em, spec.bodies[b].law);
-    sd.f.assign(2 * s.numNodes(), 0.0);
+    sd.f.assign(static_cast<std::size_t>(dim) * s.numNodes(), 0.0);
     const int bodyIndex = mesh.bodyIndex(spec.bodies[b].name);
     for (const auto& [name, t] : spec.tractions) {
       const GmshBoundary& gb = boundaryNamed(mesh, name, "Traction boundaries");
@@ -210,55 +228,59 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
           edges.push_back(localIndex(s, gb.edges[e * gb.nodesPerEdge + k]));
       }
       if (edges.empty()) continue;
-      const double tv[2] = {t[0], t[1]};
-      const auto fe = plasticity::assembleEdgeTraction(em, edges, tv);
+      const auto fe = plasticity::assembleSurfaceTraction(em, edges, t.data());
       for (std::size_t i = 0; i < fe.size(); ++i) {
         sd.f[i] += fe[i];
-        force[i % 2] += fe[i];
+        force[i % dim] += fe[i];
       }
     }
     for (const auto& [name, total] : spec.bodyLoads) {
       if (name != spec.bodies[b].name) continue;
-      const double unit[2] = {1.0, 1.0};
+      const double unit[3] = {1.0, 1.0, 1.0};
       const auto fe = plasticity::assembleBodyForce(em, unit);
       for (std::size_t i = 0; i < fe.size(); ++i) {
-        const double density = total[i % 2] / bodyArea.at(name);
+        const double density = total[i % dim] / bodyArea.at(name);
         sd.f[i] += density * fe[i];
-        force[i % 2] += density * fe[i];
+        force[i % dim] += density * fe[i];
       }
     }
     p.local.push_back(std::move(sd));
     p.localElements.push_back(std::move(em));
     p.localBody.push_back(b);
   }
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 2, force, p.appliedForce);
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 3, force, p.appliedForce);
 
   // Contact: the slave boundary's nodes against the master boundary's segments, oriented by
   // the master body's elements so that the normals point out of it, or a rigid obstacle.
   const GmshBoundary& slave = boundaryNamed(mesh, spec.slave, "Slave");
   const std::set<int> slaveSet = nodesOf(slave);
   p.slaveNodes.assign(slaveSet.begin(), slaveSet.end());
-  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (int n = 0; n < mesh.numNodes(); ++n)
-    for (int c = 0; c < 2; ++c) {
-      lo[c] = std::min(lo[c], mesh.coords[2 * n + c]);
-      hi[c] = std::max(hi[c], mesh.coords[2 * n + c]);
+    for (int c = 0; c < dim; ++c) {
+      lo[c] = std::min(lo[c], mesh.coords[dim * n + c]);
+      hi[c] = std::max(hi[c], mesh.coords[dim * n + c]);
     }
+  double extent = 0.0;
+  for (int c = 0; c < dim; ++c) extent = std::max(extent, hi[c] - lo[c]);
   ContactSearchOptions options;
   // A slave node on a symmetry line opposite the master's end (the contact point of a half
   // model) moves off that line by the solver's rounding once the contact is re-evaluated on the
   // deformed geometry; a relative tolerance far above rounding keeps its row.
   options.endTolerance = 1e-4;
-  options.searchRadius =
-      spec.searchRadius > 0.0 ? spec.searchRadius : 0.1 * std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  options.searchRadius = spec.searchRadius > 0.0 ? spec.searchRadius : 0.1 * extent;
   p.searchRadius = options.searchRadius;
   if (spec.obstacle) {
     if (!spec.master.empty())
       throw std::invalid_argument("Master: \"" + spec.master +
                                   "\" is given together with a Rigid obstacle; the obstacle is "
                                   "the master (leave Master empty)");
-    RigidObstacle obstacle = *spec.obstacle;
-    obstacle.dim = 2;
+    const RigidObstacle& obstacle = *spec.obstacle;
+    if (obstacle.dim != dim)
+      throw std::invalid_argument("Contact problem/Rigid obstacle: a " +
+                                  std::to_string(obstacle.dim) + "D obstacle (" +
+                                  (obstacle.dim == 3 ? "plane or sphere" : "line or circle") +
+                                  ") for the " + std::to_string(dim) + "D mesh " + mesh.source);
     try {
       p.master = makeObstacleMaster(obstacle, options);
     } catch (const std::invalid_argument& e) {
@@ -277,18 +299,9 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   p.surfaceNodes.assign(surface.begin(), surface.end());
   updateContact(p, {}, comm.getRank(), spec.slave, spec.master);
 
-  // Lumping weights: a slave node's share of the slave boundary's length (the contact pressure
-  // is its multiplier, a force per unit thickness, divided by this length).
-  std::map<int, double> weight;
-  for (int e = 0; e < slave.numEdges(); ++e) {
-    const int* nodes = &slave.edges[e * slave.nodesPerEdge];
-    const double L = edgeLength(mesh, nodes, slave.nodesPerEdge);
-    if (slave.nodesPerEdge == 3) {
-      weight[nodes[0]] += L / 6, weight[nodes[1]] += L / 6, weight[nodes[2]] += 2 * L / 3;
-    } else {
-      weight[nodes[0]] += L / 2, weight[nodes[1]] += L / 2;
-    }
-  }
+  // Lumping weights: a slave node's share of the slave boundary's length (2D) or area (3D); the
+  // contact pressure is its multiplier (a nodal force; per unit thickness in 2D) divided by it.
+  std::map<int, double> weight = boundaryNodeWeights(mesh, slave);
   for (int n : p.slaveNodes) p.slaveWeights.push_back(weight[n]);
   return p;
 }
@@ -300,8 +313,9 @@ void updateContact(ElasticContactProblem& p, const std::vector<double>& displace
     throw std::invalid_argument(
         "no slave node of \"" + slaveName + "\" is within the search radius of " +
         (masterName.empty() ? std::string("the rigid obstacle") : "\"" + masterName + "\""));
+  const int dim = p.dim();
   auto dofOf = [&](int node, int component) {
-    return std::make_pair(p.copyOf[node].first, 2 * p.copyOf[node].second + component);
+    return std::make_pair(p.copyOf[node].first, dim * p.copyOf[node].second + component);
   };
   p.inequalities.clear();
   if (rank == 0)

@@ -1,8 +1,10 @@
 #pragma once
-// Elastic bodies in frictionless contact on an unstructured Gmsh mesh, torn for TFETI: every
-// body is partitioned by METIS into subdomains, Dirichlet and symmetry conditions are rows of B
-// (every subdomain floats, also a body held only by contact), and one slave/master pair of
-// named boundaries gives the node-to-segment non-penetration rows B_I.
+// Elastic bodies in frictionless contact on an unstructured Gmsh mesh, 2D (plane strain) or 3D,
+// torn for TFETI: every body is partitioned by METIS into subdomains, Dirichlet and symmetry
+// conditions are rows of B (every subdomain floats, also a body held only by contact), and one
+// slave/master pair of named boundaries gives the non-penetration rows B_I (node-to-segment in
+// 2D, node-to-face in 3D), or the slave boundary against a rigid obstacle. The dimension is the
+// mesh's: one code path, dim unknowns per node.
 #include <array>
 #include <memory>
 #include <optional>
@@ -23,18 +25,21 @@ struct ElasticContactSpec {
   std::string meshFile;  // .geo (meshed now) or .msh
   MeshOptions meshOptions;
   struct Body {
-    std::string name;  // a 2D physical group
+    std::string name;  // a physical group of the mesh's dimension (surface in 2D, volume in 3D)
     int subdomains = 1;
     plasticity::ElasticLaw law;
   };
   std::vector<Body> bodies;
   std::vector<std::string> fixed;                     // every component zero
   std::vector<std::pair<std::string, int>> symmetry;  // (boundary, component) zero
-  std::vector<std::pair<std::string, std::array<double, 2>>> tractions;  // force / length
-  // Body loads: the total force (per unit thickness) of a body, spread uniformly over its area.
-  std::vector<std::pair<std::string, std::array<double, 2>>> bodyLoads;
+  // Constant tractions: dim components per boundary (force per length in 2D, per area in 3D);
+  // a different count is an error naming the boundary once the mesh's dimension is known.
+  std::vector<std::pair<std::string, std::vector<double>>> tractions;
+  // Body loads: the total force (per unit thickness in 2D) of a body, dim components, spread
+  // uniformly over its area (volume in 3D).
+  std::vector<std::pair<std::string, std::vector<double>>> bodyLoads;
   std::string slave, master;  // the contact pair
-  // A rigid obstacle as the master instead of a Master boundary (its dim is set to 2 here).
+  // A rigid obstacle as the master instead of a Master boundary (its dim is the mesh's).
   std::optional<RigidObstacle> obstacle;
   double searchRadius = 0.0;           // 0: a tenth of the mesh's extent
   std::string distribution = "graph";  // subdomains to ranks: graph (Zoltan2) or block
@@ -42,6 +47,7 @@ struct ElasticContactSpec {
 
 struct ElasticContactProblem {
   GmshMesh mesh;
+  int dim() const { return mesh.dim; }
   std::vector<UnstructuredSubdomain> subdomains;  // all of them (every rank)
   int numSubdomains() const { return static_cast<int>(subdomains.size()); }
   std::vector<int> bodyOfSubdomain;
@@ -60,15 +66,16 @@ struct ElasticContactProblem {
   std::vector<std::pair<int, int>> copyOf;  // node -> (subdomain, local node) of its first copy
   std::vector<int> surfaceNodes;            // slave and master nodes, sorted
   std::vector<int> slaveNodes;              // global node ids of the slave boundary, as in contact
-  std::vector<double> slaveWeights;     // per slave node: its share of the slave boundary length
-  double appliedForce[2] = {0.0, 0.0};  // resultant of the tractions
+  // Per slave node: its share of the slave boundary's length (2D) or area (3D).
+  std::vector<double> slaveWeights;
+  double appliedForce[3] = {0.0, 0.0, 0.0};  // resultant of the tractions and body loads
 };
 
 // Throws std::invalid_argument naming the group or parameter that is wrong.
 ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
                                                  const tfeti::Comm& comm);
 
-// The contact rows on the configuration reference + displacement (2 per mesh node; only the
+// The contact rows on the configuration reference + displacement (dim per mesh node; only the
 // surfaceNodes' entries are read): p.contact and, on rank 0, p.inequalities. Throws when no
 // slave node is within the search radius.
 void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank,

@@ -34,6 +34,26 @@ std::vector<T> vec(const Array<T>& a) {
   return std::vector<T>(a.begin(), a.end());
 }
 
+// Values per named group (a traction per boundary, a load per body): 2 or 3 each, the same for
+// all; whether that is the mesh's dimension is checked once the mesh is read.
+std::vector<std::pair<std::string, std::vector<double>>> componentsPerName(
+    const ParameterList& cp, const std::string& namesKey, const std::string& valuesKey) {
+  const auto names = vec(cp.get<Array<std::string>>(namesKey));
+  const auto values = vec(cp.get<Array<double>>(valuesKey));
+  std::vector<std::pair<std::string, std::vector<double>>> out;
+  if (names.empty() && values.empty()) return out;
+  const std::size_t per = names.empty() ? 0 : values.size() / names.size();
+  if (names.empty() || values.size() != per * names.size() || (per != 2 && per != 3))
+    throw std::invalid_argument("Contact problem: \"" + valuesKey + "\" has " +
+                                std::to_string(values.size()) + " values for " +
+                                std::to_string(names.size()) + " entries of \"" + namesKey +
+                                "\"; it needs 2 (2D: x, y) or 3 (3D: x, y, z) per entry");
+  for (std::size_t k = 0; k < names.size(); ++k)
+    out.push_back(
+        {names[k], std::vector<double>(values.begin() + k * per, values.begin() + (k + 1) * per)});
+  return out;
+}
+
 }  // namespace
 
 ElasticContactSpec elasticContactSpec(const ParameterList& params) {
@@ -61,25 +81,11 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
   const auto comps = vec(cp.get<Array<int>>("Symmetry components"));
   if (sym.size() != comps.size())
     throw std::invalid_argument(
-        "Contact problem: \"Symmetry components\" needs one component (0: x, 1: y) per entry of "
-        "\"Symmetry boundaries\"");
+        "Contact problem: \"Symmetry components\" needs one component (0: x, 1: y, 2: z) per "
+        "entry of \"Symmetry boundaries\"");
   for (std::size_t k = 0; k < sym.size(); ++k) spec.symmetry.push_back({sym[k], comps[k]});
-  const auto tb = vec(cp.get<Array<std::string>>("Traction boundaries"));
-  const auto tv = vec(cp.get<Array<double>>("Tractions"));
-  if (tv.size() != 2 * tb.size())
-    throw std::invalid_argument(
-        "Contact problem: \"Tractions\" needs 2 values {tx, ty} (force per unit length) per entry "
-        "of \"Traction boundaries\"");
-  for (std::size_t k = 0; k < tb.size(); ++k)
-    spec.tractions.push_back({tb[k], {tv[2 * k], tv[2 * k + 1]}});
-  const auto bb = vec(cp.get<Array<std::string>>("Body load bodies"));
-  const auto bv = vec(cp.get<Array<double>>("Body loads"));
-  if (bv.size() != 2 * bb.size())
-    throw std::invalid_argument(
-        "Contact problem: \"Body loads\" needs 2 values {Fx, Fy} (the body's total force per unit "
-        "thickness) per entry of \"Body load bodies\"");
-  for (std::size_t k = 0; k < bb.size(); ++k)
-    spec.bodyLoads.push_back({bb[k], {bv[2 * k], bv[2 * k + 1]}});
+  spec.tractions = componentsPerName(cp, "Traction boundaries", "Tractions");
+  spec.bodyLoads = componentsPerName(cp, "Body load bodies", "Body loads");
   spec.slave = cp.get<std::string>("Slave");
   spec.master = cp.get<std::string>("Master");
   if (spec.slave == spec.master)
@@ -90,21 +96,25 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
   const std::string type = ro.get<std::string>("Type");
   if (type != "none") {
     RigidObstacle o;
-    o.dim = 2;
-    o.shape = obstacleShapeFromName(type, 2);
+    // line and circle are 2D obstacles, plane and sphere 3D ones; the mesh must agree
+    // (checked by buildElasticContactProblem).
+    o.dim = type == "plane" || type == "sphere" ? 3 : 2;
+    o.shape = obstacleShapeFromName(type, o.dim);
+    const std::string xyz = o.dim == 3 ? "{x, y, z}" : "{x, y}";
     const char* at = o.shape == RigidObstacle::Shape::Ball ? "Centre" : "Point";
     const auto point = vec(ro.get<Array<double>>(at));
-    if (point.size() != 2)
+    if (static_cast<int>(point.size()) != o.dim)
       throw std::invalid_argument(std::string("Contact problem/Rigid obstacle: \"") + at +
-                                  "\" needs 2 values {x, y} for a " + type);
-    o.point = {point[0], point[1], 0.0};
+                                  "\" needs " + std::to_string(o.dim) + " values " + xyz +
+                                  " for a " + type);
+    for (int c = 0; c < o.dim; ++c) o.point[c] = point[c];
     if (o.shape == RigidObstacle::Shape::HalfSpace) {
       const auto normal = vec(ro.get<Array<double>>("Normal"));
-      if (normal.size() != 2)
-        throw std::invalid_argument(
-            "Contact problem/Rigid obstacle: \"Normal\" needs 2 values {nx, ny} (out of the "
-            "obstacle) for a line");
-      o.normal = {normal[0], normal[1], 0.0};
+      if (static_cast<int>(normal.size()) != o.dim)
+        throw std::invalid_argument("Contact problem/Rigid obstacle: \"Normal\" needs " +
+                                    std::to_string(o.dim) + " values (out of the obstacle) for a " +
+                                    type);
+      for (int c = 0; c < o.dim; ++c) o.normal[c] = normal[c];
     } else {
       o.radius = ro.get<double>("Radius");
     }
@@ -123,23 +133,27 @@ void addElasticContactParameters(ParameterList& pl) {
   cp.set("Element order", 1, "1 or 2 (.geo only)", tfeti::strict::intBetween(1, 2));
   cp.set("Quadrilaterals", false, "recombine into quadrilaterals (.geo only)");
   cp.set("Mesh size factor", 1.0, "scales every mesh size (.geo only)", tfeti::strict::positive());
-  cp.set("Bodies", Array<std::string>(), "the 2D physical groups that are bodies");
+  cp.set("Bodies", Array<std::string>(),
+         "the physical groups that are bodies (surfaces of a 2D mesh, volumes of a 3D mesh)");
   cp.set("Subdomains per body", Array<int>(), "METIS parts of each body",
          tfeti::strict::positiveInts(0));
-  cp.set("Fixed boundaries", Array<std::string>(), "1D groups where u = 0");
+  cp.set("Fixed boundaries", Array<std::string>(),
+         "boundary groups (curves in 2D, surfaces in 3D) where u = 0");
+  cp.set("Symmetry boundaries", Array<std::string>(), "boundary groups with one component zero");
   const auto components = Teuchos::rcp(
       new tfeti::strict::NumberValidator(tfeti::strict::NumberValidator::Kind::IntArray));
-  components->atLeast(0).atMost(1);
-  cp.set("Symmetry boundaries", Array<std::string>(), "1D groups with one component zero");
-  cp.set("Symmetry components", Array<int>(), "the zero component (0: x, 1: y) of each",
+  components->atLeast(0).atMost(2);
+  cp.set("Symmetry components", Array<int>(), "the zero component (0: x, 1: y, 2: z) of each",
          components);
-  cp.set("Traction boundaries", Array<std::string>(), "1D groups under a constant traction");
-  cp.set("Tractions", Array<double>(), "{tx, ty} per traction boundary (force per unit length)",
+  cp.set("Traction boundaries", Array<std::string>(), "boundary groups under a constant traction");
+  cp.set("Tractions", Array<double>(),
+         "{tx, ty} (2D, force per unit length) or {tx, ty, tz} (3D, force per unit area) per "
+         "traction boundary",
          tfeti::strict::doubles(0));
   cp.set("Body load bodies", Array<std::string>(), "bodies under a uniform body force");
   cp.set("Body loads", Array<double>(),
-         "{Fx, Fy} per body load body: its total force per unit thickness, spread uniformly over "
-         "its area",
+         "{Fx, Fy} (2D: per unit thickness) or {Fx, Fy, Fz} (3D) per body load body: its total "
+         "force, spread uniformly over its area (volume)",
          tfeti::strict::doubles(0));
   cp.set("Slave", "", "the contact pair's slave boundary (its nodes)");
   cp.set("Master", "",
@@ -151,23 +165,29 @@ void addElasticContactParameters(ParameterList& pl) {
   auto& ro = cp.sublist("Rigid obstacle", false,
                         "a rigid master given analytically instead of a Master boundary: the "
                         "Slave boundary is pressed against it");
-  ro.set("Type", "none", "none, line (a half-plane) or circle (a disc)",
+  ro.set("Type", "none",
+         "none, line (a half-plane) or circle (a disc) in 2D, plane (a half-space) or sphere (a "
+         "ball) in 3D",
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-             Teuchos::tuple<std::string>("none", "line", "circle"), "Type")));
-  ro.set("Point", Array<double>(), "line: {x, y} of a point on it");
-  ro.set("Normal", Array<double>(), "line: {nx, ny}, pointing out of the obstacle");
-  ro.set("Centre", Array<double>(), "circle: {x, y} of its centre");
-  ro.set("Radius", 0.0, "circle: its radius (> 0)");
+             Teuchos::tuple<std::string>("none", "line", "circle", "plane", "sphere"), "Type")));
+  ro.set("Point", Array<double>(), "line/plane: {x, y[, z]} of a point on it");
+  ro.set("Normal", Array<double>(), "line/plane: {nx, ny[, nz]}, pointing out of the obstacle");
+  ro.set("Centre", Array<double>(), "circle/sphere: {x, y[, z]} of its centre");
+  ro.set("Radius", 0.0, "circle/sphere: its radius (> 0)");
   cp.set("Subdomain distribution", "graph",
          "graph: Zoltan2 (Scotch) on the subdomain adjacency, balancing dofs; block: contiguous "
          "blocks of subdomain ids",
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
              Teuchos::tuple<std::string>("graph", "block"), "Subdomain distribution")));
-  auto& h = cp.sublist("Hertz", false, "compare with Hertz's line contact of two cylinders");
-  h.set("Compare", false, "report Hertz's p_max and half-width and the errors");
+  auto& h = cp.sublist("Hertz", false,
+                       "compare with Hertz: line contact of two cylinders (2D mesh) or point "
+                       "contact of two spheres (3D mesh)");
+  h.set("Compare", false, "report Hertz's p_max and half-width (contact radius) and the errors");
   h.set("Radius 1", 1.0, "R1", tfeti::strict::positive());
   h.set("Radius 2", 0.0, "R2; 0 means infinity (a flat body)", tfeti::strict::nonNegative());
-  h.set("Line load", 0.0, "l, force per unit length of the full (not the half) model",
+  h.set("Line load", 0.0, "2D: l, force per unit length of the full (not the half) model",
+        tfeti::strict::nonNegative());
+  h.set("Force", 0.0, "3D: F, the total force of the full (not the quarter) model",
         tfeti::strict::nonNegative());
 }
 
@@ -182,10 +202,14 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   const tfeti::DualResult result = solver.solve();
   const tfeti::ConstraintReport report = solver.constraintReport();
 
-  const std::vector<ContactNode> nodes = contactNodes(problem, solver, ContactExtentRule{});
+  // The contact zone's extent: the half-width along x in 2D, the radius from the z axis through
+  // the origin in 3D (ContactExtentRule's defaults).
+  const int dim = problem.dim();
+  const ContactExtentRule rule;
+  const std::vector<ContactNode> nodes = contactNodes(problem, solver, rule);
   double force = 0.0;
   for (const auto& n : nodes) force += n.lambda;
-  const double pMax = maxPressure(nodes), halfWidth = contactExtent(nodes, ContactExtentRule{});
+  const double pMax = maxPressure(nodes), halfWidth = contactExtent(nodes, rule, dim);
 
   // Stresses per subdomain (nodal values averaged within the subdomain).
   double maxVm = 0.0;
@@ -216,22 +240,24 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   s["ranks"] = comm->getSize();
   s["subdomains"] = problem.numSubdomains();
   s["nodes"] = problem.mesh.numNodes();
+  s["dimension"] = dim;
   addSolverSummary(s, solver, result, params.sublist("FETI"));
   s["qp"] = qpJson(result);
-  const double applied = std::hypot(problem.appliedForce[0], problem.appliedForce[1]);
+  const double applied =
+      std::hypot(problem.appliedForce[0], problem.appliedForce[1], problem.appliedForce[2]);
   Json c = constraintJson(report);
   c["p_max"] = pMax;
-  c["half_width"] = halfWidth;
+  c[dim == 3 ? "contact_radius" : "half_width"] = halfWidth;
   c["force"] = force;
   c["applied_force"] = applied;
   c["force_relative_error"] = applied > 0.0 ? std::abs(force - applied) / applied : 0.0;
-  addHertzComparison(c, params, pMax, halfWidth);
+  addHertzComparison(c, params, pMax, halfWidth, dim);
   s["contact"] = std::move(c);
   s["max_von_mises"] = globalVm;
   s["max_abs_u"] = maxAbsSolution(*comm, solver);
   s["timings"] = timingsJson(solver.timings(), result.iterations);
   s["peak_rss_mb"] = peakRssMb(*comm);
-  writeContactCsv(*comm, dir + "/contact_pressure.csv", nodes);
+  writeContactCsv(*comm, dir + "/contact_pressure.csv", nodes, dim);
   s["contact_csv"] = dir + "/contact_pressure.csv";
   if (params.sublist("Output").get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", piece);
   writeSummary(*comm, dir, s, params);
@@ -241,8 +267,8 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
               << solver.inequalityRows() << " contact rows), " << result.method << ": "
               << result.qp.hessianMultiplications << " Hessian multiplications ("
               << (result.converged ? "converged" : "NOT CONVERGED") << "); p_max " << pMax
-              << ", half-width " << halfWidth << ", force " << force << " (applied " << applied
-              << "), max von Mises " << globalVm << "\n";
+              << (dim == 3 ? ", contact radius " : ", half-width ") << halfWidth << ", force "
+              << force << " (applied " << applied << "), max von Mises " << globalVm << "\n";
   if (!result.converged && root)
     std::cerr << "tfeti_contact: " << result.method << " did not converge (" << result.qp.message
               << "); results written to " << dir << "\n";
@@ -290,26 +316,30 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   const auto boundary = [&](const std::string& role, const std::string& name) {
     s.str("");
     s << "boundary \"" << name << "\" (" << role << "): " << problem.mesh.boundary(name).numEdges()
-      << " edges";
+      << (problem.mesh.dim == 3 ? " faces" : " edges");
     lines.push_back(s.str());
   };
   for (const auto& name : spec.fixed) boundary("fixed", name);
   for (const auto& [name, comp] : spec.symmetry)
-    boundary(comp == 0 ? "symmetry, u_x = 0" : "symmetry, u_y = 0", name);
-  for (const auto& [name, t] : spec.tractions) {
-    std::ostringstream role;
-    role << "traction {" << t[0] << ", " << t[1] << "}";
-    boundary(role.str(), name);
-  }
+    boundary(std::string("symmetry, u_") + "xyz"[comp % 3] + " = 0", name);
+  const auto braced = [](const auto& v, std::size_t n) {
+    std::ostringstream b;
+    b << "{";
+    for (std::size_t c = 0; c < n; ++c) b << (c ? ", " : "") << v[c];
+    b << "}";
+    return b.str();
+  };
+  const std::size_t dim = static_cast<std::size_t>(problem.mesh.dim);
+  for (const auto& [name, t] : spec.tractions) boundary("traction " + braced(t, t.size()), name);
   boundary("contact slave", spec.slave);
   if (!spec.obstacle) boundary("contact master", spec.master);
   s.str("");
   s << "contact pair: " << problem.slaveNodes.size() << " slave nodes of \"" << spec.slave
     << "\" against "
     << (spec.obstacle ? std::string("the rigid obstacle")
-                      : "the segments of \"" + spec.master + "\"")
-    << ": " << rows << " within the search radius " << problem.searchRadius << "; applied force {"
-    << problem.appliedForce[0] << ", " << problem.appliedForce[1] << "}";
+                      : (dim == 3 ? "the faces of \"" : "the segments of \"") + spec.master + "\"")
+    << ": " << rows << " within the search radius " << problem.searchRadius << "; applied force "
+    << braced(problem.appliedForce, dim);
   lines.push_back(s.str());
   printDryRunReport(*comm, lines, problem.local, rows, out);
 }

@@ -262,7 +262,10 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   const int verbosity = params.sublist("Output").get<int>("Verbosity");
   checkNonlinearParameters(params);
   const Options opt = optionsFrom(params);
-  const ElasticContactSpec spec = elasticContactSpec(params);
+  ElasticContactSpec spec = elasticContactSpec(params);
+  // The nonlinear (large deformation, plastic) path is plane strain: a 3D mesh is an error
+  // naming the file.
+  spec.meshOptions.dimension = 2;
   const auto& mat = params.sublist("Material");
   const double yield = mat.get<double>("Yield stress"),
                hardening = mat.get<double>("Hardening modulus");

@@ -3,6 +3,7 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -16,28 +17,43 @@ static_assert(sizeof(long long) == 8, "globalNode must hold tfeti::GO values");
 
 namespace {
 
-std::uint64_t edgeKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
+// A facet (edge in 2D, face in 3D) by its corner nodes, sorted: the same key from every element
+// having it. Unused corners are -1 (edges and triangles).
+using FacetKey = std::array<int, 4>;
+struct FacetKeyHash {
+  std::size_t operator()(const FacetKey& k) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (int v : k) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
+
+// Facet `f` of the element whose nodes start at `el`: its corners give the key; its nodes
+// (midside ones included) are elementFacetNodes.
+FacetKey facetKey(ElementType type, const int* el, int f) {
+  const ElementType ft = facetType(type);
+  const auto& local = elementFacetNodes(type, f);
+  FacetKey k{-1, -1, -1, -1};
+  const int nc = numCorners(ft);
+  for (int a = 0; a < nc; ++a) k[a] = el[local[a]];
+  std::sort(k.begin(), k.begin() + nc);
+  return k;
 }
 
 }  // namespace
 
 std::vector<int> UnstructuredSubdomain::boundaryNodes() const {
-  const int npe = nodesPerElement(), nc = numCorners(type);
-  std::unordered_map<std::uint64_t, int> edgeCount;
+  const int npe = nodesPerElement(), nf = numFacets(type);
+  std::unordered_map<FacetKey, int, FacetKeyHash> facetCount;
   for (int e = 0; e < numElements(); ++e)
-    for (int k = 0; k < nc; ++k) {
-      const int* el = &connectivity[static_cast<std::size_t>(e) * npe];
-      ++edgeCount[edgeKey(el[k], el[(k + 1) % nc])];
-    }
+    for (int f = 0; f < nf; ++f)
+      ++facetCount[facetKey(type, &connectivity[static_cast<std::size_t>(e) * npe], f)];
   std::vector<char> onBoundary(numNodes(), 0);
   for (int e = 0; e < numElements(); ++e)
-    for (int k = 0; k < nc; ++k) {
+    for (int f = 0; f < nf; ++f) {
       const int* el = &connectivity[static_cast<std::size_t>(e) * npe];
-      if (edgeCount[edgeKey(el[k], el[(k + 1) % nc])] != 1) continue;
-      for (int a : elementEdgeNodes(type, k)) onBoundary[el[a]] = 1;
+      if (facetCount[facetKey(type, el, f)] != 1) continue;
+      for (int a : elementFacetNodes(type, f)) onBoundary[el[a]] = 1;
     }
   std::vector<int> nodes;
   for (int n = 0; n < numNodes(); ++n)
@@ -46,19 +62,18 @@ std::vector<int> UnstructuredSubdomain::boundaryNodes() const {
 }
 
 DualGraph edgeDualGraph(const GmshBody& body) {
-  const int ne = body.numElements(), npe = body.nodesPerElement(), nc = numCorners(body.type);
+  const int ne = body.numElements(), npe = body.nodesPerElement(), nf = numFacets(body.type);
   if (static_cast<long long>(body.connectivity.size()) != static_cast<long long>(ne) * npe)
     throw std::invalid_argument("edgeDualGraph: body \"" + body.name +
                                 "\": connectivity size does not match its element count");
-  // Elements per edge; in a valid 2D mesh at most two, but a third one is kept rather than
+  // Elements per facet; in a valid mesh at most two, but a third one is kept rather than
   // dropped so that a non-manifold input cannot silently lose adjacency.
-  std::unordered_map<std::uint64_t, std::vector<int>> byEdge;
-  byEdge.reserve(static_cast<std::size_t>(ne) * 2);
+  std::unordered_map<FacetKey, std::vector<int>, FacetKeyHash> byEdge;
+  byEdge.reserve(static_cast<std::size_t>(ne) * nf);
   for (int e = 0; e < ne; ++e)
-    for (int k = 0; k < nc; ++k) {
-      const int* el = &body.connectivity[static_cast<std::size_t>(e) * npe];
-      byEdge[edgeKey(el[k], el[(k + 1) % nc])].push_back(e);
-    }
+    for (int f = 0; f < nf; ++f)
+      byEdge[facetKey(body.type, &body.connectivity[static_cast<std::size_t>(e) * npe], f)]
+          .push_back(e);
   std::vector<std::vector<int>> adj(ne);
   for (const auto& [key, els] : byEdge)
     for (int a : els)
@@ -226,15 +241,15 @@ BodyPartition splitIntoSubdomains(const GmshMesh& mesh, const GmshBody& body,
     s.globalNode.erase(std::unique(s.globalNode.begin(), s.globalNode.end()), s.globalNode.end());
     std::unordered_map<long long, int> local;
     local.reserve(s.globalNode.size());
-    s.coords.resize(2 * s.globalNode.size());
+    const int dim = mesh.dim;
+    s.coords.resize(dim * s.globalNode.size());
     for (int i = 0; i < s.numNodes(); ++i) {
       const long long g = s.globalNode[i];
       if (g < 0 || g >= mesh.numNodes())
         throw std::invalid_argument("splitIntoSubdomains: body \"" + body.name +
                                     "\" refers to node " + std::to_string(g) + " outside the mesh");
       local[g] = i;
-      s.coords[2 * i] = mesh.coords[2 * g];
-      s.coords[2 * i + 1] = mesh.coords[2 * g + 1];
+      for (int c = 0; c < dim; ++c) s.coords[dim * i + c] = mesh.coords[dim * g + c];
     }
     s.connectivity.reserve(s.elements.size() * npe);
     for (int e : s.elements)

@@ -1,9 +1,10 @@
 #pragma once
-// Decomposition of one unstructured body into TFETI subdomains: METIS parts of the element dual
-// graph, each split into its edge-connected components. A component is its own subdomain because
-// the kernel of a subdomain's stiffness matrix has one set of rigid body modes per rigidly
-// connected piece; pieces that touch only at a node are not rigidly connected for elasticity
-// (they can rotate about it), so connectivity is through shared element edges, never nodes.
+// Decomposition of one unstructured body (2D or 3D) into TFETI subdomains: METIS parts of the
+// element dual graph, each split into its facet-connected components. A component is its own
+// subdomain because the kernel of a subdomain's stiffness matrix has one set of rigid body modes
+// per rigidly connected piece; pieces that touch only at a node (or, in 3D, along an edge) are not
+// rigidly connected for elasticity (they can rotate about it), so connectivity is through shared
+// element facets (edges in 2D, faces in 3D), never nodes or 3D edges.
 #include <vector>
 
 #include "contact_GmshMesh.hpp"
@@ -18,19 +19,20 @@ struct UnstructuredSubdomain {
   ElementType type = ElementType::Tri3;
   std::vector<int> elements;          // element ids within the body, increasing
   std::vector<int> connectivity;      // numNodes(type) local nodes per element, Gmsh node order
-  std::vector<double> coords;         // x, y per local node
+  std::vector<double> coords;         // mesh.dim values (x, y[, z]) per local node
   std::vector<long long> globalNode;  // untorn (GmshMesh) node id per local node, increasing;
                                       // long long as tfeti::GO
   int numNodes() const { return static_cast<int>(globalNode.size()); }
   int numElements() const { return static_cast<int>(elements.size()); }
   int nodesPerElement() const { return contact::numNodes(type); }
-  // Local nodes on an element edge that no other element of the subdomain has (midside nodes
-  // included): the only nodes that can be shared with another subdomain.
+  // Local nodes on an element facet (edge in 2D, face in 3D) that no other element of the
+  // subdomain has (midside and face-centre nodes included): the only nodes that can be shared
+  // with another subdomain.
   std::vector<int> boundaryNodes() const;
 };
 
-// Element adjacency through shared edges (CSR): elements i and j are neighbours iff they have an
-// edge with the same two end nodes.
+// Element adjacency through shared facets (CSR): elements i and j are neighbours iff they have a
+// facet with the same corner nodes (an edge in 2D, a face in 3D).
 struct DualGraph {
   std::vector<int> offsets;    // numElements + 1
   std::vector<int> neighbors;  // increasing within each element
@@ -38,7 +40,7 @@ struct DualGraph {
 };
 DualGraph edgeDualGraph(const GmshBody& body);
 
-// The METIS part (0 .. numParts-1) of every element of the body: k-way partitioning of the edge
+// The METIS part (0 .. numParts-1) of every element of the body: k-way partitioning of the facet
 // dual graph with a fixed seed, so every rank computes the same parts, asking METIS for
 // contiguous parts when the body is connected. No part is empty (METIS may leave some empty on
 // tiny meshes; they get an element of the largest part). numParts == 1 does not call METIS.
@@ -60,7 +62,7 @@ struct BodyPartition {
 };
 
 // Subdomains from a given element partition (part[e] in 0 .. numParts-1), each part split into its
-// edge-connected components. Subdomain ids are firstId, firstId + 1, ... so that the subdomains of
+// facet-connected components. Subdomain ids are firstId, firstId + 1, ... so that the subdomains of
 // several bodies can be numbered consecutively.
 BodyPartition splitIntoSubdomains(const GmshMesh& mesh, const GmshBody& body,
                                   const std::vector<int>& part, int numParts, int firstId = 0);

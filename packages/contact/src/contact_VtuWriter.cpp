@@ -35,6 +35,14 @@ int vtkCellSize(int vtkType) {
       return 6;
     case kVtkBiquadraticQuad:
       return 9;
+    case kVtkTetra:
+      return 4;
+    case kVtkHexahedron:
+      return 8;
+    case kVtkQuadraticTetra:
+      return 10;
+    case kVtkTriquadraticHexahedron:
+      return 27;
   }
   throw std::invalid_argument("VTU output: unsupported VTK cell type " + std::to_string(vtkType));
 }
@@ -53,7 +61,9 @@ std::string writeVtu(const tfeti::Comm& comm, const std::string& directory,
       throw std::invalid_argument("VTU output: " + std::to_string(piece.cellPoints.size()) +
                                   " cell points for cells needing " +
                                   std::to_string(generalPoints));
-    const std::size_t np = piece.points.size() / 2,
+    if (piece.dim != 2 && piece.dim != 3)
+      throw std::invalid_argument("VTU output: points of dimension " + std::to_string(piece.dim));
+    const std::size_t np = piece.points.size() / piece.dim,
                       nc = piece.quads.size() / 4 + piece.cellTypes.size();
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
            "byte_order=\"LittleEndian\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
@@ -61,7 +71,8 @@ std::string writeVtu(const tfeti::Comm& comm, const std::string& directory,
     VtuField xyz{"Points", 3, {}};
     xyz.values.reserve(3 * np);
     for (std::size_t p = 0; p < np; ++p)
-      xyz.values.insert(xyz.values.end(), {piece.points[2 * p], piece.points[2 * p + 1], 0.0});
+      for (int c = 0; c < 3; ++c)
+        xyz.values.push_back(c < piece.dim ? piece.points[piece.dim * p + c] : 0.0);
     writeArray(out, xyz);
     out << "      </Points>\n      <Cells>\n"
         << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";

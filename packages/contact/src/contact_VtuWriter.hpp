@@ -15,18 +15,24 @@ struct VtuField {
   std::vector<double> values;  // components per point (or per cell)
 };
 
-// VTK cell types of the plane elements; the node order of each equals Gmsh's (corners
-// counter-clockwise, then the edge midpoints from edge 0-1, then the centre).
+// VTK cell types. The plane ones have Gmsh's node order (corners counter-clockwise, then the
+// edge midpoints from edge 0-1, then the centre); quadratic tetrahedra and triquadratic
+// hexahedra do not (contact_ContactOutput's vtkNodeOrder permutes them).
 enum VtkCellType {
   kVtkTriangle = 5,
   kVtkQuad = 9,
+  kVtkTetra = 10,
+  kVtkHexahedron = 12,
   kVtkQuadraticTriangle = 22,
-  kVtkBiquadraticQuad = 28
+  kVtkQuadraticTetra = 24,
+  kVtkBiquadraticQuad = 28,
+  kVtkTriquadraticHexahedron = 29
 };
 int vtkCellSize(int vtkType);  // points per cell; throws for other types
 
 struct VtuPiece {
-  std::vector<double> points;  // x, y per point (z = 0)
+  int dim = 2;                 // coordinates per point in `points`
+  std::vector<double> points;  // x, y (z = 0) or x, y, z per point
   std::vector<int> quads;      // 4 point indices per cell (VTK_QUAD), written first
   // Any other cells, written after the quads: a VTK type per cell and its points.
   std::vector<int> cellTypes;

@@ -6,6 +6,7 @@
 #include <Teuchos_UnitTestHarness.hpp>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <numeric>
 #include <set>
@@ -305,3 +306,67 @@ TEUCHOS_UNIT_TEST(Partition, BodyOfSeparatePieces) {
 }
 
 }  // namespace
+
+namespace {
+
+// Unit Hex8 cubes at the given integer offsets (Gmsh order: bottom face counter-clockwise seen
+// from above, then the top face), nodes shared where cubes touch.
+contact::GmshMesh hexCubes(const std::vector<std::array<int, 3>>& offsets) {
+  contact::GmshMesh m;
+  m.source = "hexCubes";
+  m.dim = 3;
+  contact::GmshBody b;
+  b.name = "cubes";
+  b.type = contact::ElementType::Hex8;
+  std::map<std::array<int, 3>, int> id;
+  const int corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                            {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  for (const auto& o : offsets) {
+    for (const auto& c : corner) {
+      const std::array<int, 3> p{o[0] + c[0], o[1] + c[1], o[2] + c[2]};
+      auto [it, added] = id.insert({p, static_cast<int>(id.size())});
+      if (added) {
+        for (int v : p) m.coords.push_back(v);
+        m.gmshNodes.push_back(m.gmshNodes.size() + 1);
+      }
+      b.connectivity.push_back(it->second);
+    }
+    b.gmshTags.push_back(b.gmshTags.size() + 1);
+  }
+  m.bodies.push_back(b);
+  return m;
+}
+
+}  // namespace
+
+// 3D: elements are neighbours through a shared face only. Two cubes sharing a face are one
+// subdomain, all of whose nodes are on its boundary; cubes sharing just an edge or a vertex can
+// rotate about it, so one part of them becomes separate subdomains.
+TEUCHOS_UNIT_TEST(Partition, HexahedraConnectedThroughFacesOnly) {
+  const auto faceShared = hexCubes({{0, 0, 0}, {1, 0, 0}});
+  const auto one = contact::splitIntoSubdomains(faceShared, faceShared.bodies[0], {0, 0}, 1);
+  TEST_EQUALITY(one.numSubdomains(), 1);
+  TEST_EQUALITY(static_cast<int>(one.subdomains[0].boundaryNodes().size()), 12);
+  TEST_EQUALITY(static_cast<int>(one.subdomains[0].coords.size()), 3 * 12);
+
+  for (const auto& touching : {std::vector<std::array<int, 3>>{{0, 0, 0}, {1, 1, 0}},     // edge
+                               std::vector<std::array<int, 3>>{{0, 0, 0}, {1, 1, 1}}}) {  // vertex
+    const auto mesh = hexCubes(touching);
+    const auto g = contact::edgeDualGraph(mesh.bodies[0]);
+    TEST_EQUALITY(g.offsets[2], 0);  // no neighbours
+    const auto split = contact::splitIntoSubdomains(mesh, mesh.bodies[0], {0, 0}, 1);
+    TEST_EQUALITY(split.numSubdomains(), 2);
+    TEST_EQUALITY(split.extraSubdomains, 1);
+  }
+
+  // A 3 x 3 x 3 block of cubes: its 4^3 nodes but the 2^3 inner ones are on its surface.
+  std::vector<std::array<int, 3>> block;
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) block.push_back({i, j, k});
+  const auto big = hexCubes(block);
+  const auto whole = contact::splitIntoSubdomains(big, big.bodies[0], std::vector<int>(27, 0), 1);
+  TEST_EQUALITY(whole.numSubdomains(), 1);
+  TEST_EQUALITY(whole.subdomains[0].numNodes(), 64);
+  TEST_EQUALITY(static_cast<int>(whole.subdomains[0].boundaryNodes().size()), 64 - 8);
+}
