@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
       if (!file) throw std::runtime_error("cannot write " + echo);
     }
     try {
-      code = check ? contact::checkDriver(comm, *params, std::cout)
+      code = check ? contact::checkDriver(comm, *params, output, std::cout)
                    : contact::runDriver(comm, *params, output);
     } catch (const std::invalid_argument& e) {
       // Inconsistent parameters found while setting the problem up: name the input file.

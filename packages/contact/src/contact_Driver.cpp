@@ -317,7 +317,7 @@ void checkStructured(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList&
 }  // namespace
 
 int checkDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
-                std::ostream& out) {
+                const std::string& outputDirectory, std::ostream& out) {
   const std::string problem = params.get<std::string>("Problem");
   const bool scalability = params.get<std::string>("Study") == "scalability";
   if (scalability
@@ -325,7 +325,7 @@ int checkDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& para
           : problem == "two_membranes")
     checkTwoMembranes(comm, params, out);
   else if (!scalability && (problem == "elastic_contact" || problem == "nonlinear_contact"))
-    checkContactProblem(comm, params, out);
+    checkContactProblem(comm, params, outputDirectory, out);
   else
     checkStructured(comm, params, out);
   if (comm->getRank() == 0)

@@ -30,8 +30,9 @@ int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterLis
 // The dry run (--check): the study's set-up (meshing, partitioning, distribution, contact
 // search) through the full run's own checks, without factorizing or solving; rank 0 reports
 // the bodies, boundaries, subdomains per rank, unknowns, contact rows and estimated memory to
-// `out`. Throws what the full run would throw before its first solve; returns 0.
+// `out`. Throws what the full run would throw before its first solve (with the restart files a
+// nonlinear Restart would read from outputDirectory); returns 0.
 int checkDriver(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
-                std::ostream& out);
+                const std::string& outputDirectory, std::ostream& out);
 
 }  // namespace contact

@@ -276,14 +276,20 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
 }
 
 void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
-                         std::ostream& out) {
+                         const std::string& outputDirectory, std::ostream& out) {
   // The full runs' set-up, in their order, up to the FETI solver.
   const std::string kind = params.get<std::string>("Problem");
   const bool nonlinear = kind == "nonlinear_contact";
   if (nonlinear) checkNonlinearParameters(params);
-  const ElasticContactSpec spec = elasticContactSpec(params);
+  const ElasticContactSpec spec =
+      nonlinear ? nonlinearContactSpec(params) : elasticContactSpec(params);
   const ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
   if (nonlinear) requireLoad(*comm, problem.local);
+  int restartStep = -1;
+  if (nonlinear && params.sublist("Nonlinear").get<bool>("Restart")) {
+    std::vector<SubdomainRestart> saved;
+    restartStep = readRestart(outputDirectory + "/restart", problem, saved).step;
+  }
   const auto rows = static_cast<long long>(problem.contact.rows.size());
   const std::string solver = tfeti::FetiSolver::dualSolverFor(params.sublist("FETI"), rows);
 
@@ -297,6 +303,8 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
       << (nl.get<bool>("Geometrically nonlinear") ? "total Lagrangian" : "small strain") << ", "
       << (yield > 0.0 ? "J2 plastic" : "elastic") << ", stiffness "
       << nl.get<std::string>("Stiffness") << ")";
+    if (restartStep >= 0)
+      s << "; restart from step " << restartStep << " in " << outputDirectory << "/restart";
   }
   s << "; dual solver " << solver;
   lines.push_back(s.str());

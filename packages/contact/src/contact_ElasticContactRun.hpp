@@ -20,8 +20,10 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::Para
                       const std::string& dir);
 
 // The dry run (--check, contact_DryRun.hpp) of Problem = elastic_contact and nonlinear_contact:
-// the runs' checks, meshing, partitioning and first contact search; rank 0 reports to `out`.
+// the runs' checks, meshing, partitioning and first contact search, and a nonlinear Restart's
+// files in outputDirectory/restart; rank 0 reports to `out`.
 void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm,
-                         Teuchos::ParameterList& params, std::ostream& out);
+                         Teuchos::ParameterList& params, const std::string& outputDirectory,
+                         std::ostream& out);
 
 }  // namespace contact

@@ -451,25 +451,6 @@ GroupElements groupElements(const std::string& path, int dim, const NamedGroup& 
   return out;
 }
 
-// A facet's identity: its sorted corner nodes (2 in 2D, 3 or 4 in 3D; unused slots -1).
-using FacetKey = std::array<int, 4>;
-struct FacetKeyHash {
-  std::size_t operator()(const FacetKey& k) const {
-    std::uint64_t h = 1469598103934665603ull;
-    for (int v : k) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
-    return static_cast<std::size_t>(h);
-  }
-};
-FacetKey facetKey(const int* nodes, int corners) {
-  FacetKey k{-1, -1, -1, -1};
-  for (int i = 0; i < corners; ++i) {  // insertion sort of at most 4 values
-    int j = i;
-    for (; j > 0 && k[j - 1] > nodes[i]; --j) k[j] = k[j - 1];
-    k[j] = nodes[i];
-  }
-  return k;
-}
-
 // A surface whose normal is -z (a clockwise curve loop) gives clockwise elements, which the
 // element kernels reject as inverted: renumber them counter-clockwise (corners reversed, the
 // edge midpoints and the centre following their edges) and count them for the log. An element
@@ -786,6 +767,22 @@ GmshMesh loadMesh(const std::string& path, const MeshOptions& options) {
     // Only Gmsh's own errors: the ones extract raises already name the file.
     throw std::runtime_error(path + ": reading the mesh failed: Gmsh: " + s);
   }
+}
+
+FacetKey facetKey(const int* corners, int numCorners) {
+  FacetKey k{-1, -1, -1, -1};
+  for (int i = 0; i < numCorners; ++i) {  // insertion sort of at most 4 values
+    int j = i;
+    for (; j > 0 && k[j - 1] > corners[i]; --j) k[j] = k[j - 1];
+    k[j] = corners[i];
+  }
+  return k;
+}
+
+std::size_t FacetKeyHash::operator()(const FacetKey& k) const {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the four ids
+  for (int v : k) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
+  return static_cast<std::size_t>(h);
 }
 
 }  // namespace contact

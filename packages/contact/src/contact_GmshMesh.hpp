@@ -7,6 +7,7 @@
 //
 // Only this file's .cpp includes gmsh.h, so that users of the mesh do not inherit Gmsh's header
 // or its process-wide state.
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -53,6 +54,14 @@ const std::vector<int>& elementFacetNodes(ElementType type, int facet);
 // from corner `edge` to corner `edge+1` (cyclically); second-order elements add the edge's
 // midside node as third entry, so the result has the node order of a Gmsh 2- or 3-node line.
 std::vector<int> elementEdgeNodes(ElementType type, int edge);
+
+// A facet's identity (an edge in 2D, a face in 3D): its corner nodes sorted, unused slots -1, so
+// that every element having the facet gives the same key.
+using FacetKey = std::array<int, 4>;
+FacetKey facetKey(const int* corners, int numCorners);
+struct FacetKeyHash {
+  std::size_t operator()(const FacetKey& k) const;
+};
 
 struct MeshOptions {
   // Generation options: they apply to .geo files only; a .msh file is used as stored.

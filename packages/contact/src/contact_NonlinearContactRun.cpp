@@ -241,6 +241,29 @@ void checkNonlinearParameters(const ParameterList& params) {
         "Material: \"Yield stress\" and \"Hardening modulus\" must be >= 0");
 }
 
+ElasticContactSpec nonlinearContactSpec(const ParameterList& params) {
+  ElasticContactSpec spec = elasticContactSpec(params);
+  spec.meshOptions.dimension = 2;
+  return spec;
+}
+
+NonlinearHistory readRestart(const std::string& restartDir, const ElasticContactProblem& problem,
+                             std::vector<SubdomainRestart>& subdomains) {
+  NonlinearHistory history = readRestartState(restartDir);
+  const std::string stepDir = restartStepDirectory(restartDir, history.step);
+  subdomains.clear();
+  for (const auto& local : problem.local) {
+    subdomains.push_back(readSubdomainRestart(stepDir, local.mesh.id));
+    const SubdomainRestart& s = subdomains.back();
+    if (s.displacement.size() != local.f.size())
+      throw std::runtime_error(stepDir + ": subdomain " + std::to_string(s.id) + " has " +
+                               std::to_string(s.displacement.size()) +
+                               " displacement values, the mesh " + std::to_string(local.f.size()) +
+                               " (restart with the same mesh and subdomains)");
+  }
+  return history;
+}
+
 double requireLoad(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local) {
   Field f;
   for (const auto& s : local) f.push_back(s.f);
@@ -262,10 +285,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   const int verbosity = params.sublist("Output").get<int>("Verbosity");
   checkNonlinearParameters(params);
   const Options opt = optionsFrom(params);
-  ElasticContactSpec spec = elasticContactSpec(params);
-  // The nonlinear (large deformation, plastic) path is plane strain: a 3D mesh is an error
-  // naming the file.
-  spec.meshOptions.dimension = 2;
+  const ElasticContactSpec spec = nonlinearContactSpec(params);
   const auto& mat = params.sublist("Material");
   const double yield = mat.get<double>("Yield stress"),
                hardening = mat.get<double>("Hardening modulus");
@@ -298,17 +318,11 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   NonlinearHistory history;
   history.stepSize = 1.0 / opt.steps;
   if (opt.restart) {
-    history = readRestartState(restartDir);
-    const std::string stepDir = restartStepDirectory(restartDir, history.step);
+    std::vector<SubdomainRestart> saved;
+    history = readRestart(restartDir, problem, saved);
     for (std::size_t i = 0; i < problem.local.size(); ++i) {
-      const SubdomainRestart s = readSubdomainRestart(stepDir, problem.local[i].mesh.id);
-      if (s.displacement.size() != model.u[i].size())
-        throw std::runtime_error(
-            stepDir + ": subdomain " + std::to_string(s.id) + " has " +
-            std::to_string(s.displacement.size()) + " displacement values, the mesh " +
-            std::to_string(model.u[i].size()) + " (restart with the same mesh and subdomains)");
-      model.u[i] = s.displacement;
-      if (model.plastic[i]) model.plastic[i]->setCommittedHistory(s.history);
+      model.u[i] = saved[i].displacement;
+      if (model.plastic[i]) model.plastic[i]->setCommittedHistory(saved[i].history);
     }
     if (root && verbosity > 0)
       std::cout << "nonlinear_contact: restart from step " << history.step << " (load factor "

@@ -23,6 +23,9 @@
 
 #include "tfeti_FetiSolver.hpp"
 
+#include "contact_ElasticContactProblem.hpp"
+#include "contact_NonlinearHistory.hpp"
+
 namespace contact {
 
 // Adds "Nonlinear" and the plastic parameters of "Material" to the driver's valid parameters.
@@ -31,6 +34,13 @@ void addNonlinearContactParameters(Teuchos::ParameterList& valid);
 // The checks of the "Nonlinear", "Material" and "Contact problem" parameters a run makes before
 // it meshes (throw std::invalid_argument as the run does).
 void checkNonlinearParameters(const Teuchos::ParameterList& params);
+// The contact problem a nonlinear run solves: elasticContactSpec's, on a 2D mesh (the large
+// deformation and plastic path is plane strain; a 3D mesh is an error naming the file).
+ElasticContactSpec nonlinearContactSpec(const Teuchos::ParameterList& params);
+// The restart state in `restartDir` (OUTPUT/restart) and this rank's subdomain files of its
+// last step, checked against the problem's subdomains (throws std::runtime_error naming the file).
+NonlinearHistory readRestart(const std::string& restartDir, const ElasticContactProblem& problem,
+                             std::vector<SubdomainRestart>& subdomains);
 // The norm of the external load of the subdomains (every rank); throws when no load is applied.
 double requireLoad(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local);
 

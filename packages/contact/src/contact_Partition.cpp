@@ -17,27 +17,15 @@ static_assert(sizeof(long long) == 8, "globalNode must hold tfeti::GO values");
 
 namespace {
 
-// A facet (edge in 2D, face in 3D) by its corner nodes, sorted: the same key from every element
-// having it. Unused corners are -1 (edges and triangles).
-using FacetKey = std::array<int, 4>;
-struct FacetKeyHash {
-  std::size_t operator()(const FacetKey& k) const {
-    std::uint64_t h = 1469598103934665603ull;
-    for (int v : k) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
-    return static_cast<std::size_t>(h);
-  }
-};
-
 // Facet `f` of the element whose nodes start at `el`: its corners give the key; its nodes
 // (midside ones included) are elementFacetNodes.
 FacetKey facetKey(ElementType type, const int* el, int f) {
   const ElementType ft = facetType(type);
   const auto& local = elementFacetNodes(type, f);
-  FacetKey k{-1, -1, -1, -1};
+  int corners[4];
   const int nc = numCorners(ft);
-  for (int a = 0; a < nc; ++a) k[a] = el[local[a]];
-  std::sort(k.begin(), k.begin() + nc);
-  return k;
+  for (int a = 0; a < nc; ++a) corners[a] = el[local[a]];
+  return contact::facetKey(corners, nc);
 }
 
 }  // namespace
