@@ -10,6 +10,7 @@
 
 #include "plasticity_ElementTestMeshes3D.hpp"
 #include "plasticity_Elements.hpp"
+#include "plasticity_TestUtils.hpp"
 #include "tfeti_LocalSolver.hpp"
 
 namespace {
@@ -124,14 +125,7 @@ std::vector<double> solveDirichlet(const CubeMesh& C, const ElasticLaw& law) {
     else
       free.insert(free.end(), {3 * n, 3 * n + 1, 3 * n + 2});
   }
-  std::vector<double> r(K.rows);
-  K.multiply(u.data(), r.data());
-  std::vector<double> rhs(free.size()), x(free.size());
-  for (std::size_t i = 0; i < free.size(); ++i) rhs[i] = -r[free[i]];
-  auto solver = tfeti::createLocalSolver("cholmod");
-  solver->factorize(K.submatrix(free, free));
-  solver->solve(rhs.data(), x.data());
-  for (std::size_t i = 0; i < free.size(); ++i) u[free[i]] = x[i];
+  plasticity_test::solveFreeDofs(K, free, u);
   return u;
 }
 

@@ -6,8 +6,23 @@
 
 #include "tfeti_CsrMatrix.hpp"
 #include "tfeti_DenseUtils.hpp"
+#include "tfeti_LocalSolver.hpp"
 
 namespace plasticity_test {
+
+// K u = 0 on the free dofs, u kept on the others (prescribed values): overwrites u's free entries
+// with the discrete solution (CHOLMOD on K restricted to the free dofs).
+inline void solveFreeDofs(const tfeti::CsrMatrix& K, const std::vector<int>& free,
+                          std::vector<double>& u) {
+  std::vector<double> r(K.rows);
+  K.multiply(u.data(), r.data());
+  std::vector<double> rhs(free.size()), x(free.size());
+  for (std::size_t i = 0; i < free.size(); ++i) rhs[i] = -r[free[i]];
+  auto solver = tfeti::createLocalSolver("cholmod");
+  solver->factorize(K.submatrix(free, free));
+  solver->solve(rhs.data(), x.data());
+  for (std::size_t i = 0; i < free.size(); ++i) u[free[i]] = x[i];
+}
 
 inline double dot(const std::vector<double>& a, const std::vector<double>& b) {
   double s = 0.0;
