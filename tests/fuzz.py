@@ -129,8 +129,9 @@ def echoed_at(echo, path, name):
 
 class Mutant:
     def __init__(self, label, xml_path, names, path=(), name=None, ptype=None, value=None,
-                 mesh=None):
+                 mesh=None, expect=None):
         self.label, self.xml_path, self.names = label, xml_path, names
+        self.expect = expect
         self.path, self.name, self.ptype, self.value, self.mesh = path, name, ptype, value, mesh
 
 
@@ -248,47 +249,70 @@ def mesh_mutants(work, rng):
     n0 = lines.index("$Nodes") + 2
     e0 = lines.index("$Elements") + 2
     e1 = lines.index("$EndElements")
-    variants = [("unchanged", text)]
+    # Each variant with what it must give: "error" (a clear error naming the file), "accept",
+    # "reoriented" (accepted, and the log says elements were reoriented) or "either" (a damaged
+    # file may still be a valid mesh, e.g. a changed digit in a coordinate).
+    variants = [("unchanged", text, "accept")]
     for frac in (0.1, 0.3, 0.5, 0.7, 0.9, 0.99):
-        variants.append(("truncated at %d%%" % (100 * frac), text[: int(frac * len(text))]))
+        variants.append(("truncated at %d%%" % (100 * frac), text[: int(frac * len(text))],
+                         "either"))
     data = bytearray(text.encode())
     for k in range(3):
         noisy = bytearray(data)
         for _ in range(12):
             noisy[rng.randrange(len(noisy))] = rng.randrange(256)
-        variants.append(("random bytes %d" % k, bytes(noisy)))
-    variants.append(("random file", bytes(rng.randrange(256) for _ in range(2000))))
+        variants.append(("random bytes %d" % k, bytes(noisy), "either"))
+    variants.append(("random file", bytes(rng.randrange(256) for _ in range(2000)), "error"))
     tri = [k for k in range(e0, e1) if lines[k].split()[1] == "2"]
     bad = list(lines)
     f = bad[tri[0]].split()
     f[-1] = "999"
     bad[tri[0]] = " ".join(f)
-    variants.append(("unknown node", "\n".join(bad)))
+    variants.append(("unknown node", "\n".join(bad), "error"))
     bad = list(lines)
     bad[n0] = bad[n0 + 1].split()[0] + " " + " ".join(bad[n0].split()[1:])
-    variants.append(("duplicate node tag", "\n".join(bad)))
+    variants.append(("node tag replaced by another's", "\n".join(bad), "error"))
+    bad = list(lines)
+    bad[n0 - 1] = str(int(bad[n0 - 1]) + 1)
+    bad.insert(n0 + 1, bad[n0].split()[0] + " 0.25 0.1 0")
+    variants.append(("node tag defined twice", "\n".join(bad), "error"))
+    bad = list(lines)
+    bad[e0 - 1] = str(int(bad[e0 - 1]) + 1)
+    bad.insert(e0 + 1, bad[tri[1]])
+    variants.append(("element tag defined twice", "\n".join(bad), "error"))
+    bad = list(lines)
+    f = bad[tri[0]].split()
+    copy = 1000
+    bad[n0 - 1] = str(int(bad[n0 - 1]) + 1)
+    node_line = next(l for l in lines[n0:] if l.split()[0] == f[-1])
+    bad.insert(n0, "%d %s" % (copy, " ".join(node_line.split()[1:])))
+    k = bad.index(lines[tri[0]])
+    f[-1] = str(copy)
+    bad[k] = " ".join(f)
+    variants.append(("coincident nodes (a crack)", "\n".join(bad), "error"))
     bad = list(lines)
     f = bad[tri[0]].split()
     f[-1] = f[-2]
     bad[tri[0]] = " ".join(f)
-    variants.append(("degenerate element (repeated node)", "\n".join(bad)))
+    variants.append(("degenerate element (repeated node)", "\n".join(bad), "error"))
     bad = list(lines)
     f = bad[tri[0]].split()
     f[-1], f[-2] = f[-2], f[-1]
     bad[tri[0]] = " ".join(f)
-    variants.append(("reversed element", "\n".join(bad)))
+    variants.append(("reversed element", "\n".join(bad), "reoriented"))
     bad = [l for k, l in enumerate(lines) if k not in tri]
     bad[bad.index("$Elements") + 1] = str(e1 - e0 - len(tri))
-    variants.append(("no 2D cells", "\n".join(bad)))
+    variants.append(("no 2D cells", "\n".join(bad), "error"))
     mutants = []
-    for k, (label, content) in enumerate(variants):
+    for k, (label, content, expect) in enumerate(variants):
         msh = os.path.join(work, "mesh-%02d.msh" % k)
         with open(msh, "wb") as f:
             f.write(content if isinstance(content, bytes) else content.encode())
         xml = os.path.join(work, "mesh-%02d.xml" % k)
         with open(xml, "w") as f:
             f.write(MESH_XML % msh)
-        mutants.append(Mutant("mesh: " + label, xml, [os.path.basename(msh)], mesh=msh))
+        mutants.append(Mutant("mesh: " + label, xml, [os.path.basename(msh)], mesh=msh,
+                              expect=expect))
     return mutants
 
 
@@ -307,10 +331,16 @@ def run(exe, m):
     if p.returncode not in (0, 1):
         return "crash", "exit code %d: %s" % (p.returncode, err[-2000:])
     if p.returncode == 1:
+        if m.mesh is not None and m.expect in ("accept", "reoriented"):
+            return "unclear", "a valid mesh was rejected: " + err[-600:]
         if any(n in err for n in m.names) and "error" in err:
             return "clear", ""
         return "unclear", err[-600:]
     if m.mesh is not None:
+        if m.expect == "error":
+            return "substituted", "a broken mesh was accepted: " + err[-300:]
+        if m.expect == "reoriented" and "reoriented" not in err:
+            return "substituted", "reversed elements were not reported as reoriented"
         return "accepted", ""
     if m.name is None:  # misspelt names must never pass
         return "substituted", "a misspelt parameter was accepted"

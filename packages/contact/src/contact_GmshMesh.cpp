@@ -1,5 +1,7 @@
 #include "contact_GmshMesh.hpp"
 
+#include "contact_MeshIntegrity.hpp"
+
 #include <gmsh.h>
 
 #include <algorithm>
@@ -700,6 +702,12 @@ GmshMesh extract(const std::string& path, const MeshOptions& options, int dim) {
       body.reoriented = orientCounterClockwise(body, mesh.coords, path);
     else
       checkSolidElements(path, body, bodyGroups[g], mesh.coords);
+    std::vector<int> used(body.connectivity);
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    std::vector<std::size_t> usedTags(used.size());
+    for (std::size_t i = 0; i < used.size(); ++i) usedTags[i] = mesh.gmshNodes[used[i]];
+    checkNoCoincidentNodes(path, body.name, dim, mesh.coords, used, usedTags);
     mesh.bodies.push_back(std::move(body));
   }
   for (std::size_t g = 0; g < boundaryGroups.size(); ++g) {
@@ -726,6 +734,8 @@ GmshMesh loadMesh(const std::string& path, const MeshOptions& options) {
   // Gmsh 4.8 silently opens nothing for a missing file.
   if (!std::ifstream(path).good())
     throw std::runtime_error(path + ": cannot open the mesh file (missing or unreadable)");
+
+  if (ext == ".msh") checkUniqueMshTags(path);
 
   GmshSession session(options.verbose);
   gmshCall(path, "reading the file", [&] { gmsh::open(path); });
