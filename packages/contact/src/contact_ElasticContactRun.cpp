@@ -140,9 +140,9 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     spec.obstacle = o;
   }
   spec.distribution = cp.get<std::string>("Subdomain distribution");
+  spec.contactZone = cp.get<std::string>("Contact zone");
   // The nonlinear run measures its contact zone by Nonlinear/Contact extent.
-  if (params.get<std::string>("Problem") != "elastic_contact" &&
-      cp.get<std::string>("Contact zone") != "auto")
+  if (params.get<std::string>("Problem") != "elastic_contact" && spec.contactZone != "auto")
     throw std::invalid_argument(
         "Contact problem: \"Contact zone\" is for Problem = "
         "elastic_contact; a nonlinear_contact run measures its contact "
