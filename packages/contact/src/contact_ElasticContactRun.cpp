@@ -144,9 +144,8 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
   // The nonlinear run measures its contact zone by Nonlinear/Contact extent.
   if (params.get<std::string>("Problem") != "elastic_contact" && spec.contactZone != "auto")
     throw std::invalid_argument(
-        "Contact problem: \"Contact zone\" is for Problem = "
-        "elastic_contact; a nonlinear_contact run measures its contact "
-        "zone by Nonlinear/Contact extent");
+        "Contact problem: \"Contact zone\" is for Problem = elastic_contact; a "
+        "nonlinear_contact run measures its contact zone by Nonlinear/Contact extent");
   return spec;
 }
 
