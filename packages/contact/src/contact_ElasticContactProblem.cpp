@@ -127,7 +127,12 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     } catch (const std::exception& e) {
       throw std::invalid_argument(std::string("Bodies: ") + e.what());
     }
-    BodyPartition part = partitionBody(mesh, *gb, body.subdomains, p.numSubdomains());
+    BodyPartition part;
+    try {
+      part = partitionBody(mesh, *gb, body.subdomains, p.numSubdomains());
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(std::string("Subdomains per body: ") + e.what());
+    }
     for (auto& s : part.subdomains) {
       p.subdomains.push_back(std::move(s));
       p.bodyOfSubdomain.push_back(static_cast<int>(b));
