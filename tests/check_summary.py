@@ -27,6 +27,15 @@
                                           (T), the force balances the load to 1e-6, the contact
                                           conditions hold; further DIRs (other rank counts) give
                                           the same p_max and extent
+  check_summary.py plane_strain DIR_2D DIR_3D [DIR_3D ...] [--tol T] [--u-tol U]
+                                          a 3D slab (the 2D mesh extruded, symmetry planes on
+                                          its end faces, Contact zone line) against the 2D run:
+                                          the same contact keys; p_max and the half-width (the
+                                          mean and every node plane's) within T of the 2D ones;
+                                          the same applied force per unit length (1e-9); the
+                                          solution independent of z: |u_z| and the in-plane
+                                          displacement's difference from the 2D one at the same
+                                          (x, y) of the same body below U max|u| (solution_*.vtu)
   check_summary.py membranes_scaling DIR [DIR2 ...]
                                           all converged; for each H/h the Hessian
                                           multiplications of SMALBE stay below MEMBRANE_GROWTH
@@ -361,6 +370,85 @@ def hertz(dirs, p_tol=HERTZ_TOL["p_max"], extent_tol=HERTZ_TOL["extent"]):
           f" force error {c['force_relative_error']:.1e}")
 
 
+def vtu_nodes(d):
+    """(body, x, y, z, ux, uy, uz) of every point of the solution_*.vtu pieces; the body is the
+    sign of y at the centroid of a cell using the point (the two cylinders: cylinder y > 0,
+    block y < 0; their contact points coincide at the origin)."""
+    import glob
+    import re
+
+    def array(xml, name):
+        m = re.search(r'<DataArray[^>]*Name="%s"[^>]*>(.*?)</DataArray>' % name, xml, re.S)
+        if not m:
+            fail(f"{d}: no DataArray {name} in the VTU pieces")
+        return [float(v) for v in m.group(1).split()]
+
+    nodes = []
+    paths = sorted(glob.glob(d + "/solution_*.vtu"))
+    if not paths:
+        fail(f"{d}: no solution_*.vtu")
+    for path in paths:
+        with open(path) as f:
+            xml = f.read()
+        pts, u = array(xml, "Points"), array(xml, "displacement")
+        conn = [int(v) for v in array(xml, "connectivity")]
+        ends = [int(v) for v in array(xml, "offsets")]
+        body = [None] * (len(pts) // 3)
+        for start, end in zip([0] + ends[:-1], ends):
+            cell = conn[start:end]
+            yc = sum(pts[3 * k + 1] for k in cell) / len(cell)
+            for k in cell:
+                body[k] = 1 if yc > 0 else -1
+        nodes += [(body[k], *pts[3 * k:3 * k + 3], *u[3 * k:3 * k + 3])
+                  for k in range(len(body)) if body[k] is not None]
+    return nodes
+
+
+def plane_strain(d2, dirs3, tol, u_tol):
+    s2 = load(d2)
+    c2 = s2["contact"]
+    flat = {}
+    for b, x, y, _, ux, uy, _ in vtu_nodes(d2):
+        flat[(b, round(x, 12), round(y, 12))] = (ux, uy)
+    scale = max(max(abs(v) for v in u) for u in flat.values())
+    for d3 in dirs3:
+        s3 = load(d3)
+        if not (s2["converged"] and s3["converged"]):
+            fail(f"{d2} or {d3} did not converge")
+        if s2.get("dimension", 2) != 2 or s3.get("dimension") != 3:
+            fail(f"{d2} must be a 2D run and {d3} a 3D one")
+        c3 = s3["contact"]
+        for key in ("p_max", "half_width", "force", "applied_force", "hertz", "relative_error"):
+            if key not in c3:
+                fail(f"{d3}: contact.{key} missing (the 2D run's keys)")
+        checks = [("p_max", abs(c3["p_max"] - c2["p_max"]) / c2["p_max"], tol),
+                  ("half_width", abs(c3["half_width"] - c2["half_width"]) / c2["half_width"], tol)]
+        for key in ("half_width_min", "half_width_max"):
+            checks.append((key, abs(c3[key] - c2["half_width"]) / c2["half_width"], tol))
+        per_length = c3["applied_force"] / c3["line_length"]
+        checks.append(("applied force per unit length",
+                       abs(per_length - c2["applied_force"]) / c2["applied_force"], 1e-9))
+        worst_z, worst_xy, missing = 0.0, 0.0, 0
+        for b, x, y, _, ux, uy, uz in vtu_nodes(d3):
+            ref = flat.get((b, round(x, 12), round(y, 12)))
+            if ref is None:
+                missing += 1
+                continue
+            worst_z = max(worst_z, abs(uz) / scale)
+            worst_xy = max(worst_xy, max(abs(ux - ref[0]), abs(uy - ref[1])) / scale)
+        if missing:
+            fail(f"{d3}: {missing} points have no 2D node at their (x, y)")
+        checks += [("max |u_z| / max|u|", worst_z, u_tol),
+                   ("max |u_xy(3D) - u_xy(2D)| / max|u|", worst_xy, u_tol)]
+        for name, value, t in checks:
+            if value > t:
+                fail(f"{d3}: {name} differs from the 2D run by {value:.3e} > {t:.1e}")
+        print(f"OK: {d3} ({s3['ranks']} ranks, {c3['node_planes']} node planes) against 2D: " +
+              ", ".join(f"{n} {v:.1e}" for n, v, _ in checks) +
+              f"; p_max {c3['p_max']:.6e} (2D {c2['p_max']:.6e}), half-width "
+              f"{c3['half_width']:.6e} (2D {c2['half_width']:.6e})")
+
+
 STEP_KEYS = ("step", "load_factor", "outer_iterations", "mprgp_iterations", "residuals",
              "p_max", "max_von_mises", "max_plastic_strain", "contact_extent")
 
@@ -480,6 +568,11 @@ if __name__ == "__main__":
                 (i == 0 or args[i - 1] not in tols)]
         hertz(dirs, option(args, "--p-tol", HERTZ_TOL["p_max"]),
               option(args, "--extent-tol", HERTZ_TOL["extent"]))
+    elif mode == "plane_strain":
+        tols = {"--tol", "--u-tol"}
+        dirs = [a for i, a in enumerate(args) if a not in tols and
+                (i == 0 or args[i - 1] not in tols)]
+        plane_strain(dirs[0], dirs[1:], option(args, "--tol", 0.01), option(args, "--u-tol", 1e-5))
     elif mode == "membranes_scaling":
         membranes_scaling(args)
     elif mode == "nonlinear":

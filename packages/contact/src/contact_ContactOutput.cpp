@@ -83,21 +83,60 @@ double resultantForce(const std::vector<ContactNode>& nodes, const double direct
   return std::abs(f);
 }
 
-double contactExtent(const std::vector<ContactNode>& nodes, const ContactExtentRule& rule,
-                     int dim) {
-  auto measure = [&](const ContactNode& n) {
-    return dim == 3 ? n.radius : rule.angle ? std::abs(n.angle) : std::abs(n.x);
-  };
+namespace {
+
+// Between the outermost loaded node and its unloaded neighbour outwards, the nodes sorted by
+// `measure` (the contact zone's distance from its centre).
+template <class Measure>
+double extentOfSorted(const std::vector<const ContactNode*>& nodes, Measure measure) {
   double extent = 0.0;
   for (std::size_t k = 0; k < nodes.size(); ++k) {
-    if (!(nodes[k].lambda > 0.0)) continue;
-    const double here = measure(nodes[k]);
+    if (!(nodes[k]->lambda > 0.0)) continue;
+    const double here = measure(*nodes[k]);
     double next = here;
-    // The zone ends between the outermost loaded node and its unloaded neighbour outwards.
-    if (k + 1 < nodes.size() && !(nodes[k + 1].lambda > 0.0)) next = measure(nodes[k + 1]);
+    if (k + 1 < nodes.size() && !(nodes[k + 1]->lambda > 0.0)) next = measure(*nodes[k + 1]);
     extent = std::max(extent, 0.5 * (here + next));
   }
   return extent;
+}
+
+}  // namespace
+
+double contactExtent(const std::vector<ContactNode>& nodes, const ContactExtentRule& rule,
+                     int dim) {
+  if (dim == 3 && rule.line) {
+    const auto planes = halfWidthPerPlane(nodes);
+    double sum = 0.0;
+    for (const auto& p : planes) sum += p.halfWidth;
+    return planes.empty() ? 0.0 : sum / static_cast<double>(planes.size());
+  }
+  std::vector<const ContactNode*> sorted;
+  for (const auto& n : nodes) sorted.push_back(&n);
+  return extentOfSorted(sorted, [&](const ContactNode& n) {
+    return dim == 3 ? n.radius : rule.angle ? std::abs(n.angle) : std::abs(n.x);
+  });
+}
+
+std::vector<PlaneHalfWidth> halfWidthPerPlane(const std::vector<ContactNode>& nodes) {
+  std::vector<const ContactNode*> byZ;
+  for (const auto& n : nodes) byZ.push_back(&n);
+  std::sort(byZ.begin(), byZ.end(),
+            [](const ContactNode* a, const ContactNode* b) { return a->z < b->z; });
+  std::vector<PlaneHalfWidth> planes;
+  if (byZ.empty()) return planes;
+  const double tol = 1e-9 * (byZ.back()->z - byZ.front()->z);
+  const auto across = [](const ContactNode& n) { return std::abs(n.x); };
+  for (std::size_t first = 0; first < byZ.size();) {
+    std::size_t end = first + 1;
+    while (end < byZ.size() && byZ[end]->z - byZ[end - 1]->z <= tol) ++end;
+    std::vector<const ContactNode*> plane(byZ.begin() + first, byZ.begin() + end);
+    std::sort(plane.begin(), plane.end(),
+              [&](const ContactNode* a, const ContactNode* b) { return across(*a) < across(*b); });
+    planes.push_back(
+        {plane.front()->z, static_cast<int>(plane.size()), extentOfSorted(plane, across)});
+    first = end;
+  }
+  return planes;
 }
 
 void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
@@ -132,6 +171,17 @@ double hertzSphereMaxVonMises(double p0, double nu) {
 
 }  // namespace
 
+bool lineContact(const Teuchos::ParameterList& params, int dim) {
+  const auto& cp = params.sublist("Contact problem");
+  const std::string zone =
+      cp.isParameter("Contact zone") ? cp.get<std::string>("Contact zone") : "auto";
+  if (zone == "point" && dim == 2)
+    throw std::invalid_argument(
+        "Contact problem: \"Contact zone\" = point needs a 3D mesh (a 2D contact is a line "
+        "contact: auto or line)");
+  return zone == "line" || (zone == "auto" && dim == 2);
+}
+
 void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pMax,
                         double halfWidth, int dim) {
   const auto& hz = params.sublist("Contact problem").sublist("Hertz");
@@ -148,8 +198,9 @@ void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pM
                      cp.sublist("Rigid obstacle").get<std::string>("Type") != "none";
   const double Estar = E / ((rigid ? 1.0 : 2.0) * (1.0 - nu * nu));
   double a = 0.0, p0 = 0.0, vm = 0.0;
-  const char* extent = dim == 3 ? "contact_radius" : "half_width";
-  if (dim == 3) {
+  const bool line = lineContact(params, dim);
+  const char* extent = line ? "half_width" : "contact_radius";
+  if (!line) {
     // Point contact: a = (3 F R / (4 E*))^(1/3), p0 = 3 F / (2 pi a^2).
     const double F = hz.get<double>("Force");
     a = std::cbrt(3.0 * F * R / (4.0 * Estar));

@@ -27,14 +27,22 @@ struct ContactNode {
 
 // How the contact zone's extent is measured. 2D: the half-width along x (a contact centred at
 // x = 0 on a symmetry line), or the half-angle seen from a centre, measured from a direction.
-// 3D: the radius from the contact axis, the line through centre along axis (an axisymmetric
-// contact, e.g. a sphere pressed along -z onto a flat at the origin).
+// 3D, point contact: the radius from the contact axis, the line through centre along axis (an
+// axisymmetric contact, e.g. a sphere pressed along -z onto a flat at the origin). 3D, line
+// contact (`line`): a contact along z (e.g. a cylinder in a plane-strain slab), its half-width
+// along x on every node plane z = const of the slave nodes (the 2D rule on each), averaged.
 struct ContactExtentRule {
   bool angle = false;
+  bool line = false;
   double centre[3] = {0.0, 0.0, 0.0};
   double direction[2] = {0.0, -1.0};
   double axis[3] = {0.0, 0.0, 1.0};  // a unit vector
 };
+
+// "Contact problem/Contact zone" for a mesh of dimension dim: true for a line contact (2D, or
+// `line` in 3D), false for a point contact (`point`, or `auto` in 3D). Throws
+// std::invalid_argument for `point` in 2D.
+bool lineContact(const Teuchos::ParameterList& params, int dim);
 
 // The multiplier of every row of the last solve at its slave node, sorted by x (or angle; the
 // radius in 3D). surfaceDisplacement: dim per mesh node (only surface nodes read) or empty for
@@ -51,21 +59,31 @@ double maxPressure(const std::vector<ContactNode>& nodes);
 double resultantForce(const std::vector<ContactNode>& nodes, const double direction[], int dim = 2);
 // Between the outermost loaded node and the next one outwards (metres, or degrees for an angle
 // rule); in 3D between the largest radius of a node with a positive multiplier and the next
-// larger radius if that node's multiplier is zero (nodes sorted by radius).
+// larger radius if that node's multiplier is zero (nodes sorted by radius); for a 3D line
+// contact (rule.line) the mean of halfWidthPerPlane.
 double contactExtent(const std::vector<ContactNode>& nodes, const ContactExtentRule& rule,
                      int dim = 2);
+
+// A 3D line contact's half-width along x on one node plane z = const of the slave nodes.
+struct PlaneHalfWidth {
+  double z;
+  int nodes;  // slave nodes with a row on the plane
+  double halfWidth;
+};
+// The planes by increasing z; nodes within 1e-9 of the nodes' extent in z are on one plane.
+std::vector<PlaneHalfWidth> halfWidthPerPlane(const std::vector<ContactNode>& nodes);
 
 // Rank 0 writes the nodes as CSV: x,y,lambda,pressure,angle (2D) or x,y,z,lambda,pressure,radius
 // (3D); throws naming the file.
 void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
                      const std::vector<ContactNode>& nodes, int dim = 2);
 
-// When "Contact problem"/"Hertz"/"Compare" is set: in 2D Hertz's line contact of two cylinders
-// (radii, line load l of the full model, E and nu of "Material" for both bodies) as
-// c["hertz"] = {p_max, half_width, max_von_mises} and c["relative_error"] = {p_max, half_width};
-// in 3D the point contact of two spheres (radii, total force F of the full model) as
-// c["hertz"] = {p_max, contact_radius, max_von_mises}, c["relative_error"] = {p_max,
-// contact_radius}.
+// When "Contact problem"/"Hertz"/"Compare" is set: for a line contact (lineContact: 2D, or a
+// 3D slab) Hertz's line contact of two cylinders (radii, line load l of the full model per unit
+// length, E and nu of "Material" for both bodies) as c["hertz"] = {p_max, half_width,
+// max_von_mises} and c["relative_error"] = {p_max, half_width}; for a 3D point contact that of
+// two spheres (radii, total force F of the full model) as c["hertz"] = {p_max, contact_radius,
+// max_von_mises}, c["relative_error"] = {p_max, contact_radius}.
 void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pMax,
                         double halfWidth, int dim = 2);
 

@@ -68,8 +68,9 @@ StructuredProblem problemFrom(const ParameterList& p, const std::string& field) 
         std::to_string(domain.size()));
   const int dim = static_cast<int>(domain.size()) / 2;
   const std::string axes = dim == 2 ? "{x, y}" : "{x, y, z}";
+  // Only Study = single reads the Mesh sublist: say so, for an input that meant another study.
   const std::string why = " for a " + std::to_string(dim) + "D problem (\"Domain\" has " +
-                          std::to_string(domain.size()) + " values); got ";
+                          std::to_string(domain.size()) + " values; Study = single); got ";
   if (static_cast<int>(subs.size()) != dim)
     throw std::invalid_argument("Mesh: \"Subdomains\" takes " + std::to_string(dim) + " values " +
                                 axes + why + std::to_string(subs.size()));

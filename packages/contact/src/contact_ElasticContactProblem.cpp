@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "contact_SurfaceWeights.hpp"
@@ -111,6 +112,9 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   const int dim = mesh.dim;
   checkComponents(spec.tractions, "Tractions", "traction boundary", mesh);
   checkComponents(spec.bodyLoads, "Body loads", "body", mesh);
+  if (spec.contactZone == "point" && dim == 2)
+    throw std::invalid_argument("Contact problem: \"Contact zone\" = point needs a 3D mesh; " +
+                                mesh.source + " is 2D (a 2D contact is a line contact)");
 
   // Subdomains, body by body, numbered consecutively.
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
@@ -123,7 +127,12 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     } catch (const std::exception& e) {
       throw std::invalid_argument(std::string("Bodies: ") + e.what());
     }
-    BodyPartition part = partitionBody(mesh, *gb, body.subdomains, p.numSubdomains());
+    BodyPartition part;
+    try {
+      part = partitionBody(mesh, *gb, body.subdomains, p.numSubdomains());
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(std::string("Subdomains per body: ") + e.what());
+    }
     for (auto& s : part.subdomains) {
       p.subdomains.push_back(std::move(s));
       p.bodyOfSubdomain.push_back(static_cast<int>(b));
@@ -293,6 +302,18 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     if (!onBody)
       throw std::invalid_argument("Master: boundary \"" + spec.master + "\" is on no body");
     p.master = makeMeshContactMaster(mesh, spec.master, options);
+    // A node on both surfaces joins the bodies there: it is glued, not in contact (a .geo that
+    // extrudes touching bodies merges their coincident points unless told otherwise).
+    for (int n : p.master->masterNodes())
+      if (slaveSet.count(n)) {
+        std::ostringstream at;
+        for (int c = 0; c < dim; ++c) at << (c ? ", " : "") << mesh.coords[dim * n + c];
+        throw std::invalid_argument(mesh.source + ": the Slave \"" + spec.slave +
+                                    "\" and the Master \"" + spec.master +
+                                    "\" share the node at (" + at.str() +
+                                    "): the bodies are joined there; each body needs its own "
+                                    "nodes on the contact surfaces");
+      }
   }
   std::set<int> surface(slaveSet);
   for (int n : p.master->masterNodes()) surface.insert(n);

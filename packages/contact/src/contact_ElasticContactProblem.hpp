@@ -43,6 +43,9 @@ struct ElasticContactSpec {
   std::optional<RigidObstacle> obstacle;
   double searchRadius = 0.0;           // 0: a tenth of the mesh's extent
   std::string distribution = "graph";  // subdomains to ranks: graph (Zoltan2) or block
+  // The contact zone's shape (how its extent is reported): auto, line or point; point needs a
+  // 3D mesh.
+  std::string contactZone = "auto";
 };
 
 struct ElasticContactProblem {

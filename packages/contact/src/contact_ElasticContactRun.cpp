@@ -54,6 +54,25 @@ std::vector<std::pair<std::string, std::vector<double>>> componentsPerName(
   return out;
 }
 
+// A 3D line contact (a plane-strain slab): the length of the contact line (the slave nodes'
+// extent along z), the force per unit of it (to compare with a 2D run's force per unit
+// thickness) and the half-width on each node plane, whose spread shows how far the solution is
+// from independent of z.
+void addSlabContact(Json& c, const std::vector<ContactNode>& nodes, double force) {
+  const std::vector<PlaneHalfWidth> planes = halfWidthPerPlane(nodes);
+  const double length = planes.empty() ? 0.0 : planes.back().z - planes.front().z;
+  double lo = 0.0, hi = 0.0;
+  for (std::size_t k = 0; k < planes.size(); ++k) {
+    lo = k ? std::min(lo, planes[k].halfWidth) : planes[k].halfWidth;
+    hi = k ? std::max(hi, planes[k].halfWidth) : planes[k].halfWidth;
+  }
+  c["line_length"] = length;
+  c["force_per_unit_length"] = length > 0.0 ? force / length : 0.0;
+  c["node_planes"] = static_cast<int>(planes.size());
+  c["half_width_min"] = lo;
+  c["half_width_max"] = hi;
+}
+
 }  // namespace
 
 ElasticContactSpec elasticContactSpec(const ParameterList& params) {
@@ -121,6 +140,12 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     spec.obstacle = o;
   }
   spec.distribution = cp.get<std::string>("Subdomain distribution");
+  spec.contactZone = cp.get<std::string>("Contact zone");
+  // The nonlinear run measures its contact zone by Nonlinear/Contact extent.
+  if (params.get<std::string>("Problem") != "elastic_contact" && spec.contactZone != "auto")
+    throw std::invalid_argument(
+        "Contact problem: \"Contact zone\" is for Problem = elastic_contact; a "
+        "nonlinear_contact run measures its contact zone by Nonlinear/Contact extent");
   return spec;
 }
 
@@ -174,20 +199,30 @@ void addElasticContactParameters(ParameterList& pl) {
   ro.set("Normal", Array<double>(), "line/plane: {nx, ny[, nz]}, pointing out of the obstacle");
   ro.set("Centre", Array<double>(), "circle/sphere: {x, y[, z]} of its centre");
   ro.set("Radius", 0.0, "circle/sphere: its radius (> 0)");
+  cp.set("Contact zone", "auto",
+         "the contact zone's shape, how its extent is measured and which Hertz solution it is "
+         "compared with: line (a line contact along z, as in 2D or in a 3D plane-strain slab: "
+         "half_width, along x; in 3D on every node plane z = const of the slave nodes, "
+         "averaged), point (3D: contact_radius, from the z axis through the origin); auto: line "
+         "in 2D, point in 3D. elastic_contact only",
+         Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+             Teuchos::tuple<std::string>("auto", "line", "point"), "Contact zone")));
   cp.set("Subdomain distribution", "graph",
          "graph: Zoltan2 (Scotch) on the subdomain adjacency, balancing dofs; block: contiguous "
          "blocks of subdomain ids",
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
              Teuchos::tuple<std::string>("graph", "block"), "Subdomain distribution")));
   auto& h = cp.sublist("Hertz", false,
-                       "compare with Hertz: line contact of two cylinders (2D mesh) or point "
-                       "contact of two spheres (3D mesh)");
+                       "compare with Hertz: line contact of two cylinders (Contact zone line) or "
+                       "point contact of two spheres (point)");
   h.set("Compare", false, "report Hertz's p_max and half-width (contact radius) and the errors");
   h.set("Radius 1", 1.0, "R1", tfeti::strict::positive());
   h.set("Radius 2", 0.0, "R2; 0 means infinity (a flat body)", tfeti::strict::nonNegative());
-  h.set("Line load", 0.0, "2D: l, force per unit length of the full (not the half) model",
+  h.set("Line load", 0.0,
+        "line contact (2D, or a 3D slab): l, force per unit length of the full (not the half) "
+        "model",
         tfeti::strict::nonNegative());
-  h.set("Force", 0.0, "3D: F, the total force of the full (not the quarter) model",
+  h.set("Force", 0.0, "point contact (3D): F, the total force of the full (not the quarter) model",
         tfeti::strict::nonNegative());
 }
 
@@ -202,10 +237,12 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   const tfeti::DualResult result = solver.solve();
   const tfeti::ConstraintReport report = solver.constraintReport();
 
-  // The contact zone's extent: the half-width along x in 2D, the radius from the z axis through
-  // the origin in 3D (ContactExtentRule's defaults).
+  // The contact zone's extent: the half-width along x of a line contact (2D, or per node plane
+  // of a 3D slab), the radius from the z axis through the origin of a 3D point contact
+  // (ContactExtentRule's defaults).
   const int dim = problem.dim();
-  const ContactExtentRule rule;
+  ContactExtentRule rule;
+  rule.line = lineContact(params, dim);
   const std::vector<ContactNode> nodes = contactNodes(problem, solver, rule);
   double force = 0.0;
   for (const auto& n : nodes) force += n.lambda;
@@ -247,10 +284,11 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
       std::hypot(problem.appliedForce[0], problem.appliedForce[1], problem.appliedForce[2]);
   Json c = constraintJson(report);
   c["p_max"] = pMax;
-  c[dim == 3 ? "contact_radius" : "half_width"] = halfWidth;
+  c[rule.line ? "half_width" : "contact_radius"] = halfWidth;
   c["force"] = force;
   c["applied_force"] = applied;
   c["force_relative_error"] = applied > 0.0 ? std::abs(force - applied) / applied : 0.0;
+  if (dim == 3 && rule.line) addSlabContact(c, nodes, force);
   addHertzComparison(c, params, pMax, halfWidth, dim);
   s["contact"] = std::move(c);
   s["max_von_mises"] = globalVm;
@@ -267,7 +305,7 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
               << solver.inequalityRows() << " contact rows), " << result.method << ": "
               << result.qp.hessianMultiplications << " Hessian multiplications ("
               << (result.converged ? "converged" : "NOT CONVERGED") << "); p_max " << pMax
-              << (dim == 3 ? ", contact radius " : ", half-width ") << halfWidth << ", force "
+              << (rule.line ? ", half-width " : ", contact radius ") << halfWidth << ", force "
               << force << " (applied " << applied << "), max von Mises " << globalVm << "\n";
   if (!result.converged && root)
     std::cerr << "tfeti_contact: " << result.method << " did not converge (" << result.qp.message

@@ -210,6 +210,60 @@ TEUCHOS_UNIT_TEST(NodeToFace, QuadraticFacesOfASphere) {
   TEST_COMPARE(e2, <, 0.35 * e1);
 }
 
+TEUCHOS_UNIT_TEST(NodeToFace, WarpedQuad4Faces) {
+  // The saddle z = c x y over (0, 3)^2 on a grid of unit squares: bilinear, so the Quad4 faces
+  // through its grid points (each warped: its corners are not coplanar) are the saddle exactly.
+  // A slave node at distance g along the saddle's normal from a point p has p as its closest
+  // point and g as its gap (|g| well below the curvature radius, >= 1/c). Strong warping makes
+  // the closest-point Newton need the face's mixed derivative x_xi_eta, which a bilinear face
+  // has although x_xi_xi = x_eta_eta = 0.
+  const double c = 2.0;
+  std::vector<double> coords;
+  MasterFaceSurface m = planeGrid(3, false, coords);
+  for (std::size_t k = 0; k < coords.size(); k += 3) coords[k + 2] = c * coords[k] * coords[k + 1];
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> frac(0.05, 0.95), gapDist(-0.15, 0.3);
+  std::uniform_int_distribution<int> cell(0, 2);
+  const int base = static_cast<int>(coords.size() / 3);
+  std::vector<int> slaves;
+  std::vector<std::array<double, 4>> exact;  // p and g
+  for (int k = 0; k < 60; ++k) {
+    const double x = cell(rng) + frac(rng), y = cell(rng) + frac(rng), g = gapDist(rng);
+    const double nn = std::sqrt(c * c * (x * x + y * y) + 1.0);
+    const double n[3] = {-c * y / nn, -c * x / nn, 1.0 / nn};
+    coords.insert(coords.end(), {x + g * n[0], y + g * n[1], c * x * y + g * n[2]});
+    slaves.push_back(base + k);
+    exact.push_back({x, y, c * x * y, g});
+  }
+  const ContactRowsResult r = contact::computeNodeToFace(coords, slaves, m, radius(0.5));
+  TEST_EQUALITY(r.rows.size(), slaves.size());
+  double worstPoint = 0.0, worstGap = 0.0, worstNormal = 0.0;
+  for (std::size_t k = 0; k < r.rows.size(); ++k) {
+    const auto& row = r.rows[k];
+    const auto& e = exact[k];
+    const double nn = std::sqrt(c * c * (e[0] * e[0] + e[1] * e[1]) + 1.0);
+    worstPoint =
+        std::max(worstPoint, std::abs(row.point[0] - e[0]) + std::abs(row.point[1] - e[1]) +
+                                 std::abs(row.point[2] - e[2]));
+    worstGap = std::max(worstGap, std::abs(row.gap - e[3]));
+    worstNormal = std::max(worstNormal, std::abs(row.normal[0] + c * e[1] / nn) +
+                                            std::abs(row.normal[1] + c * e[0] / nn) +
+                                            std::abs(row.normal[2] - 1.0 / nn));
+    TEST_EQUALITY(static_cast<int>(row.kind), static_cast<int>(ProjectionKind::Interior));
+  }
+  out << "worst |x_m - p| " << worstPoint << ", |gap - g| " << worstGap << ", normal "
+      << worstNormal << "\n";
+  TEST_COMPARE(worstPoint, <, 1e-12);
+  TEST_COMPARE(worstGap, <, 1e-12);
+  TEST_COMPARE(worstNormal, <, 1e-12);
+  // The row is the first-order expansion of the gap on warped faces too.
+  const double e1 = linearizationError(coords, slaves, m, 1e-3, 13);
+  const double e2 = linearizationError(coords, slaves, m, 5e-4, 13);
+  out << "linearization error " << e1 << " (eps 1e-3), " << e2 << " (eps 5e-4)\n";
+  TEST_COMPARE(e1, <, 1e-4);
+  TEST_COMPARE(e2, <, 0.35 * e1);
+}
+
 TEUCHOS_UNIT_TEST(NodeToFace, EdgesCornersAndFreeEdges) {
   // A roof: two Quad4 faces meeting at the ridge x = 0 (z = 1 - |x|), y in (0, 1).
   std::vector<double> coords{-1, 0, 0, 0, 0, 1, 1, 0, 0, -1, 1, 0, 0, 1, 1, 1, 1, 0};
