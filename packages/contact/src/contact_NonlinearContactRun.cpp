@@ -23,9 +23,8 @@ namespace contact {
 using Teuchos::ParameterList;
 
 ElasticContactSpec nonlinearContactSpec(const ParameterList& params) {
-  ElasticContactSpec spec = elasticContactSpec(params);
-  spec.meshOptions.dimension = 2;
-  return spec;
+  // The same bodies, loads and contact pair as elastic_contact, 2D or 3D as the mesh is.
+  return elasticContactSpec(params);
 }
 
 NonlinearHistory readRestart(const std::string& restartDir, const ElasticContactProblem& problem,
