@@ -49,13 +49,20 @@
                                           step has the keys issue 5 names and its last
                                           iteration meets Eta 1 and Eta 2; the last QP solve
                                           meets the contact conditions; the resultant contact
-                                          force balances the load to T; with Hertz, p_max and
+                                          force balances the load and the fixed boundaries'
+                                          reaction to T; with Hertz, p_max and
                                           the half-width within the given tolerance
   check_summary.py same_nonlinear DIR1 DIR2 ...
                                           the same load steps and, per step, p_max, contact
                                           extent and max von Mises to 1e-5, max plastic strain
                                           to 1e-3
                                           (other rank counts, or a run continued by restart)
+  check_summary.py nonlinear_vs_elastic NONLINEAR ELASTIC [--tol T]
+                                          a one-step nonlinear run of a linear elastic material
+                                          against the elastic contact run: p_max and the contact
+                                          extent within T, the force within 1e-6
+  check_summary.py plastic DIR            plastic strain > 0, von Mises within 1 % of the yield
+                                          surface sigma_Y + H alpha at every step
   check_summary.py plastic_vs_elastic PLASTIC ELASTIC
                                           the same overload: the elastic run exceeds yield, the
                                           plastic one yields (plastic strain > 0), caps von
@@ -482,8 +489,15 @@ def nonlinear(d, force_tol, hertz_tol):
     if c["force_relative_error"] > force_tol:
         fail(f"{d}: resultant contact force {c['force']:.6e} against the load "
              f"{c['applied_force']:.6e}: {c['force_relative_error']:.1e} > {force_tol}")
+    # The reaction of the fixed boundaries balances the contact force (and the load).
+    if "support_relative_error" in c and c["support_relative_error"] > force_tol:
+        fail(f"{d}: support reaction {c['support_force']:.6e} against the contact force "
+             f"{c['force']:.6e}: {c['support_relative_error']:.1e} > {force_tol}")
+    if k["max_complementarity"] > KKT_TOL * u * max(abs(c["force"]), 1e-300):
+        fail(f"{d}: last solve: complementarity {k['max_complementarity']:.2e}")
     if hertz_tol > 0:
-        for key in ("p_max", "half_width"):
+        extent = "contact_radius" if "contact_radius" in c else "half_width"
+        for key in ("p_max", extent):
             if c["relative_error"][key] > hertz_tol:
                 fail(f"{d}: {key} {c[key]:.5e} vs Hertz {c['hertz'][key]:.5e}: "
                      f"{100 * c['relative_error'][key]:.2f} % > {100 * hertz_tol:.0f} %")
@@ -507,6 +521,43 @@ def same_nonlinear(dirs):
                 if abs(a[key] - b[key]) > tol * scale:
                     fail(f"{d}: step {b['step']} {key} {b[key]} differs from {a[key]} ({dirs[0]})")
     print(f"OK: {len(dirs)} runs agree over {len(ref)} steps")
+
+
+def nonlinear_vs_elastic(ndir, edir, tol):
+    """A nonlinear run with a linear elastic material in one step against the elastic contact
+    run: the same p_max and contact extent to tol (the loop puts the rows on the deformed
+    geometry, the elastic run on the reference one) and the same force to 1e-6."""
+    n, e = load(ndir), load(edir)
+    if not n["converged"] or not e["converged"]:
+        fail("a run did not converge")
+    if n["max_plastic_strain"] != 0:
+        fail(f"{ndir}: plastic strain {n['max_plastic_strain']} in an elastic run")
+    cn, ce = n["contact"], e["contact"]
+    extent = "contact_radius" if "contact_radius" in ce else "half_width"
+    for key, t in (("p_max", tol), (extent, tol), ("force", 1e-6)):
+        rel = abs(cn[key] - ce[key]) / abs(ce[key])
+        if rel > t:
+            fail(f"{key}: nonlinear {cn[key]:.8e}, elastic {ce[key]:.8e}: {rel:.1e} > {t:.0e}")
+    print(f"OK: p_max {cn['p_max']:.6e} vs {ce['p_max']:.6e}, {extent} {cn[extent]:.6e} vs "
+          f"{ce[extent]:.6e}, force {cn['force']:.8e} vs {ce['force']:.8e}")
+
+
+def plastic(d):
+    """A plastic run beyond yield: plastic strain > 0 and the von Mises stress within the yield
+    surface sigma_Y + H alpha_max (1 % for the Cauchy stress of a law that acts on the second
+    Piola-Kirchhoff stress, as in plastic_vs_elastic) at every converged step."""
+    s = load(d)
+    m = s["material"]
+    sy, h = m["yield_stress"], m.get("hardening_modulus", 0.0)
+    for st in s["steps"]:
+        bound = 1.01 * (sy + h * st["max_plastic_strain"])
+        if st["max_von_mises"] > bound:
+            fail(f"{d}: step {st['step']}: von Mises {st['max_von_mises']:.4e} above the yield "
+                 f"surface {bound:.4e}")
+    if not s["max_plastic_strain"] > 0:
+        fail(f"{d}: no plastic strain")
+    print(f"OK: plastic strain {s['max_plastic_strain']:.3e}, von Mises {s['max_von_mises']:.4e} "
+          f"(sigma_Y {sy:.2e}, H {h:.2e})")
 
 
 def plastic_vs_elastic(pdir, edir):
@@ -579,6 +630,10 @@ if __name__ == "__main__":
         nonlinear(args[0], option(args, "--force-tol", 1e-6), option(args, "--hertz-tol", 0.0))
     elif mode == "same_nonlinear":
         same_nonlinear(args)
+    elif mode == "nonlinear_vs_elastic":
+        nonlinear_vs_elastic(args[0], args[1], option(args, "--tol", 1e-3))
+    elif mode == "plastic":
+        plastic(args[0])
     elif mode == "plastic_vs_elastic":
         plastic_vs_elastic(args[0], args[1])
     elif mode == "arc_grows":

@@ -333,7 +333,9 @@ void updateContact(ElasticContactProblem& p, const std::vector<double>& displace
   if (p.contact.rows.empty())
     throw std::invalid_argument(
         "no slave node of \"" + slaveName + "\" is within the search radius of " +
-        (masterName.empty() ? std::string("the rigid obstacle") : "\"" + masterName + "\""));
+        (masterName.empty() ? std::string("the rigid obstacle (Contact problem/Rigid obstacle: its "
+                                          "Point or Centre, Normal, Radius)")
+                            : "\"" + masterName + "\""));
   const int dim = p.dim();
   auto dofOf = [&](int node, int component) {
     return std::make_pair(p.copyOf[node].first, dim * p.copyOf[node].second + component);

@@ -322,7 +322,11 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   const ElasticContactSpec spec =
       nonlinear ? nonlinearContactSpec(params) : elasticContactSpec(params);
   const ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
-  if (nonlinear) requireLoad(*comm, problem.local);
+  if (nonlinear) {
+    const NonlinearOptions options = nonlinearOptionsFrom(params);
+    checkNonlinearOptionsFor(options, problem.dim(), spec.obstacle.has_value());
+    requireLoadOrMotion(*comm, problem.local, options);
+  }
   int restartStep = -1;
   if (nonlinear && params.sublist("Nonlinear").get<bool>("Restart")) {
     std::vector<SubdomainRestart> saved;

@@ -25,6 +25,7 @@
 
 #include "contact_ElasticContactProblem.hpp"
 #include "contact_NonlinearHistory.hpp"
+#include "contact_NonlinearOptions.hpp"
 
 namespace contact {
 
@@ -34,8 +35,9 @@ void addNonlinearContactParameters(Teuchos::ParameterList& valid);
 // The checks of the "Nonlinear", "Material" and "Contact problem" parameters a run makes before
 // it meshes (throw std::invalid_argument as the run does).
 void checkNonlinearParameters(const Teuchos::ParameterList& params);
-// The contact problem a nonlinear run solves: elasticContactSpec's, on a 2D mesh (the large
-// deformation and plastic path is plane strain; a 3D mesh is an error naming the file).
+// The contact problem a nonlinear run solves: elasticContactSpec's, 2D (plane strain) or 3D as
+// its mesh is (one code path: J2 in six Voigt components, total Lagrangian kernels, node-to-
+// segment or node-to-face contact, rigid obstacles).
 ElasticContactSpec nonlinearContactSpec(const Teuchos::ParameterList& params);
 // The restart state in `restartDir` (OUTPUT/restart) and this rank's subdomain files of its
 // last step, checked against the problem's subdomains (throws std::runtime_error naming the file).
@@ -43,6 +45,10 @@ NonlinearHistory readRestart(const std::string& restartDir, const ElasticContact
                              std::vector<SubdomainRestart>& subdomains);
 // The norm of the external load of the subdomains (every rank); throws when no load is applied.
 double requireLoad(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local);
+// As requireLoad, but a prescribed obstacle motion ("Nonlinear"/"Obstacle displacement") may
+// drive the run alone: then 0 when no load is applied.
+double requireLoadOrMotion(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local,
+                           const NonlinearOptions& options);
 
 // 0: converged at load factor 1 (or stopped as asked by "Stop after step"); 3: a load step did
 // not converge after the allowed cut-backs (everything up to the last converged step written).

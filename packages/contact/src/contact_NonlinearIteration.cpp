@@ -1,0 +1,127 @@
+#include "contact_NonlinearIteration.hpp"
+
+#include <utility>
+
+#include "contact_ContactMaster.hpp"
+
+namespace contact {
+
+ResidualCheck checkResidual(const tfeti::Comm& comm, double t, const Field& externalLoad,
+                            const Field& multiplierForces, const Field& fint, const Field& u,
+                            const Field& du, double loadNorm, const NonlinearOptions& options) {
+  Field res(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    res[i].resize(u[i].size());
+    for (std::size_t k = 0; k < u[i].size(); ++k)
+      res[i][k] = t * externalLoad[i][k] - multiplierForces[i][k] - fint[i][k];
+  }
+  ResidualCheck c;
+  c.solutionNorm = globalNorm(comm, u);
+  c.relativeIncrement = c.solutionNorm > 0.0 ? globalNorm(comm, du) / c.solutionNorm : 0.0;
+  // Without an applied load (an obstacle's prescribed motion) the internal forces, which then
+  // balance the reactions, are the scale.
+  const double scale = loadNorm > 0.0 ? t * loadNorm : globalNorm(comm, fint);
+  c.relativeResidual = scale > 0.0 ? globalNorm(comm, res) / scale : 0.0;
+  c.converged = c.relativeIncrement < options.eta1 && c.relativeResidual < options.eta2;
+  return c;
+}
+
+LoadStepIteration::LoadStepIteration(const Teuchos::RCP<const tfeti::Comm>& comm,
+                                     NonlinearModel& model, tfeti::FetiSolver& solver,
+                                     const NonlinearOptions& options, std::string slave,
+                                     std::string master, const RigidObstacle* obstacle,
+                                     double loadNorm)
+    : comm_(comm),
+      model_(model),
+      solver_(solver),
+      options_(options),
+      slave_(std::move(slave)),
+      master_(std::move(master)),
+      obstacle_(obstacle),
+      loadNorm_(loadNorm) {}
+
+void LoadStepIteration::updateContact(const Field& u, double t) const {
+  ElasticContactProblem& problem = model_.problem;
+  if (obstacle_ && !options_.obstacleDisplacement.empty()) {
+    // The obstacle where its prescribed motion has taken it at load factor t.
+    RigidObstacle at = *obstacle_;
+    for (int c = 0; c < at.dim; ++c) at.point[c] += t * options_.obstacleDisplacement[c];
+    ContactSearchOptions search;
+    search.searchRadius = problem.searchRadius;
+    problem.master = makeObstacleMaster(at, search);
+  }
+  contact::updateContact(problem, model_.surfaceDisplacement(*comm_, u), comm_->getRank(), slave_,
+                         master_);
+}
+
+Field LoadStepIteration::incrementLoads(const Field& fint, double t) const {
+  Field rhs(fint.size());
+  for (std::size_t i = 0; i < fint.size(); ++i) {
+    rhs[i].resize(fint[i].size());
+    for (std::size_t k = 0; k < rhs[i].size(); ++k)
+      rhs[i][k] = t * model_.externalLoad[i][k] - fint[i][k];
+  }
+  return rhs;
+}
+
+tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field& fint, double t,
+                                                    int iteration) const {
+  const Field rhs = incrementLoads(fint, t);
+  const bool refactor =
+      options_.stiffness == "iteration" || (options_.stiffness == "step" && iteration == 1);
+  if (refactor)
+    solver_.updateStiffness(model_.tangent(u, options_.kinematics), model_.currentCoordinates(u),
+                            rhs, model_.problem.inequalities);
+  else
+    solver_.update(rhs, model_.problem.inequalities);
+  return solver_.solve();
+}
+
+StepOutcome LoadStepIteration::attempt(int step, double t) const {
+  StepOutcome out;
+  out.u = model_.u;
+  Field& u = out.u;
+  try {
+    Field fint = model_.internalForce(u, options_.kinematics);
+    for (int it = 1; it <= options_.maxIterations; ++it) {
+      updateContact(u, t);
+      const tfeti::DualResult qp = solveIncrement(u, fint, t, it);
+      IterationRecord rec;
+      rec.step = step;
+      rec.loadFactor = t;
+      rec.iteration = it;
+      rec.mprgpIterations = qp.iterations;
+      rec.hessianMultiplications = qp.qp.hessianMultiplications;
+      if (!qp.converged) {
+        out.iterations.push_back(rec);
+        out.reason = "the contact QP did not converge in iteration " + std::to_string(it) + " (" +
+                     qp.qp.message + ")";
+        return out;
+      }
+      Field du(u.size());
+      for (std::size_t i = 0; i < u.size(); ++i) {
+        du[i] = solver_.solution(i);
+        for (std::size_t k = 0; k < u[i].size(); ++k) u[i][k] += du[i][k];
+      }
+      fint = model_.internalForce(u, options_.kinematics);
+      const ResidualCheck check =
+          checkResidual(*comm_, t, model_.externalLoad, solver_.multiplierForces(), fint, u, du,
+                        loadNorm_, options_);
+      rec.solutionNorm = check.solutionNorm;
+      rec.relativeIncrement = check.relativeIncrement;
+      rec.relativeResidual = check.relativeResidual;
+      out.iterations.push_back(rec);
+      if (onIteration) onIteration(rec);
+      if (check.converged) {
+        out.converged = true;
+        return out;
+      }
+    }
+    out.reason = "no convergence in " + std::to_string(options_.maxIterations) + " iterations";
+  } catch (const plasticity::InvertedDeformationError& e) {
+    out.reason = e.what();
+  }
+  return out;
+}
+
+}  // namespace contact

@@ -1,0 +1,77 @@
+#pragma once
+// One load step of the reference paper's loop, as its named steps. From the converged state u
+// at load factor t, iterate:
+//   contact update    B_I and the gaps g(u) on the current geometry X + u (a rigid obstacle at
+//                     its position for t);
+//   QP solve          the increment du: K du + B^T lambda = t f - f_int(u), B_E du = c_E,
+//                     B_I du <= g(u), lambda_I >= 0 (TFETI, SMALBE/MPRGP, warm-started);
+//   internal force    u += du, f_int(u) (the laws' trial history);
+//   residual check    res = t f - B^T lambda - f_int(u); converged when ||du|| / ||u|| < eta1
+//                     and ||res|| / ||t f|| < eta2 (||f_int|| when no load is applied: a
+//                     prescribed obstacle motion alone).
+// Step control (contact_LoadStepControl.hpp) decides the load factors and the cut-backs.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "contact_NonlinearHistory.hpp"
+#include "contact_NonlinearModel.hpp"
+#include "contact_NonlinearOptions.hpp"
+#include "contact_RigidObstacle.hpp"
+
+namespace contact {
+
+struct StepOutcome {
+  bool converged = false;
+  std::string reason;  // why not
+  Field u;             // the trial displacement at the end
+  std::vector<IterationRecord> iterations;
+};
+
+struct ResidualCheck {
+  double solutionNorm = 0.0, relativeIncrement = 0.0, relativeResidual = 0.0;
+  bool converged = false;
+};
+
+// res = t f - B^T lambda - f_int and the stopping test against eta1, eta2 (collective).
+// loadNorm = ||t f||; when it is zero the residual is relative to ||f_int||.
+ResidualCheck checkResidual(const tfeti::Comm& comm, double t, const Field& externalLoad,
+                            const Field& multiplierForces, const Field& fint, const Field& u,
+                            const Field& du, double loadNorm, const NonlinearOptions& options);
+
+class LoadStepIteration {
+ public:
+  // slave, master: the contact pair's names (for errors); obstacle: the rigid obstacle at load
+  // factor 0 when the master is one; loadNorm: ||f|| at load factor 1 (0: no applied load).
+  LoadStepIteration(const Teuchos::RCP<const tfeti::Comm>& comm, NonlinearModel& model,
+                    tfeti::FetiSolver& solver, const NonlinearOptions& options, std::string slave,
+                    std::string master, const RigidObstacle* obstacle, double loadNorm);
+
+  // Iterations at load factor t from the converged state model.u (the model's laws keep the
+  // trial history of the last iteration: commit or revert it).
+  StepOutcome attempt(int step, double t) const;
+
+  // Progress lines per iteration (Verbosity 2): called with the record of each iteration.
+  std::function<void(const IterationRecord&)> onIteration;
+
+  // The named steps.
+  void updateContact(const Field& u, double t) const;
+  tfeti::DualResult solveIncrement(const Field& u, const Field& fint, double t,
+                                   int iteration) const;
+
+ private:
+  // The right-hand sides of the increment's QP: t f - f_int(u) per subdomain. The equality rows
+  // B_E du = c_E keep c_E = 0 (FetiSolver's gluing and zero Dirichlet rows); prescribed
+  // Dirichlet values would enter here as c_E(t) - B_E u.
+  Field incrementLoads(const Field& fint, double t) const;
+
+  Teuchos::RCP<const tfeti::Comm> comm_;
+  NonlinearModel& model_;
+  tfeti::FetiSolver& solver_;
+  const NonlinearOptions& options_;
+  std::string slave_, master_;
+  const RigidObstacle* obstacle_;
+  double loadNorm_;
+};
+
+}  // namespace contact

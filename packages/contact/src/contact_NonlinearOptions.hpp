@@ -1,0 +1,34 @@
+#pragma once
+// The "Nonlinear" sublist of a nonlinear contact run, validated: kinematics, load steps,
+// iterations and tolerances, the stiffness update, cut-back, restart, how the contact zone's
+// extent is measured, and the prescribed motion of a rigid obstacle.
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+#include <vector>
+
+#include "contact_ContactOutput.hpp"
+#include "plasticity_TotalLagrangian.hpp"
+
+namespace contact {
+
+struct NonlinearOptions {
+  plasticity::Kinematics kinematics = plasticity::Kinematics::TotalLagrangian;
+  int steps = 1, maxIterations = 50, maxCutbacks = 4, stopAfter = 0;
+  double eta1 = 1e-6, eta2 = 1e-6;
+  std::string stiffness = "initial";  // initial | step | iteration
+  bool restart = false, vtuEveryStep = true;
+  ContactExtentRule rule;
+  int centreValues = 2;  // "Contact extent"/"Centre" was given with 2 (2D) or 3 (3D) values
+  // "Obstacle displacement": the rigid obstacle's motion at load factor 1 (it moves by t times
+  // it); empty: the obstacle stays where it is.
+  std::vector<double> obstacleDisplacement;
+};
+
+// Throws std::invalid_argument naming the parameter that is wrong.
+NonlinearOptions nonlinearOptionsFrom(const Teuchos::ParameterList& params);
+// The checks that need the problem's dimension (2 or 3) and whether its master is a rigid
+// obstacle: the extent rule and the obstacle displacement must fit them.
+void checkNonlinearOptionsFor(const NonlinearOptions& options, int dim, bool rigidObstacle);
+
+}  // namespace contact

@@ -1,0 +1,97 @@
+#include "contact_NonlinearStepOutput.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <utility>
+
+namespace contact {
+
+std::string stepBaseName(int step) {
+  std::ostringstream base;
+  base << "step_" << std::setw(4) << std::setfill('0') << step;
+  return base.str();
+}
+
+NonlinearStepOutput::NonlinearStepOutput(const Teuchos::RCP<const tfeti::Comm>& comm,
+                                         const NonlinearModel& model,
+                                         const tfeti::FetiSolver& solver,
+                                         const NonlinearOptions& options, std::string dir)
+    : comm_(comm), model_(model), solver_(solver), options_(options), dir_(std::move(dir)) {}
+
+void NonlinearStepOutput::evaluate(const Field& u) {
+  const ElasticContactProblem& problem = model_.problem;
+  stresses_.clear();
+  plasticNodal_.assign(u.size(), {});
+  double vm = 0.0, ep = 0.0;
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const auto& em = problem.localElements[i];
+    stresses_.push_back(plasticity::cauchyStress(em, *model_.laws[i], u[i], options_.kinematics));
+    const auto& st = stresses_.back();
+    for (int e = 0; e < em.numElements(); ++e)
+      for (int q = 0; q < st.gaussPointsPerElement; ++q)
+        vm = std::max(vm, st.atGaussPoint(e, q, plasticity::kVonMises));
+    ep = std::max(ep, plasticStrain(model_.plastic[i], em, plasticNodal_[i]));
+  }
+  maxVonMises_ = globalMax(*comm_, vm);
+  maxPlasticStrain_ = globalMax(*comm_, ep);
+  nodes_ = contactNodes(problem, solver_, options_.rule, model_.surfaceDisplacement(*comm_, u));
+}
+
+std::string NonlinearStepOutput::writeVtu(const std::string& base, const Field& u) const {
+  std::vector<SubdomainFields> fields;
+  for (std::size_t i = 0; i < u.size(); ++i)
+    fields.push_back({&model_.problem.localElements[i],
+                      model_.problem.local[i].mesh.id,
+                      &u[i],
+                      &stresses_[i],
+                      {plasticNodal_[i]}});
+  return contact::writeVtu(*comm_, dir_, base, stressPiece(fields, {"plastic_strain"}));
+}
+
+void NonlinearStepOutput::writeContactCsv(const std::string& path) const {
+  contact::writeContactCsv(*comm_, path, nodes_, model_.dim());
+}
+
+void NonlinearStepOutput::fill(StepRecord& rec, const double direction[]) const {
+  const int dim = model_.dim();
+  rec.pMax = maxPressure(nodes_);
+  rec.contactExtent = contactExtent(nodes_, options_.rule, dim);
+  rec.maxVonMises = maxVonMises_;
+  rec.maxPlasticStrain = maxPlasticStrain_;
+  rec.contactForce = resultantForce(nodes_, direction, dim);
+}
+
+std::vector<PvdEntry> stepCollection(const NonlinearHistory& history) {
+  std::vector<PvdEntry> entries;
+  for (const auto& s : history.steps)
+    entries.push_back({s.loadFactor, stepBaseName(s.step) + ".pvtu"});
+  return entries;
+}
+
+void saveRestart(const tfeti::Comm& comm, const std::string& restartDir,
+                 const NonlinearHistory& history, const NonlinearModel& model) {
+  const bool root = comm.getRank() == 0;
+  const std::string stepDir = restartStepDirectory(restartDir, history.step);
+  if (root) std::filesystem::create_directories(stepDir);
+  comm.barrier();
+  for (std::size_t i = 0; i < model.u.size(); ++i) {
+    SubdomainRestart s;
+    s.id = model.problem.local[i].mesh.id;
+    s.displacement = model.u[i];
+    if (model.plastic[i]) s.history = model.plastic[i]->committedHistory();
+    writeSubdomainRestart(stepDir, s);
+  }
+  comm.barrier();
+  if (root) {
+    writeRestartState(restartDir, history);
+    // Older steps are no longer named by state.txt.
+    for (const auto& entry : std::filesystem::directory_iterator(restartDir))
+      if (entry.is_directory() && entry.path().string() != stepDir)
+        std::filesystem::remove_all(entry.path());
+  }
+  comm.barrier();
+}
+
+}  // namespace contact
