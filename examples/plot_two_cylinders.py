@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
-"""Plots of a two-cylinder run of tfeti_contact (Problem = elastic_contact):
+"""Plots of an elastic contact run of tfeti_contact (Problem = elastic_contact):
 
   python3 examples/plot_two_cylinders.py OUTPUT_DIR [--zoom 0.08]
 
-writes OUTPUT_DIR/contact_pressure.png (the computed contact pressure along the contact surface
-against Hertz's p(x) = p_max sqrt(1 - x^2/a^2)) and OUTPUT_DIR/von_mises.png (the von Mises
-stress near the contact, from the VTU pieces). Reads summary.json, contact_pressure.csv and
-solution_*.vtu (ASCII) in OUTPUT_DIR.
+writes OUTPUT_DIR/contact_pressure.png, the computed nodal contact pressure against Hertz's
+p(r) = p_max sqrt(1 - r^2/a^2) when the run compared with Hertz: in 2D along the contact surface
+(r = x, the two cylinders), in 3D against the radius from the contact axis (the Hertz sphere,
+docs/hertz_sphere.md: every slave node, so the scatter around a ring shows); and in 2D
+OUTPUT_DIR/von_mises.png (the von Mises stress near the contact, from the VTU pieces). Reads
+summary.json, contact_pressure.csv and, in 2D, solution_*.vtu (ASCII) in OUTPUT_DIR.
 """
 import argparse
 import csv
@@ -28,20 +30,28 @@ from vtu_reading import read_vtu  # noqa: E402
 def pressure_plot(d, summary):
     with open(os.path.join(d, "contact_pressure.csv")) as f:
         rows = [r for r in csv.DictReader(f)]
-    x = [float(r["x"]) for r in rows]
-    p = [float(r["pressure"]) for r in rows]
     c = summary["contact"]
+    # A line contact is plotted along x, a point contact (3D) against the radius.
+    extent, coordinate = ("contact_radius", "radius") if "contact_radius" in c else \
+        ("half_width", "x")
+    x = [float(r[coordinate]) for r in rows]
+    p = [float(r["pressure"]) for r in rows]
     fig, ax = plt.subplots(figsize=(6, 4))
-    ax.plot([v * 1e3 for v in x], [v / 1e6 for v in p], "o-", ms=3, label="TFETI (nodal)")
+    if extent == "half_width":
+        ax.plot([v * 1e3 for v in x], [v / 1e6 for v in p], "o-", ms=3, label="TFETI (nodal)")
+    else:
+        ax.plot([v * 1e3 for v in x], [v / 1e6 for v in p], "o", ms=3,
+                label="TFETI (every slave node)")
     if "hertz" in c:
-        a, p0 = c["hertz"]["half_width"], c["hertz"]["p_max"]
+        a, p0 = c["hertz"][extent], c["hertz"]["p_max"]
         xs = [a * i / 200 for i in range(201)]
         ax.plot([v * 1e3 for v in xs], [p0 * math.sqrt(max(0.0, 1 - (v / a) ** 2)) / 1e6
                                        for v in xs], "k--", label="Hertz")
-    ax.set_xlim(0, 2e3 * c.get("hertz", {}).get("half_width", max(x)))
-    ax.set_xlabel("x [mm]")
+    ax.set_xlim(0, 2e3 * c.get("hertz", {}).get(extent, max(x)))
+    ax.set_xlabel(f"{'radius r' if extent == 'contact_radius' else 'x'} [mm]")
     ax.set_ylabel("contact pressure [MPa]")
-    ax.set_title(f"p_max {c['p_max'] / 1e6:.0f} MPa, half-width {c['half_width'] * 1e3:.2f} mm")
+    label = "contact radius" if extent == "contact_radius" else "half-width"
+    ax.set_title(f"p_max {c['p_max'] / 1e6:.0f} MPa, {label} {c[extent] * 1e3:.2f} mm")
     ax.legend()
     fig.tight_layout()
     out = os.path.join(d, "contact_pressure.png")
@@ -76,4 +86,6 @@ if __name__ == "__main__":
     with open(os.path.join(o.dir, "summary.json")) as f:
         summary = json.load(f)
     print("wrote", pressure_plot(o.dir, summary))
-    print("wrote", von_mises_plot(o.dir, o.zoom))
+    # The stress picture is a 2D section; a 3D run's stresses are in solution.pvtu.
+    if summary.get("dimension", 2) == 2:
+        print("wrote", von_mises_plot(o.dir, o.zoom))

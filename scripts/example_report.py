@@ -52,17 +52,21 @@ def contact_lines(s):
         return []
     lines = []
     h, err = c.get("hertz"), c.get("relative_error", {})
-    width = c.get("half_width")
+    # A line contact (2D) has a half-width and a force per unit length, a point contact (3D) a
+    # contact radius and a force.
+    key, label, unit = ("contact_radius", "contact radius", "N") if "contact_radius" in c else \
+        ("half_width", "half-width", "N/m")
+    width = c.get(key)
     if h:
         lines.append(f"  p_max       {c['p_max'] / 1e6:8.1f} MPa   Hertz {h['p_max'] / 1e6:8.1f} MPa"
                      f"   error {100 * err['p_max']:.2f} %")
-        lines.append(f"  half-width  {width * 1e3:8.3f} mm    Hertz {h['half_width'] * 1e3:8.3f} mm"
-                     f"    error {100 * err['half_width']:.2f} %")
+        lines.append(f"  {label:11s} {width * 1e3:8.3f} mm    Hertz {h[key] * 1e3:8.3f} mm"
+                     f"    error {100 * err[key]:.2f} %")
     else:
         lines.append(f"  p_max {c['p_max']:.4g}, contact extent {c.get('contact_extent', width)}")
     if "force_relative_error" in c:
-        lines.append(f"  contact force {c['force']:.6g} N/m against the applied "
-                     f"{c['applied_force']:.6g} N/m (relative error "
+        lines.append(f"  contact force {c['force']:.6g} {unit} against the applied "
+                     f"{c['applied_force']:.6g} {unit} (relative error "
                      f"{c['force_relative_error']:.1e})")
     return lines
 

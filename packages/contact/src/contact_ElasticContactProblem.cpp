@@ -127,6 +127,12 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     } catch (const std::exception& e) {
       throw std::invalid_argument(std::string("Bodies: ") + e.what());
     }
+    // A body cannot have more METIS parts than elements; name the parameter that asks for them.
+    if (body.subdomains > gb->numElements())
+      throw std::invalid_argument("Contact problem: \"Subdomains per body\" asks for " +
+                                  std::to_string(body.subdomains) + " subdomains of body \"" +
+                                  body.name + "\", which has " + std::to_string(gb->numElements()) +
+                                  " elements");
     BodyPartition part;
     try {
       part = partitionBody(mesh, *gb, body.subdomains, p.numSubdomains());
