@@ -12,6 +12,10 @@
   check_summary.py same DIR1 DIR2 ...     identical iteration counts, residual histories and
                                           solution norms to rounding (different rank counts)
   check_summary.py diverged DIR           the run reported non-convergence (converged = false)
+  check_summary.py prescribed DIR (--reaction R | --contact-force) [--tol T] [--residual E]
+                                          prescribed displacements: converged, B_E u = c_E to
+                                          E (1e-8) of max |u|, the first prescribed entry's reaction
+                                          equals R (or minus the contact force) to T (1e-8)
   check_summary.py contact DIR [--force-tol T]
                                           converged; the contact conditions of the recovered
                                           solution (no penetration, lambda >= 0,
@@ -208,6 +212,22 @@ def diverged(d):
     if s["converged"]:
         fail("expected a non-converged run")
     print(f"OK: non-convergence reported after {s['iterations']} iterations")
+
+
+def prescribed(d, reaction, against_contact, tol, residual_tol):
+    s = load(d)
+    if not s["converged"]:
+        fail("did not converge")
+    residual = s["contact"]["equality_residual"] if "contact" in s else s["equality_residual"]
+    if residual > residual_tol * s["max_abs_u"]:
+        fail(f"max |B_E u - c_E| = {residual:.3e} > {residual_tol} max |u|")
+    got = s["prescribed"][0]["reaction"]
+    expected = -s["contact"]["force"] if against_contact else reaction
+    err = abs(got - expected) / abs(expected)
+    if err > tol:
+        fail(f"reaction {got:.10e} against {expected:.10e}: {err:.1e} > {tol:.1e}")
+    print(f"OK: {s['prescribed_rows']} prescribed rows, reaction {got:.10e} (expected "
+          f"{expected:.10e}, {err:.1e} relative), max |B_E u - c_E| {residual:.1e}")
 
 
 # Contact conditions hold to this fraction of the solution's scale (max |u|, the load).
@@ -608,6 +628,9 @@ if __name__ == "__main__":
         same(args)
     elif mode == "diverged":
         diverged(args[0])
+    elif mode == "prescribed":
+        prescribed(args[0], option(args, "--reaction", 0.0), "--contact-force" in args,
+                   option(args, "--tol", 1e-8), option(args, "--residual", 1e-8))
     elif mode == "contact":
         contact(args[0], option(args, "--force-tol", 1e-6))
     elif mode == "same_contact":

@@ -18,6 +18,7 @@
 #include "contact_ElasticContactRun.hpp"
 #include "contact_Json.hpp"
 #include "contact_NonlinearContactRun.hpp"
+#include "contact_PrescribedDisplacement.hpp"
 #include "contact_StructuredProblem.hpp"
 #include "contact_TwoMembranes.hpp"
 #include "contact_VtuWriter.hpp"
@@ -103,7 +104,29 @@ StructuredProblem problemFrom(const ParameterList& p, const std::string& field) 
   sp.bodyForce.assign(dim, 0.0);
   if (static_cast<int>(bf.size()) == dim) sp.bodyForce.assign(bf.begin(), bf.end());
   sp.mesh();  // validates the sizes
+  const auto& bc = p.sublist("Boundary conditions");
+  const auto fixed = bc.get<Array<std::string>>("Fixed boundaries");
+  sp.fixed.assign(fixed.begin(), fixed.end());
+  const auto sym = bc.get<Array<std::string>>("Symmetry boundaries");
+  const auto comps = bc.get<Array<int>>("Symmetry components");
+  if (sym.size() != comps.size())
+    throw std::invalid_argument(
+        "Boundary conditions: \"Symmetry components\" needs one component (0: x, 1: y, 2: z) "
+        "per entry of \"Symmetry boundaries\"");
+  for (int k = 0; k < static_cast<int>(sym.size()); ++k) sp.symmetry.push_back({sym[k], comps[k]});
+  sp.prescribed = prescribedDisplacements(bc, "Boundary conditions");
+  try {
+    sp.prescribedValues();  // validates the faces, components and values
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("Boundary conditions/") + e.what());
+  }
   return sp;
+}
+
+// The prescribed components' rows for this rank's subdomains (at their full value).
+std::vector<tfeti::EqualityRow> prescribedRows(const StructuredProblem& sp,
+                                               const std::vector<tfeti::SubdomainData>& local) {
+  return prescribedDisplacementRows(local, sp.prescribedValues(), 1.0);
 }
 
 int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
@@ -118,8 +141,10 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
         "Output: \"VTU\" is not available for 3D structured problems in this release; set it "
         "to false");
 
-  tfeti::FetiSolver solver(comm, sp.numSubdomains(), buildLocalSubdomains(sp, *comm),
-                           params.sublist("FETI"));
+  auto subdomains = buildLocalSubdomains(sp, *comm);
+  const auto rows = prescribedRows(sp, subdomains);
+  tfeti::FetiSolver solver(comm, sp.numSubdomains(), std::move(subdomains), params.sublist("FETI"),
+                           {}, rows);
   const tfeti::DualResult result = solver.solve();
 
   Json s = Json::object();
@@ -155,6 +180,22 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &local[1], &global[1]);
   s["solution_norm2"] = std::sqrt(global[0]);  // over all subdomain copies
   s["max_abs_u"] = global[1];
+  if (!sp.prescribed.empty()) {
+    s["prescribed_rows"] = static_cast<long long>(solver.userEqualityRows());
+    s["equality_residual"] = solver.constraintReport().equalityResidual;
+    const std::vector<double> reactions = prescribedReactions(
+        solver, sp.prescribed, [&](const std::string& f) { return sp.faceNodes(f); });
+    Json list = Json::array();
+    for (std::size_t k = 0; k < reactions.size(); ++k) {
+      Json r = Json::object();
+      r["boundary"] = sp.prescribed[k].boundary;
+      r["component"] = sp.prescribed[k].component;
+      r["value"] = sp.prescribed[k].value;
+      r["reaction"] = reactions[k];
+      list.push(std::move(r));
+    }
+    s["prescribed"] = std::move(list);
+  }
   if (out.get<bool>("Compare with direct solve")) {
     const double err = relativeErrorAgainstDirectSolve(sp, solver);
     s["error_vs_direct"] = err;
@@ -211,6 +252,7 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
         const StructuredProblem sp = problemFrom(run, problem);
         const int numSubdomains = sp.numSubdomains();
         const auto local = buildLocalSubdomains(sp, *comm);
+        const auto rows = prescribedRows(sp, local);
         Json row = Json::object();
         row["problem"] = problem;
         row["H"] = 1.0 / hinv;
@@ -229,7 +271,7 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
             ParameterList feti = run.sublist("FETI");
             feti.set("Formulation", form);
             feti.set("Preconditioner", prec);
-            tfeti::FetiSolver solver(comm, numSubdomains, local, feti);
+            tfeti::FetiSolver solver(comm, numSubdomains, local, feti, {}, rows);
             const auto res = solver.solve();
             allConverged &= res.converged;
             its[prec] = res.converged ? Json(res.iterations) : Json();
@@ -312,7 +354,24 @@ void checkStructured(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList&
     << largest.sublist("FETI").get<std::string>("Formulation") << ", preconditioner "
     << largest.sublist("FETI").get<std::string>("Preconditioner");
   lines.push_back(s.str());
-  printDryRunReport(*comm, lines, buildLocalSubdomains(sp, *comm), -1, out);
+  const auto face = [&](const std::string& role, const std::string& name) {
+    std::ostringstream f;
+    f << "boundary \"" << name << "\" (" << role << "): " << sp.faceNodes(name).size() << " nodes";
+    lines.push_back(f.str());
+  };
+  for (const auto& name : sp.fixed) face("fixed", name);
+  for (const auto& [name, c] : sp.symmetry)
+    face(describePrescribed({name, c, 0.0}, sp.dofsPerNode()) + ", symmetry", name);
+  for (const auto& p : sp.prescribed)
+    face("prescribed " + describePrescribed(p, sp.dofsPerNode()) + " m", p.boundary);
+  const auto local = buildLocalSubdomains(sp, *comm);
+  const long long prescribed = static_cast<long long>(prescribedRows(sp, local).size());
+  long long allPrescribed = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &prescribed, &allPrescribed);
+  if (!sp.prescribed.empty())
+    lines.push_back("prescribed rows: " + std::to_string(allPrescribed) +
+                    " (one per subdomain copy of a prescribed node and component)");
+  printDryRunReport(*comm, lines, local, -1, out);
 }
 
 }  // namespace
@@ -359,6 +418,15 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
   mesh.set("Elements per subdomain", arr<int>({16, 16}),
            "elements per subdomain per axis (H/h), one value per axis",
            withLength(tfeti::strict::positiveInts(0), 2, 3));
+  auto& bc =
+      pl->sublist("Boundary conditions", false,
+                  "Problem = poisson | elasticity: conditions on the faces of the box, "
+                  "named x0, x1, y0, y1 (and z0, z1 in 3D) for the faces x = x0, x = x1, ...");
+  bc.set("Fixed boundaries", arr<std::string>({"x0"}), "faces where u = 0 (every component)");
+  bc.set("Symmetry boundaries", Array<std::string>(), "faces with one component zero");
+  bc.set("Symmetry components", Array<int>(), "the zero component (0: x, 1: y, 2: z) of each",
+         componentsValidator());
+  addPrescribedDisplacementParameters(bc);
   auto& mat = pl->sublist("Material", false, "isotropic linear elasticity (plane strain in 2D)");
   mat.set("Young's modulus", 1.0, "E", tfeti::strict::positive());
   mat.set("Poisson's ratio", 0.3, "nu", tfeti::strict::between(-1.0, 0.5, true, true));
@@ -415,6 +483,13 @@ void validateDriverParameters(ParameterList& params, const std::string& source) 
           throw std::invalid_argument(
               "Scalability: \"Subdomains per side\" " + std::to_string(hinv) + " x \"H over h\" " +
               std::to_string(ratio) + " elements per side; at most " + std::to_string(1 << 15));
+    if (params.get<std::string>("Problem") == "nonlinear_contact" &&
+        params.sublist("Contact problem").get<Array<std::string>>("Prescribed boundaries").size() >
+            0)
+      throw std::invalid_argument(
+          "Contact problem: \"Prescribed boundaries\" is available for Problem = "
+          "elastic_contact; the nonlinear loop (nonlinear_contact) does not apply prescribed "
+          "displacements yet");
     for (const auto& p : sc.get<Array<std::string>>("Dual solvers"))
       if (p != "SMALBE" && p != "penalty")
         throw std::invalid_argument("Scalability: \"Dual solvers\" has \"" + p +

@@ -79,9 +79,11 @@ void checkComponents(const std::vector<std::pair<std::string, std::vector<double
 // as a singular coarse problem. Name it before any solve.
 void requireEveryBodyHeld(const GmshMesh& mesh, const ElasticContactSpec& spec,
                           const std::set<int>& fixedNodes,
-                          const std::set<std::pair<int, int>>& fixedComponents) {
+                          const std::set<std::pair<int, int>>& fixedComponents,
+                          const PrescribedValues& prescribed) {
   std::set<int> held(fixedNodes);
   for (const auto& nc : fixedComponents) held.insert(nc.first);
+  for (const auto& [nc, value] : prescribed) held.insert(static_cast<int>(nc.first));
   for (const GmshBoundary& b : mesh.boundaries)  // a missing name is reported later
     if (b.name == spec.slave || b.name == spec.master) {
       const auto nodes = nodesOf(b);
@@ -92,12 +94,18 @@ void requireEveryBodyHeld(const GmshMesh& mesh, const ElasticContactSpec& spec,
     if (std::none_of(c.begin(), c.end(), [&](int n) { return held.count(n) > 0; }))
       throw std::invalid_argument(
           "Bodies: body \"" + body.name +
-          "\" has no Dirichlet condition (Fixed boundaries, Symmetry boundaries) and is not on "
+          "\" has no Dirichlet condition (Fixed boundaries, Symmetry boundaries, Prescribed "
+          "boundaries) and is not on "
           "the contact pair (Slave, Master): nothing holds it");
   }
 }
 
 }  // namespace
+
+std::vector<int> boundaryNodeIds(const GmshMesh& mesh, const std::string& name) {
+  const auto nodes = nodesOf(boundaryNamed(mesh, name, "boundary"));
+  return std::vector<int>(nodes.begin(), nodes.end());
+}
 
 ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
                                                  const tfeti::Comm& comm) {
@@ -168,7 +176,14 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
       fixedComponents.insert({n, c});
   }
 
-  requireEveryBodyHeld(mesh, spec, fixedNodes, fixedComponents);
+  p.prescribed = prescribedValues(
+      spec.prescribed, dim,
+      [&](const std::string& name) {
+        const auto nodes = nodesOf(boundaryNamed(mesh, name, "Prescribed boundaries"));
+        return std::vector<long long>(nodes.begin(), nodes.end());
+      },
+      spec.fixed, spec.symmetry);
+  requireEveryBodyHeld(mesh, spec, fixedNodes, fixedComponents, p.prescribed);
 
   // Subdomains to ranks: balance the dofs and keep neighbours together (Zoltan2 on the graph
   // whose edges join subdomains sharing interface nodes, weighted by their number).
@@ -264,6 +279,7 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     p.localBody.push_back(b);
   }
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 3, force, p.appliedForce);
+  p.equalities = prescribedDisplacementRows(p.local, p.prescribed, 1.0);
 
   // Contact: the slave boundary's nodes against the master boundary's segments, oriented by
   // the master body's elements so that the normals point out of it, or a rigid obstacle.

@@ -15,6 +15,7 @@
 #include "contact_GmshMesh.hpp"
 #include "contact_NodeToSegment.hpp"
 #include "contact_Partition.hpp"
+#include "contact_PrescribedDisplacement.hpp"
 #include "plasticity_ElasticLaw.hpp"
 #include "plasticity_Elements.hpp"
 #include "tfeti_FetiSolver.hpp"
@@ -32,6 +33,7 @@ struct ElasticContactSpec {
   std::vector<Body> bodies;
   std::vector<std::string> fixed;                     // every component zero
   std::vector<std::pair<std::string, int>> symmetry;  // (boundary, component) zero
+  std::vector<PrescribedDisplacement> prescribed;     // (boundary, component) = value
   // Constant tractions: dim components per boundary (force per length in 2D, per area in 3D);
   // a different count is an error naming the boundary once the mesh's dimension is known.
   std::vector<std::pair<std::string, std::vector<double>>> tractions;
@@ -62,6 +64,10 @@ struct ElasticContactProblem {
   // The contact rows (geometry for output) and their B_I form (rank 0 contributes them).
   NodeToSegmentResult contact;
   std::vector<tfeti::InequalityRow> inequalities;
+  // The prescribed displacements: values per (node, component), and this rank's rows of them at
+  // their full value (prescribedDisplacementRows at load factor 1).
+  PrescribedValues prescribed;
+  std::vector<tfeti::EqualityRow> equalities;
   // What re-evaluating the contact on another configuration needs (updateContact).
   // The Master boundary's segments (oriented by the master body's elements) or the obstacle.
   std::shared_ptr<const ContactMaster> master;
@@ -86,5 +92,8 @@ void updateContact(ElasticContactProblem& p, const std::vector<double>& displace
                    const std::string& masterName = "master");
 
 plasticity::ElementType toPlasticityType(ElementType type);
+
+// The untorn nodes of a boundary group, sorted; throws std::invalid_argument naming it.
+std::vector<int> boundaryNodeIds(const GmshMesh& mesh, const std::string& name);
 
 }  // namespace contact

@@ -19,6 +19,7 @@
 #include "contact_ElasticContactProblem.hpp"
 #include "contact_ElasticContactRun.hpp"
 #include "contact_NonlinearContactRun.hpp"
+#include "contact_PrescribedDisplacement.hpp"
 #include "plasticity_MaterialLaw.hpp"
 #include "tfeti_StrictParameters.hpp"
 
@@ -103,6 +104,7 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
         "Contact problem: \"Symmetry components\" needs one component (0: x, 1: y, 2: z) per "
         "entry of \"Symmetry boundaries\"");
   for (std::size_t k = 0; k < sym.size(); ++k) spec.symmetry.push_back({sym[k], comps[k]});
+  spec.prescribed = prescribedDisplacements(cp, "Contact problem");
   spec.tractions = componentsPerName(cp, "Traction boundaries", "Tractions");
   spec.bodyLoads = componentsPerName(cp, "Body load bodies", "Body loads");
   spec.slave = cp.get<std::string>("Slave");
@@ -165,11 +167,9 @@ void addElasticContactParameters(ParameterList& pl) {
   cp.set("Fixed boundaries", Array<std::string>(),
          "boundary groups (curves in 2D, surfaces in 3D) where u = 0");
   cp.set("Symmetry boundaries", Array<std::string>(), "boundary groups with one component zero");
-  const auto components = Teuchos::rcp(
-      new tfeti::strict::NumberValidator(tfeti::strict::NumberValidator::Kind::IntArray));
-  components->atLeast(0).atMost(2);
   cp.set("Symmetry components", Array<int>(), "the zero component (0: x, 1: y, 2: z) of each",
-         components);
+         componentsValidator());
+  addPrescribedDisplacementParameters(cp);
   cp.set("Traction boundaries", Array<std::string>(), "boundary groups under a constant traction");
   cp.set("Tractions", Array<double>(),
          "{tx, ty} (2D, force per unit length) or {tx, ty, tz} (3D, force per unit area) per "
@@ -233,7 +233,7 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   const int verbosity = params.sublist("Output").get<int>("Verbosity");
   ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
   tfeti::FetiSolver solver(comm, problem.numSubdomains(), problem.local, params.sublist("FETI"),
-                           problem.inequalities);
+                           problem.inequalities, problem.equalities);
   const tfeti::DualResult result = solver.solve();
   const tfeti::ConstraintReport report = solver.constraintReport();
 
@@ -293,6 +293,24 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   s["contact"] = std::move(c);
   s["max_von_mises"] = globalVm;
   s["max_abs_u"] = maxAbsSolution(*comm, solver);
+  if (!spec.prescribed.empty()) {
+    s["prescribed_rows"] = static_cast<long long>(solver.userEqualityRows());
+    const std::vector<double> reactions =
+        prescribedReactions(solver, spec.prescribed, [&](const std::string& name) {
+          const auto nodes = boundaryNodeIds(problem.mesh, name);
+          return std::vector<long long>(nodes.begin(), nodes.end());
+        });
+    Json list = Json::array();
+    for (std::size_t k = 0; k < reactions.size(); ++k) {
+      Json r = Json::object();
+      r["boundary"] = spec.prescribed[k].boundary;
+      r["component"] = spec.prescribed[k].component;
+      r["value"] = spec.prescribed[k].value;
+      r["reaction"] = reactions[k];
+      list.push(std::move(r));
+    }
+    s["prescribed"] = std::move(list);
+  }
   s["timings"] = timingsJson(solver.timings(), result.iterations);
   s["peak_rss_mb"] = peakRssMb(*comm);
   writeContactCsv(*comm, dir + "/contact_pressure.csv", nodes, dim);
@@ -372,6 +390,14 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   for (const auto& name : spec.fixed) boundary("fixed", name);
   for (const auto& [name, comp] : spec.symmetry)
     boundary(std::string("symmetry, u_") + "xyz"[comp % 3] + " = 0", name);
+  for (const auto& p : spec.prescribed)
+    boundary("prescribed " + describePrescribed(p, problem.mesh.dim) + " m", p.boundary);
+  if (!spec.prescribed.empty()) {
+    long long mine = static_cast<long long>(problem.equalities.size()), all = 0;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine, &all);
+    lines.push_back("prescribed rows: " + std::to_string(all) +
+                    " (one per subdomain copy of a prescribed node and component)");
+  }
   const auto braced = [](const auto& v, std::size_t n) {
     std::ostringstream b;
     b << "{";

@@ -2,11 +2,14 @@
 // The linear model problems of the reference paper on a structured, torn box (a rectangle in
 // 2D, a cuboid in 3D): Poisson (-Δu = source, u = 0 on the face x = x0, Neumann elsewhere) and
 // linear elasticity (body force, clamped on the face x = x0; plane strain in 2D). The dimension
-// is the number of corner coordinates. Builds this rank's subdomains for the FETI solver and,
-// for verification, solves the undecomposed problem directly.
+// is the number of corner coordinates. Other conditions on the faces (named x0, x1, y0, y1, z0,
+// z1: the face x = x0, ...) may replace the clamp: fixed faces, symmetry faces (one component
+// zero) and prescribed (non-zero) components. Builds this rank's subdomains for the FETI solver
+// and, for verification, solves the undecomposed problem directly.
 #include <string>
 #include <vector>
 
+#include "contact_PrescribedDisplacement.hpp"
 #include "plasticity_ElasticLaw.hpp"
 #include "plasticity_Q1Assembly.hpp"
 #include "tfeti_FetiSolver.hpp"
@@ -23,6 +26,10 @@ struct StructuredProblem {
   plasticity::ElasticLaw law;
   double source = 1.0;
   std::vector<double> bodyForce = {0.0, -1.0};  // one entry per axis
+  // Conditions on the faces: every component zero, one component zero, one component given.
+  std::vector<std::string> fixed = {"x0"};
+  std::vector<std::pair<std::string, int>> symmetry;
+  std::vector<PrescribedDisplacement> prescribed;
 
   int dim() const { return static_cast<int>(lo.size()); }
   plasticity::Field q1Field() const {
@@ -31,6 +38,13 @@ struct StructuredProblem {
   int dofsPerNode() const { return plasticity::dofsPerNode(q1Field(), dim()); }
   tfeti::StructuredMesh mesh() const { return tfeti::StructuredMesh(lo, hi, subdomains, elements); }
   int numSubdomains() const { return mesh().numSubdomains(); }
+  // The untorn nodes of a face (x0, x1, y0, y1, and z0, z1 in 3D); throws std::invalid_argument
+  // naming the valid faces for another name.
+  std::vector<long long> faceNodes(const std::string& face) const;
+  // The prescribed values, checked (prescribedValues in contact_PrescribedDisplacement.hpp).
+  PrescribedValues prescribedValues() const;
+  // Sets the fixed and symmetry conditions of the faces on a subdomain (or the whole) mesh.
+  void applyFaceConditions(tfeti::SubdomainMesh& mesh) const;
 };
 
 // Meshes and assembles (Kokkos element kernels) the subdomains of this rank.

@@ -41,6 +41,20 @@ Teuchos::RCP<Teuchos::StringToIntegralParameterEntryValidator<int>> choice(
 }
 }  // namespace
 
+// An error found on some ranks is raised on every rank, with every rank's message (no rank left
+// waiting in a collective).
+static void throwOnAnyRank(const Comm& comm, const std::string& error) {
+  int failed = error.empty() ? 0 : 1, anyFailed = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &failed, &anyFailed);
+  if (!anyFailed) return;
+  std::vector<long long> chars(error.begin(), error.end());
+  if (!error.empty()) chars.push_back('\n');
+  const std::vector<long long> all = allGather(comm, chars);
+  std::string message(all.begin(), all.end());
+  if (!message.empty() && message.back() == '\n') message.pop_back();
+  throw std::runtime_error(message);
+}
+
 Formulation parseFormulation(const std::string& name) {
   return name == "FETI" ? Formulation::FETI : Formulation::TFETI;
 }
@@ -63,8 +77,9 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
             "largest ||K R|| / ||K|| accepted for the kernel R of a subdomain matrix K (rigid "
             "modes of its pieces, or the kernel supplied); above it the subdomain is an error");
     pl->set("Gluing", "nonredundant",
-            "nonredundant: m-1 rows at a node shared by m subdomains; redundant: m(m-1)/2",
-            choice({"nonredundant", "redundant"}));
+            "nonredundant: m-1 rows at a node shared by m subdomains; redundant: m(m-1)/2; "
+            "none: no gluing rows (the caller's equality rows join the subdomains)",
+            choice({"nonredundant", "redundant", "none"}));
     pl->set("Gluing at Dirichlet nodes", true,
             "keep gluing rows at interface nodes on the Dirichlet boundary (the paper's count; "
             "in TFETI they duplicate the Dirichlet rows)");
@@ -126,8 +141,13 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
 
 FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                        std::vector<SubdomainData> local, const Teuchos::ParameterList& params,
-                       const std::vector<InequalityRow>& inequalities)
-    : comm_(comm), params_(params), numSubdomains_(numSubdomains), data_(std::move(local)) {
+                       const std::vector<InequalityRow>& inequalities,
+                       const std::vector<EqualityRow>& equalities)
+    : comm_(comm),
+      params_(params),
+      numSubdomains_(numSubdomains),
+      data_(std::move(local)),
+      equalities_(equalities) {
   params_.validateParametersAndSetDefaults(*validParameters());
   // A rank may hold no subdomain; every rank must still agree on the dofs per node.
   int localDpn = data_.empty() ? 0 : data_.front().dofsPerNode;
@@ -162,16 +182,7 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
   } catch (const std::exception& e) {
     error = e.what();
   }
-  int failed = error.empty() ? 0 : 1, anyFailed = 0;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &failed, &anyFailed);
-  if (anyFailed) {
-    std::vector<long long> chars(error.begin(), error.end());
-    if (!error.empty()) chars.push_back('\n');
-    const std::vector<long long> all = allGather(*comm_, chars);
-    std::string message(all.begin(), all.end());
-    if (!message.empty() && message.back() == '\n') message.pop_back();
-    throw std::runtime_error(message);
-  }
+  throwOnAnyRank(*comm_, error);
 }
 
 void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities,
@@ -184,8 +195,10 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
     PhaseTimer t(*comm_, timings_.tearing);
     TearingOptions opts;
     opts.formulation = formulation;
-    opts.gluing = params_.get<std::string>("Gluing") == "redundant" ? Gluing::Redundant
-                                                                    : Gluing::NonRedundant;
+    const std::string gluing = params_.get<std::string>("Gluing");
+    opts.gluing = gluing == "redundant" ? Gluing::Redundant
+                  : gluing == "none"    ? Gluing::None
+                                        : Gluing::NonRedundant;
     opts.gluingAtDirichletNodes = params_.get<bool>("Gluing at Dirichlet nodes");
     std::vector<TearingInput> input;
     for (const auto& sd : data_) {
@@ -200,7 +213,9 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
       }
       input.push_back(std::move(in));
     }
-    tearing_ = buildTearing(comm_, numSubdomains_, input, dofsPerNode_, opts, inequalities);
+    tearing_ =
+        buildTearing(comm_, numSubdomains_, input, dofsPerNode_, opts, inequalities, equalities_);
+    if (formulation == Formulation::FETI) requireNoRowOnEliminatedDofs();
   }
   {
     PhaseTimer t(*comm_, timings_.coarse);
@@ -247,6 +262,22 @@ void FetiSolver::buildDualRhs() {
     coarse_->applyKernelTranspose(*f_, e);
     coarse_->particularSolution(e, *lambda0_);
   }
+}
+
+void FetiSolver::update(const std::vector<std::vector<double>>& loads,
+                        const std::vector<InequalityRow>& inequalities,
+                        const std::vector<EqualityRow>& equalities) {
+  equalities_ = equalities;
+  update(loads, inequalities);
+}
+
+void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
+                                 const std::vector<std::vector<double>>& coords,
+                                 const std::vector<std::vector<double>>& loads,
+                                 const std::vector<InequalityRow>& inequalities,
+                                 const std::vector<EqualityRow>& equalities) {
+  equalities_ = equalities;
+  updateStiffness(std::move(K), coords, loads, inequalities);
 }
 
 void FetiSolver::update(const std::vector<std::vector<double>>& loads,
@@ -524,22 +555,47 @@ ConstraintReport FetiSolver::constraintReport() const {
   return r;
 }
 
-std::vector<double> FetiSolver::inequalityMultipliers() const {
-  std::vector<double> mine;  // (row - first inequality row, lambda) pairs
+std::vector<double> FetiSolver::multipliersOfRows(GO first, GO count) const {
+  std::vector<double> mine;  // (row - first, lambda) pairs
   if (!lambda_.is_null()) {
     auto l = lambda_->getData();
     const auto& map = *tearing_.multiplierMap;
     for (std::size_t i = 0; i < map.getNodeNumElements(); ++i) {
       const GO row = map.getGlobalElement(static_cast<LO>(i));
-      if (tearing_.isInequality(row))
-        mine.insert(mine.end(), {static_cast<double>(row - tearing_.firstInequalityRow), l[i]});
+      if (row >= first && row < first + count)
+        mine.insert(mine.end(), {static_cast<double>(row - first), l[i]});
     }
   }
   const std::vector<double> all = allGather(*comm_, mine);
-  std::vector<double> out(tearing_.numInequalityRows, 0.0);
+  std::vector<double> out(count, 0.0);
   for (std::size_t k = 0; k + 1 < all.size(); k += 2)
     out[static_cast<std::size_t>(all[k])] = all[k + 1];
   return out;
+}
+
+std::vector<double> FetiSolver::inequalityMultipliers() const {
+  return multipliersOfRows(tearing_.firstInequalityRow, tearing_.numInequalityRows);
+}
+
+std::vector<double> FetiSolver::userEqualityMultipliers() const {
+  return multipliersOfRows(tearing_.firstUserEqualityRow, tearing_.numUserEqualityRows);
+}
+
+void FetiSolver::requireNoRowOnEliminatedDofs() const {
+  std::string error;
+  for (std::size_t i = 0; i < data_.size() && error.empty(); ++i) {
+    const std::vector<int> eliminated = data_[i].mesh.dirichletDofs(data_[i].dofsPerNode);
+    for (const auto& e : tearing_.subdomainRows[i])
+      if (tearing_.isUserEquality(e.row) &&
+          std::binary_search(eliminated.begin(), eliminated.end(), e.dof)) {
+        error = "FetiSolver: an equality row of the caller touches dof " + std::to_string(e.dof) +
+                " of subdomain " + std::to_string(data_[i].mesh.id) +
+                ", a Dirichlet dof that the FETI formulation eliminates (held at zero); use "
+                "Formulation = TFETI or leave the node out of the mesh's Dirichlet nodes";
+        break;
+      }
+  }
+  throwOnAnyRank(*comm_, error);
 }
 
 std::vector<std::vector<FetiSolver::InequalityOnDof>>

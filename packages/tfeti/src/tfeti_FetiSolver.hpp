@@ -1,6 +1,8 @@
 #pragma once
-// (T)FETI from subdomain matrices to the primal solution, for equality constraints (gluing,
-// Dirichlet) and, optionally, non-penetration inequality rows B_I u <= c_I (contact).
+// (T)FETI from subdomain matrices to the primal solution, for equality constraints B_E u = c_E
+// (gluing and Dirichlet rows built from the meshes, c = 0 there, and the caller's own equality
+// rows with any right-hand side) and, optionally, non-penetration inequality rows B_I u <= c_I
+// (contact).
 //   setup:  factorize K_s (K+), tear (B, c), coarse space (G, G G^T), preconditioner,
 //           d = B K+ f - c,  e = R^T f,  lambda~ = G^T (G G^T)^{-1} e
 //   solve:  equality rows only: PCPG on the dual problem;
@@ -10,6 +12,22 @@
 //           by SMALBE (MPRGP inner solver) or by MPRGP on the penalized P F P + rho Q
 //   recover: alpha from the rows that hold with equality (equality rows and active inequality
 //           rows): alpha = (G_A G_A^T)^{-1} G_A (F lambda - d),  u = K+ (f - B^T lambda) + R alpha
+//
+// The caller's equality rows (EqualityRow, tfeti_Tearing.hpp): sum_k coef_k u_k = rhs over any
+// dofs of any subdomains, dof = dofsPerNode * local node + component of the subdomain with global
+// id `subdomain`. c_E enters only d (d = B K+ f - c), so PCPG, SMALBE and the penalty method
+// solve them alike, and the recovered u meets B_E u = c_E to the solver's tolerance
+// (constraintReport().equalityResidual). Contract:
+//  - each row is passed once, by any one rank (rows are gathered and numbered canonically);
+//  - the rows together with the automatic ones must be consistent (some u meets them all) and,
+//    with the gluing, must hold every subdomain's rigid modes that the loads would excite;
+//  - with "Gluing" = none no gluing rows are built: the caller's rows must join the subdomains
+//    (a tied interface, u_a - u_b = 0 per shared dof, reproduces the automatic gluing);
+//  - FETI formulation: the mesh's Dirichlet dofs are eliminated (held at zero); a caller's row
+//    must not touch them (an error on every rank). Use TFETI for non-zero prescribed values on
+//    the mesh's own Dirichlet nodes, or leave those nodes out of dirichletNodes and pass rows.
+// Malformed rows (unknown subdomain or dof, no non-zero coefficient, non-finite values) are an
+// error naming the row, raised on every rank.
 #include <Teuchos_ParameterList.hpp>
 
 #include <memory>
@@ -76,9 +94,11 @@ class FetiSolver {
 
   // local: the subdomains assigned to this rank (see subdomainsOfRank), in increasing id order.
   // inequalities: the non-penetration rows this rank contributes (see buildTearing).
+  // equalities: the equality rows with right-hand sides this rank contributes (see above).
   FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
              std::vector<SubdomainData> local, const Teuchos::ParameterList& params,
-             const std::vector<InequalityRow>& inequalities = {});
+             const std::vector<InequalityRow>& inequalities = {},
+             const std::vector<EqualityRow>& equalities = {});
 
   DualResult solve();
 
@@ -86,8 +106,14 @@ class FetiSolver {
   // solves: new loads f for the local subdomains and new inequality rows (contact rows on the
   // current geometry). Tearing, coarse space and right-hand sides are rebuilt; the Dirichlet
   // preconditioner of a subdomain only if the dofs its rows touch changed.
+  // The caller's equality rows stay as they were.
   void update(const std::vector<std::vector<double>>& loads,
               const std::vector<InequalityRow>& inequalities);
+  // The same with new equality rows of the caller (e.g. the right-hand side c_E(t) - B_E u of a
+  // Newton step towards prescribed values at load factor t).
+  void update(const std::vector<std::vector<double>>& loads,
+              const std::vector<InequalityRow>& inequalities,
+              const std::vector<EqualityRow>& equalities);
   // A new stiffness for every local subdomain (refactorized), its kernel from the rigid modes of
   // `coords` (mesh.dim per node, e.g. the current configuration), with new loads and rows as
   // update(). K must annihilate those modes (||K R|| is checked as in the constructor): the
@@ -95,6 +121,11 @@ class FetiSolver {
   void updateStiffness(std::vector<CsrMatrix> K, const std::vector<std::vector<double>>& coords,
                        const std::vector<std::vector<double>>& loads,
                        const std::vector<InequalityRow>& inequalities);
+  // The same with new equality rows of the caller.
+  void updateStiffness(std::vector<CsrMatrix> K, const std::vector<std::vector<double>>& coords,
+                       const std::vector<std::vector<double>>& loads,
+                       const std::vector<InequalityRow>& inequalities,
+                       const std::vector<EqualityRow>& equalities);
   // B^T lambda of the last solve on each local subdomain: the forces the multipliers (gluing,
   // Dirichlet and contact reactions) exert, as in the residual f - B^T lambda - f_int.
   std::vector<std::vector<double>> multiplierForces() const;
@@ -110,6 +141,10 @@ class FetiSolver {
   const Vector& multipliers() const { return *lambda_; }
   // The inequality multipliers on every rank, in the order of tearing().inequalityRows.
   std::vector<double> inequalityMultipliers() const;
+  // The multipliers of the caller's equality rows on every rank, in the order of
+  // tearing().userEqualityRows (the canonical order): the row's reaction, its force on dof k
+  // being -coef_k * lambda.
+  std::vector<double> userEqualityMultipliers() const;
 
   // Mean wall time of one application of F over `repeats` applications (slowest rank).
   double timeDualApply(int repeats) const;
@@ -123,6 +158,7 @@ class FetiSolver {
   GO dualDimension() const { return tearing_.numRows; }
   GO gluingRows() const { return tearing_.numGluingRows; }
   GO dirichletRows() const { return tearing_.numDirichletRows; }
+  GO userEqualityRows() const { return tearing_.numUserEqualityRows; }
   GO inequalityRows() const { return tearing_.numInequalityRows; }
   GO coarseDimension() const { return coarse_->dimension(); }
   long long dualOperatorApplies() const { return F_->numApplies(); }
@@ -150,6 +186,9 @@ class FetiSolver {
   DualResult solveQp(const std::string& method);
   void buildSubdomains(const std::vector<std::vector<double>>& coords);
   void buildConstraints(const std::vector<InequalityRow>& inequalities, bool newSubdomains);
+  std::vector<double> multipliersOfRows(GO first, GO count) const;
+  void requireNoRowOnEliminatedDofs() const;
+  std::vector<EqualityRow> equalities_;  // the caller's rows this rank contributes
   void buildDualRhs();
   Teuchos::RCP<Vector> d_, lambda0_, lambda_;
   // Warm start (update()): the last solve's multipliers, SMALBE's equality multiplier and the

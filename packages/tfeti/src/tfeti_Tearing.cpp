@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -32,42 +34,103 @@ struct Row {
 
 }  // namespace
 
-// Every rank's inequality rows, in a canonical order (by their entries, then gap) so that the
-// numbering does not depend on which rank contributed a row.
-std::vector<InequalityRow> gatherInequalities(const Comm& comm,
-                                              const std::vector<InequalityRow>& mine) {
+namespace {
+
+// Every rank's rows of one kind (InequalityRow: value = gap; EqualityRow: value = rhs), in a
+// canonical order (by their entries, then the value) so that the numbering does not depend on
+// which rank contributed a row.
+template <class R, class Value>
+std::vector<R> gatherRows(const Comm& comm, const std::vector<R>& mine, Value value) {
   std::vector<double> packed;
   for (const auto& row : mine) {
-    packed.insert(packed.end(), {static_cast<double>(row.entries.size()), row.gap});
+    packed.insert(packed.end(), {static_cast<double>(row.entries.size()), value(row)});
     for (const auto& e : row.entries)
       packed.insert(packed.end(),
                     {static_cast<double>(e.subdomain), static_cast<double>(e.dof), e.coef});
   }
   const std::vector<double> all = allGather(comm, packed);
-  std::vector<InequalityRow> rows;
+  std::vector<R> rows;
   for (std::size_t k = 0; k < all.size();) {
-    InequalityRow row;
+    R row;
     const int n = static_cast<int>(all[k]);
-    row.gap = all[k + 1];
+    value(row) = all[k + 1];
     k += 2;
     for (int i = 0; i < n; ++i, k += 3)
       row.entries.push_back({static_cast<int>(all[k]), static_cast<int>(all[k + 1]), all[k + 2]});
     rows.push_back(std::move(row));
   }
-  auto key = [](const InequalityRow& r) {
+  auto key = [&](const R& r) {
     std::vector<std::tuple<int, int, double>> k;
     for (const auto& e : r.entries) k.emplace_back(e.subdomain, e.dof, e.coef);
-    return std::make_pair(k, r.gap);
+    return std::make_pair(k, value(r));
   };
-  std::sort(rows.begin(), rows.end(),
-            [&](const InequalityRow& a, const InequalityRow& b) { return key(a) < key(b); });
+  std::stable_sort(rows.begin(), rows.end(),
+                   [&](const R& a, const R& b) { return key(a) < key(b); });
   return rows;
 }
 
+std::string describeRow(const std::vector<ConstraintEntry>& entries, const char* relation,
+                        double value) {
+  std::string s = "{";
+  for (std::size_t k = 0; k < entries.size() && k < 6; ++k)
+    s += (k ? ", " : "") + std::string("(subdomain ") + std::to_string(entries[k].subdomain) +
+         ", dof " + std::to_string(entries[k].dof) + ", " + std::to_string(entries[k].coef) + ")";
+  if (entries.size() > 6) s += ", ...";
+  return s + "} " + relation + " " + std::to_string(value);
+}
+
+// A caller's row must refer to existing dofs, have a non-zero coefficient and finite values.
+// Checked on the gathered rows, so every rank throws the same error.
+void checkRow(const std::vector<ConstraintEntry>& entries, double value, const char* kind,
+              const char* relation, const std::vector<long long>& sizes) {
+  const std::string row = describeRow(entries, relation, value);
+  if (entries.empty())
+    throw std::invalid_argument(std::string("tearing: an ") + kind + " row has no entries");
+  bool nonzero = false;
+  for (const auto& e : entries) {
+    if (e.subdomain < 0 || e.subdomain >= static_cast<int>(sizes.size()) || e.dof < 0 ||
+        e.dof >= sizes[e.subdomain])
+      throw std::invalid_argument(
+          std::string("tearing: the ") + kind + " row " + row + " refers to dof " +
+          std::to_string(e.dof) + " of subdomain " + std::to_string(e.subdomain) +
+          (e.subdomain < 0 || e.subdomain >= static_cast<int>(sizes.size())
+               ? ", which does not exist (" + std::to_string(sizes.size()) + " subdomains)"
+               : ", which has " + std::to_string(sizes[e.subdomain]) + " dofs"));
+    if (!std::isfinite(e.coef))
+      throw std::invalid_argument(std::string("tearing: the ") + kind + " row " + row +
+                                  " has a coefficient that is not finite");
+    nonzero = nonzero || e.coef != 0.0;
+  }
+  if (!nonzero)
+    throw std::invalid_argument(std::string("tearing: the ") + kind + " row " + row +
+                                " has only zero coefficients");
+  if (!std::isfinite(value))
+    throw std::invalid_argument(std::string("tearing: the ") + kind + " row " + row +
+                                " has a right-hand side that is not finite");
+}
+
+// Union-find over row indices.
+struct Components {
+  std::vector<std::size_t> parent;
+  explicit Components(std::size_t n) : parent(n) {
+    for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  }
+  std::size_t find(std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void join(std::size_t a, std::size_t b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+}  // namespace
+
 Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                      const std::vector<TearingInput>& local, int dofsPerNode,
-                     const TearingOptions& options,
-                     const std::vector<InequalityRow>& inequalities) {
+                     const TearingOptions& options, const std::vector<InequalityRow>& inequalities,
+                     const std::vector<EqualityRow>& equalities) {
   Tearing t;
 
   // Global dof numbering: subdomain by subdomain.
@@ -127,7 +190,8 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       // Dirichlet and symmetry conditions hold component by component.
       const bool dirichlet = (mask >> c) & 1;
       const bool tfetiDirichlet = dirichlet && options.formulation == Formulation::TFETI;
-      const bool glue = m > 1 && (!dirichlet || options.gluingAtDirichletNodes);
+      const bool glue =
+          m > 1 && options.gluing != Gluing::None && (!dirichlet || options.gluingAtDirichletNodes);
       const int group = static_cast<int>(groupOwner.size());
       const std::size_t before = rows.size();
       auto dofOf = [&](std::size_t k) { return copies[k].localNode * dofsPerNode + c; };
@@ -149,30 +213,77 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     }
     first = last;
   }
-  // Inequality rows follow the equality rows, each its own group, owned with its first entry.
-  const std::vector<InequalityRow> ineq = gatherInequalities(*comm, inequalities);
-  const GO numEq = static_cast<GO>(rows.size());
+  // The caller's equality rows follow the automatic ones, the inequality rows come last.
+  const std::vector<EqualityRow> user = gatherRows(
+      *comm, equalities, [](auto& r) -> auto& { return r.rhs; });
+  const std::vector<InequalityRow> ineq = gatherRows(
+      *comm, inequalities, [](auto& r) -> auto& { return r.gap; });
+  for (const auto& row : user) checkRow(row.entries, row.rhs, "equality", "=", allSizes);
+  for (const auto& row : ineq) checkRow(row.entries, row.gap, "inequality", "<=", allSizes);
+  const GO numAuto = static_cast<GO>(rows.size());
+  t.firstUserEqualityRow = numAuto;
+  t.numUserEqualityRows = static_cast<GO>(user.size());
+  const GO numEq = numAuto + t.numUserEqualityRows;
   t.firstInequalityRow = numEq;
   t.numInequalityRows = static_cast<GO>(ineq.size());
   t.numRows = numEq + t.numInequalityRows;
   std::size_t maxEntries = 2;
-  for (const auto& row : ineq) {
-    for (const auto& e : row.entries)
-      if (e.subdomain < 0 || e.subdomain >= numSubdomains || e.dof < 0 ||
-          e.dof >= allSizes[e.subdomain])
-        throw std::invalid_argument("tearing: an inequality row refers to dof " +
-                                    std::to_string(e.dof) + " of subdomain " +
-                                    std::to_string(e.subdomain) + ", which does not exist");
-    if (row.entries.empty())
-      throw std::invalid_argument("tearing: an inequality row has no entries");
-    maxEntries = std::max(maxEntries, row.entries.size());
+  for (const auto& row : user) maxEntries = std::max(maxEntries, row.entries.size());
+  for (const auto& row : ineq) maxEntries = std::max(maxEntries, row.entries.size());
+  // The entries of equality row r (automatic or the caller's).
+  auto entriesOf = [&](GO r) {
+    std::vector<ConstraintEntry> e;
+    if (r < numAuto) {
+      const Row& row = rows[r];
+      for (int k = 0; k < row.n; ++k) e.push_back({row.sub[k], row.dof[k], row.coef[k]});
+    } else {
+      e = user[r - numAuto].entries;
+    }
+    return e;
+  };
+
+  // Scaling groups of the equality rows: the automatic groups, joined through the dofs the
+  // caller's rows share with them or with each other.
+  std::vector<int> groupOf(numEq);
+  std::vector<GO> groupLowest;  // lowest subdomain of each group: its owner's
+  {
+    Components comp(static_cast<std::size_t>(numEq));
+    std::vector<GO> firstOfGroup(groupOwner.size(), -1);
+    for (GO r = 0; r < numAuto; ++r) {
+      GO& first = firstOfGroup[rows[r].group];
+      if (first < 0) first = r;
+      comp.join(first, r);
+    }
+    if (!user.empty()) {
+      std::map<std::pair<int, int>, GO> rowOfDof;
+      for (GO r = 0; r < numEq; ++r)
+        for (const auto& e : entriesOf(r)) {
+          auto [it, added] = rowOfDof.insert({{e.subdomain, e.dof}, r});
+          if (!added) comp.join(it->second, r);
+        }
+    }
+    std::map<std::size_t, int> size;
+    for (GO r = 0; r < numEq; ++r) ++size[comp.find(r)];
+    std::map<std::size_t, int> groupOfRoot;
+    for (GO r = 0; r < numEq; ++r) {
+      const std::size_t root = comp.find(r);
+      // Too large a group: the automatic groups and one group per caller's row instead.
+      const bool split = size[root] > kMaxScalingGroup;
+      const std::size_t key =
+          split ? (r < numAuto ? static_cast<std::size_t>(firstOfGroup[rows[r].group]) : r) : root;
+      auto [it, added] = groupOfRoot.insert({key, static_cast<int>(groupLowest.size())});
+      if (added) groupLowest.push_back(std::numeric_limits<GO>::max());
+      groupOf[r] = it->second;
+      for (const auto& e : entriesOf(r))
+        groupLowest[it->second] = std::min<GO>(groupLowest[it->second], e.subdomain);
+    }
   }
 
   // The multiplier map: rows of groups owned here.
   const int me = comm->getRank();
   std::vector<GO> myRows;
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    if (groupOwner[rows[r].group] == me) myRows.push_back(static_cast<GO>(r));
+  for (GO r = 0; r < numEq; ++r)
+    if (owner[groupLowest[groupOf[r]]] == me) myRows.push_back(r);
   for (std::size_t r = 0; r < ineq.size(); ++r)
     if (owner[ineq[r].entries.front().subdomain] == me)
       myRows.push_back(numEq + static_cast<GO>(r));
@@ -188,12 +299,19 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     for (std::size_t l = 0; l < myRows.size(); ++l) {
       const GO r = myRows[l];
       int n = 0;
-      if (r < numEq) {
+      if (r < numAuto) {
         const Row& row = rows[r];
         for (n = 0; n < row.n; ++n) {
           cols[n] = t.dofOffset[row.sub[n]] + row.dof[n];
           vals[n] = row.coef[n];
         }
+      } else if (r < numEq) {
+        const EqualityRow& row = user[r - numAuto];
+        for (const auto& e : row.entries) {
+          cols[n] = t.dofOffset[e.subdomain] + e.dof;
+          vals[n++] = e.coef;
+        }
+        c[l] = row.rhs;
       } else {
         const InequalityRow& row = ineq[r - numEq];
         // Entries on the same dof are summed: Tpetra would sum them at fillComplete anyway.
@@ -220,6 +338,12 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
         t.subdomainRows[it->second].push_back(
             {static_cast<GO>(r), rows[r].dof[k], rows[r].coef[k]});
     }
+  for (std::size_t r = 0; r < user.size(); ++r)
+    for (const auto& e : user[r].entries) {
+      auto it = localIndex.find(e.subdomain);
+      if (it != localIndex.end())
+        t.subdomainRows[it->second].push_back({numAuto + static_cast<GO>(r), e.dof, e.coef});
+    }
   for (std::size_t r = 0; r < ineq.size(); ++r)
     for (const auto& e : ineq[r].entries) {
       auto it = localIndex.find(e.subdomain);
@@ -227,30 +351,25 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
         t.subdomainRows[it->second].push_back({numEq + static_cast<GO>(r), e.dof, e.coef});
     }
 
-  // Owned groups and the pseudo-inverse of B B^T on each (rows of a group share its node's dofs).
+  // Owned groups and the pseudo-inverse of their block of B B^T (entries on one dof add up).
   std::size_t numMyEq = 0;
   while (numMyEq < myRows.size() && myRows[numMyEq] < numEq) ++numMyEq;
-  for (std::size_t r = 0; r < numMyEq;) {
-    const int group = rows[myRows[r]].group;
-    std::size_t e = r;
-    while (e < numMyEq && rows[myRows[e]].group == group) ++e;
-    const int m = static_cast<int>(e - r);
+  std::map<int, std::vector<LO>> groupLids;  // owned group -> local rows, ascending
+  for (std::size_t l = 0; l < numMyEq; ++l) groupLids[groupOf[myRows[l]]].push_back(static_cast<LO>(l));
+  for (auto& [group, lids] : groupLids) {
+    const int m = static_cast<int>(lids.size());
+    std::vector<std::map<std::pair<int, int>, double>> coefs(m);
+    for (int i = 0; i < m; ++i)
+      for (const auto& e : entriesOf(myRows[lids[i]])) coefs[i][std::make_pair(e.subdomain, e.dof)] += e.coef;
     std::vector<double> BBt(m * m, 0.0);
-    std::vector<LO> lids;
-    for (int i = 0; i < m; ++i) {
-      lids.push_back(static_cast<LO>(r + i));
-      const Row& ri = rows[myRows[r + i]];
-      for (int j = 0; j < m; ++j) {
-        const Row& rj = rows[myRows[r + j]];
-        for (int a = 0; a < ri.n; ++a)
-          for (int b = 0; b < rj.n; ++b)
-            if (ri.sub[a] == rj.sub[b] && ri.dof[a] == rj.dof[b])
-              BBt[j * m + i] += ri.coef[a] * rj.coef[b];
-      }
-    }
-    t.groupRows.push_back(std::move(lids));
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        for (const auto& [dof, v] : coefs[i]) {
+          auto it = coefs[j].find(dof);
+          if (it != coefs[j].end()) BBt[j * m + i] += v * it->second;
+        }
     t.groupScaling.push_back(dense::pseudoInverseSpd(m, BBt));
-    r = e;
+    t.groupRows.push_back(std::move(lids));
   }
   for (std::size_t l = numMyEq; l < myRows.size(); ++l) {
     // Entries on one dof add up before the row norm is taken.
@@ -261,6 +380,7 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     t.groupRows.push_back({static_cast<LO>(l)});
     t.groupScaling.push_back({norm2 > 0.0 ? 1.0 / norm2 : 0.0});
   }
+  t.userEqualityRows = user;
   t.inequalityRows = ineq;
   return t;
 }

@@ -1,12 +1,23 @@
 #pragma once
-// The constraint matrix B of the torn problem: gluing rows (u_a - u_b = 0 between two copies of
-// one node) and, in TFETI, Dirichlet rows (u = 0 on every subdomain copy of a Dirichlet node).
+// The constraint matrix B of the torn problem and its right-hand side c: gluing rows (u_a - u_b =
+// 0 between two copies of one node), in TFETI Dirichlet rows (u = 0 on every subdomain copy of a
+// Dirichlet node), the caller's equality rows (sum coef * u = rhs: a non-zero prescribed value, a
+// multi-point constraint, a periodic pair, a tied interface) and the caller's inequality rows
+// (sum coef * u <= gap: contact).
 //
-// Rows are grouped by (untorn node, component); rows of different groups touch disjoint dofs, so
-// B B^T is block diagonal by group, which the preconditioner's scaling uses. Every rank derives
-// the same global list of rows from the gathered subdomain boundaries; the row numbering depends
-// only on the mesh, not on the number of ranks, and a group's rows are owned by the rank of its
-// lowest-numbered subdomain.
+// Row order (global multiplier ids): the automatic rows (gluing and Dirichlet) by (untorn node,
+// component), then the caller's equality rows, then the inequality rows, the caller's rows each
+// in a canonical order (by their entries, then the right-hand side) so that the numbering
+// depends on the mesh and the rows, not on the number of ranks or on which rank passed a row.
+//
+// Scaling groups: equality rows that share a dof (transitively) form a group, whose rows are
+// owned by the rank of the group's lowest-numbered subdomain and whose block of B B^T is
+// pseudo-inverted for the preconditioner's scaling. The automatic rows of one (node, component)
+// are a group (they touch disjoint dofs from other groups, so B B^T is block diagonal); a
+// caller's row joins the groups it touches. A group that would exceed kMaxScalingGroup rows (a
+// long chain of multi-point constraints) is split back into the automatic groups and one group
+// per caller's row: the scaling is then block-diagonal approximation of (B B^T)^+, still a valid
+// (symmetric positive) preconditioner scaling. Every inequality row is its own group.
 #include <vector>
 
 #include "tfeti_Subdomain.hpp"
@@ -15,7 +26,8 @@
 
 namespace tfeti {
 
-enum class Gluing { NonRedundant, Redundant };
+// None: no gluing rows at all; the caller's equality rows must join the subdomains.
+enum class Gluing { NonRedundant, Redundant, None };
 
 struct TearingOptions {
   Formulation formulation = Formulation::TFETI;
@@ -47,6 +59,17 @@ struct InequalityRow {
   double gap = 0.0;
 };
 
+// An equality row  sum coef * u = rhs  given by the caller: its multiplier is free. Entries on
+// the same dof add up. Each row is passed once, by any rank (rows are gathered from all ranks;
+// a row passed twice is a duplicate row, which leaves B rank deficient but consistent).
+struct EqualityRow {
+  std::vector<ConstraintEntry> entries;
+  double rhs = 0.0;
+};
+
+// Rows of a scaling group of equality rows at most (see above).
+constexpr int kMaxScalingGroup = 64;
+
 struct RowEntry {
   GO row;       // multiplier id
   int dof;      // local dof of the subdomain
@@ -64,20 +87,30 @@ struct Tearing {
   std::vector<std::vector<LO>> groupRows;
   std::vector<std::vector<double>> groupScaling;
   GO numRows = 0, numGluingRows = 0, numDirichletRows = 0;
+  // The caller's equality rows: global rows [firstUserEqualityRow, firstInequalityRow).
+  GO numUserEqualityRows = 0, firstUserEqualityRow = 0;
   // Inequality rows come last: global rows [firstInequalityRow, numRows).
   GO numInequalityRows = 0, firstInequalityRow = 0;
-  // Every inequality row (all ranks), in the canonical order of their multipliers.
+  // Every caller's equality row and every inequality row (all ranks), in the canonical order of
+  // their multipliers.
+  std::vector<EqualityRow> userEqualityRows;
   std::vector<InequalityRow> inequalityRows;
   // Right-hand side c of B u = c (equality) and B u <= c (inequality), on multiplierMap.
   Teuchos::RCP<Vector> rhs;
   bool isInequality(GO row) const { return row >= firstInequalityRow; }
+  bool isUserEquality(GO row) const {
+    return row >= firstUserEqualityRow && row < firstInequalityRow;
+  }
 };
 
-// inequalities: the non-penetration rows this rank contributes (any rank may contribute any
+// inequalities, equalities: the caller's rows this rank contributes (any rank may contribute any
 // row; they are gathered and numbered in a canonical order independent of the rank count).
+// Throws std::invalid_argument, on every rank alike, for a row that refers to a dof that does
+// not exist, has no entries or only zero coefficients, or a value that is not finite.
 Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                      const std::vector<TearingInput>& local, int dofsPerNode,
                      const TearingOptions& options,
-                     const std::vector<InequalityRow>& inequalities = {});
+                     const std::vector<InequalityRow>& inequalities = {},
+                     const std::vector<EqualityRow>& equalities = {});
 
 }  // namespace tfeti
