@@ -15,6 +15,9 @@ membranes:  the two-membrane contact benchmark, H/h = 8, 16, 32 up to about 4M u
 cylinders_convergence: the two-cylinder problem against Hertz on 4 refinements, linear and
             quadratic elements
 cylinders:  the two-cylinder problem refined to about 100k, 1M and 4M unknowns
+cylinders_tied: the two-cylinder problem at about 100k, 500k, 1M and 4M unknowns (up to
+            --contact-max-dofs) solved with the frictionless pair (SMALBE) and with the same
+            pair tied (Contact type = tied, PCPG): Hessian multiplications, solve times, ratios
 sweep3d:    3D elasticity on the unit cube (clamped on x = 0, trilinear hexahedra), about 0.1M,
             0.5M, 1M and 2M unknowns, subdomains of 4^3, 6^3 and 8^3 elements, against Belos
             CG + MueLu (six rigid modes as nullspace) and, up to --direct3d-max-dofs, KLU2
@@ -256,7 +259,7 @@ def membranes(o):
                   flush=True)
 
 
-def cylinders_run(o, name, sf, order, subdomains):
+def cylinders_run(o, name, sf, order, subdomains, tied=False):
     root = os.path.dirname(os.path.abspath(__file__))
     with open(os.path.join(root, "..", "examples", "two_cylinders_elastic.xml")) as f:
         xml = f.read()
@@ -270,6 +273,21 @@ def cylinders_run(o, name, sf, order, subdomains):
     xml = xml.replace('<ParameterList name="FETI">', '<ParameterList name="Output">\n'
                       '    <Parameter name="VTU" type="bool" value="false"/>\n'
                       '  </ParameterList>\n  <ParameterList name="FETI">')
+    if tied:
+        # The same rows held with equality (B_I u = gap) and solved by PCPG to the relative
+        # tolerance of the contact solve (SMALBE's 1e-7 of the projected right-hand side).
+        xml = xml.replace('<Parameter name="Search radius"',
+                          '<Parameter name="Contact type" type="string" value="tied"/>\n'
+                          '    <Parameter name="Search radius"')
+        xml = xml.replace('<Parameter name="Dual solver" type="string" value="SMALBE"/>',
+                          '<Parameter name="Dual solver" type="string" value="PCPG"/>\n'
+                          '    <ParameterList name="PCPG">\n'
+                          '      <Parameter name="Relative tolerance" type="double" value="1e-7"/>\n'
+                          '    </ParameterList>')
+        xml = xml.replace('<Parameter name="Compare" type="bool" value="true"/>',
+                          '<Parameter name="Compare" type="bool" value="false"/>')
+    for key, value in o.feti_set:
+        xml = set_parameter(xml, key, value)
     d = os.path.join(o.out, name)
     os.makedirs(d, exist_ok=True)
     path = os.path.join(d, "input.xml")
@@ -281,6 +299,61 @@ def cylinders_run(o, name, sf, order, subdomains):
             return json.load(f)
     except OSError:
         return None
+
+
+def set_parameter(xml, key, value):
+    """--set LIST/NAME=VALUE: a parameter of the FETI list or one of its sublists (e.g.
+    SMALBE/Penalty=30), added at the list's start. The type: bool for true/false, double for a
+    number, string otherwise, or given as a prefix (int:20)."""
+    path, name = key.rsplit("/", 1) if "/" in key else ("", key)
+    if value.split(":", 1)[0] in ("int", "double", "string", "bool") and ":" in value:
+        kind, value = value.split(":", 1)
+    elif value in ("true", "false"):
+        kind = "bool"
+    else:
+        try:
+            float(value)
+            kind = "double"
+        except ValueError:
+            kind = "string"
+    entry = f'<Parameter name="{name}" type="{kind}" value="{value}"/>'
+    head = '<ParameterList name="FETI">'
+    at = xml.index(head) + len(head)
+    for sub in filter(None, path.split("/")):
+        tag = f'<ParameterList name="{sub}">'
+        if xml.find(tag, at) < 0:
+            xml = xml[:at] + "\n" + tag + "</ParameterList>" + xml[at:]
+        at = xml.index(tag, at) + len(tag)
+    return xml[:at] + "\n" + entry + xml[at:]
+
+
+def cylinders_tied(o):
+    """The contact solve against the linear solve of the same pair tied (Contact type = tied:
+    the contact rows as equality rows, B_I u = gap), same mesh, decomposition and tolerance."""
+    print("\n## Two cylinders: frictionless contact (SMALBE) against the pair tied (PCPG), "
+          "2 ranks\n")
+    print("| size factor | unknowns | subdomains | contact mults | contact outer | contact solve s "
+          "| tied mults | tied solve s | mults ratio | time ratio | p_max error |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|")
+    for sf, subs in ((0.22, 16), (0.1, 80), (0.07, 160), (0.035, 650)):
+        if 78e3 * (0.25 / sf) ** 2 > o.contact_max_dofs:
+            continue
+        progress(f"two cylinders, size factor {sf} (about {78e3 * (0.25 / sf) ** 2:,.0f} "
+                 f"unknowns): contact, then tied")
+        c = cylinders_run(o, f"cylinders_contact_sf{sf}", sf, 1, subs)
+        t = cylinders_run(o, f"cylinders_tied_sf{sf}", sf, 1, subs, tied=True)
+        if c is None or t is None:
+            print(f"| {sf} | failed |", flush=True)
+            continue
+        cm, tm = c["qp"]["hessian_multiplications"], t["qp"]["hessian_multiplications"]
+        cs, ts = c["timings"]["solve_s"], t["timings"]["solve_s"]
+        conv = "" if c["converged"] else " (not converged)"
+        print(f"| {sf} | {c['primal_dim']:,} | {c['subdomains']} | {cm}{conv} | "
+              f"{c['qp']['outer_iterations']} | {cs:.2f} | {tm} | {ts:.2f} | {cm / tm:.1f} | "
+              f"{cs / ts:.1f} | {100 * c['contact']['relative_error']['p_max']:.2f} % |",
+              flush=True)
+        progress(f"  size factor {sf}: contact {cm} multiplications ({cs:.1f} s), tied {tm} "
+                 f"({ts:.1f} s), ratio {cm / tm:.1f} (time {cs / ts:.1f})")
 
 
 def cylinders_convergence(o):
@@ -408,8 +481,12 @@ if __name__ == "__main__":
                    help="largest 3D case solved by KLU2 (its fill grows fast in 3D)")
     p.add_argument("--contact-max-dofs", type=float, default=1.5e6,
                    help="largest two-cylinder case; the 4M one takes over an hour (docs)")
+    p.add_argument("--set", action="append", default=[], metavar="LIST/NAME=VALUE",
+                   help="two-cylinder sets: a FETI parameter for every run, e.g. "
+                   "SMALBE/Penalty=30 (repeatable)")
     o = p.parse_args()
+    o.feti_set = [tuple(a.split("=", 1)) for a in o.set]
     for name in o.sets.split(","):
         {"sweep": sweep, "reference": reference, "solvers": solvers, "membranes": membranes,
          "cylinders_convergence": cylinders_convergence, "cylinders": cylinders,
-         "sweep3d": sweep3d}[name](o)
+         "sweep3d": sweep3d, "cylinders_tied": cylinders_tied}[name](o)

@@ -476,6 +476,70 @@ def plane_strain(d2, dirs3, tol, u_tol):
               f"{c3['half_width']:.6e} (2D {c2['half_width']:.6e})")
 
 
+def tied(dirs):
+    """A tied pair (Contact type = tied): B_I u = gap and the gluing rows to KKT_TOL of max|u|,
+    the contact force balancing the load to 1e-6, and the same solution in every run (rank
+    counts, PCPG and SMALBE without bounds)."""
+    ref = load(dirs[0])
+    for d in dirs:
+        s = load(d)
+        c = s["contact"]
+        if not s["converged"] or s.get("contact_type") != "tied":
+            fail(f"{d}: converged {s['converged']}, contact type {s.get('contact_type')}")
+        u = s["max_abs_u"]
+        # With a tied pair the contact rows are equality rows: equality_residual covers them.
+        if c["equality_residual"] > KKT_TOL * u:
+            fail(f"{d}: max|B u - c| over the gluing and tied rows = {c['equality_residual']:.3e}"
+                 f" > {KKT_TOL} x max|u| = {KKT_TOL * u:.3e}")
+        if c["force_relative_error"] > 1e-6:
+            fail(f"{d}: contact force {c['force']} against the applied {c['applied_force']}: "
+                 f"{c['force_relative_error']:.1e} relative")
+        for key in ("force", "p_max"):
+            if abs(c[key] - ref["contact"][key]) > 1e-6 * abs(ref["contact"][key]):
+                fail(f"{d}: {key} {c[key]} differs from {ref['contact'][key]} ({dirs[0]})")
+        if abs(u - ref["max_abs_u"]) > 1e-6 * ref["max_abs_u"]:
+            fail(f"{d}: max|u| {u} differs from {ref['max_abs_u']} ({dirs[0]})")
+        print(f"OK: {d}: {s['dual_solver']}, {s['qp']['hessian_multiplications']} "
+              f"multiplications, max|B u - c| {c['equality_residual']:.1e} (max|u| {u:.3e}), "
+              f"force error {c['force_relative_error']:.1e}")
+
+
+def zero_load(dirs):
+    """No load: the contact force, p_max and every displacement exactly zero."""
+    for d in dirs:
+        s = load(d)
+        c = s["contact"]
+        if not s["converged"]:
+            fail(f"{d}: did not converge: " + s["qp"].get("message", ""))
+        for name, value in (("contact force", c["force"]), ("p_max", c["p_max"]),
+                            ("max|u|", s["max_abs_u"]), ("max von Mises", s["max_von_mises"])):
+            if value != 0.0:
+                fail(f"{d}: {name} = {value:.3e} without any load (must be exactly 0)")
+        print(f"OK: {d}: exactly zero ({s['qp']['hessian_multiplications']} multiplications)")
+
+
+def tiny_load(d, full_load):
+    """A load tiny against the stiffness: the solution to absolute tolerances. The solver's
+    tolerances are relative to ||b||, which the gaps dominate here, so they are absolute in the
+    load: the KKT conditions to KKT_TOL x ||b|| (a displacement), the force balance to the
+    absolute error allowed at the full load (1e-6 x full_load)."""
+    s = load(d)
+    c, q = s["contact"], s["qp"]
+    if not s["converged"]:
+        fail("did not converge: " + q.get("message", ""))
+    scale_u = KKT_TOL * q["rhs_norm"]
+    checks = [("penetration", c["max_penetration"], scale_u),
+              ("gluing residual", c["equality_residual"], scale_u),
+              ("negative multiplier", -c["min_multiplier"], 0.0),
+              ("force error |sum lambda - load|", abs(c["force"] - c["applied_force"]),
+               1e-6 * full_load)]
+    for name, value, tol in checks:
+        if value > tol:
+            fail(f"{name} = {value:.3e} > {tol:.3e}")
+    print(f"OK: force {c['force']:.6e} (applied {c['applied_force']:.6e}); " +
+          ", ".join(f"{n} {v:.1e} <= {t:.1e}" for n, v, t in checks))
+
+
 STEP_KEYS = ("step", "load_factor", "outer_iterations", "mprgp_iterations", "residuals",
              "p_max", "max_von_mises", "max_plastic_strain", "contact_extent")
 
@@ -647,6 +711,12 @@ if __name__ == "__main__":
         dirs = [a for i, a in enumerate(args) if a not in tols and
                 (i == 0 or args[i - 1] not in tols)]
         plane_strain(dirs[0], dirs[1:], option(args, "--tol", 0.01), option(args, "--u-tol", 1e-5))
+    elif mode == "zero_load":
+        zero_load(args)
+    elif mode == "tiny_load":
+        tiny_load(args[0], option(args, "--full-load", 0.0))
+    elif mode == "tied":
+        tied(args)
     elif mode == "membranes_scaling":
         membranes_scaling(args)
     elif mode == "nonlinear":

@@ -113,6 +113,12 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     throw std::invalid_argument("Contact problem: \"Slave\" and \"Master\" both name \"" +
                                 spec.slave + "\"; a contact pair needs two different boundaries");
   spec.searchRadius = cp.get<double>("Search radius");
+  spec.tied = cp.get<std::string>("Contact type") == "tied";
+  if (spec.tied && params.get<std::string>("Problem") != "elastic_contact")
+    throw std::invalid_argument(
+        "Contact problem: \"Contact type\" = tied is available for "
+        "Problem = elastic_contact only (got " +
+        params.get<std::string>("Problem") + ")");
   const auto& ro = cp.sublist("Rigid obstacle");
   const std::string type = ro.get<std::string>("Type");
   if (type != "none") {
@@ -183,6 +189,12 @@ void addElasticContactParameters(ParameterList& pl) {
   cp.set("Slave", "", "the contact pair's slave boundary (its nodes)");
   cp.set("Master", "",
          "the contact pair's master boundary (its segments); empty with a Rigid obstacle");
+  cp.set("Contact type", "frictionless",
+         "frictionless: B_I u <= gap, contact pressure >= 0; tied: B_I u = gap, the pair bonded "
+         "in the normal direction (the same rows held with equality, pressure of either sign: a "
+         "linear problem solved by PCPG; elastic_contact only)",
+         Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+             Teuchos::tuple<std::string>("frictionless", "tied"), "Contact type")));
   cp.set("Search radius", 0.0,
          "slave nodes farther from the master get no row; 0: a tenth of "
          "the mesh's extent",
@@ -226,13 +238,26 @@ void addElasticContactParameters(ParameterList& pl) {
         tfeti::strict::nonNegative());
 }
 
+ParameterList fetiParameters(const ParameterList& params, const ElasticContactSpec& spec) {
+  ParameterList feti = params.sublist("FETI");
+  if (spec.tied) {
+    feti.set("Inequality rows", "equalities");
+  } else if (tfeti::FetiSolver::inequalitiesTied(feti)) {
+    throw std::invalid_argument(
+        "FETI: \"Inequality rows\" = equalities with \"Contact problem/Contact type\" = "
+        "frictionless; a tied contact pair is chosen by \"Contact type\" = tied");
+  }
+  return feti;
+}
+
 int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
                       const std::string& dir) {
   const bool root = comm->getRank() == 0;
   const ElasticContactSpec spec = elasticContactSpec(params);
+  const ParameterList feti = fetiParameters(params, spec);
   const int verbosity = params.sublist("Output").get<int>("Verbosity");
   ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
-  tfeti::FetiSolver solver(comm, problem.numSubdomains(), problem.local, params.sublist("FETI"),
+  tfeti::FetiSolver solver(comm, problem.numSubdomains(), problem.local, feti,
                            problem.inequalities, problem.equalities);
   const tfeti::DualResult result = solver.solve();
   const tfeti::ConstraintReport report = solver.constraintReport();
@@ -278,7 +303,8 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   s["subdomains"] = problem.numSubdomains();
   s["nodes"] = problem.mesh.numNodes();
   s["dimension"] = dim;
-  addSolverSummary(s, solver, result, params.sublist("FETI"));
+  addSolverSummary(s, solver, result, feti);
+  s["contact_type"] = spec.tied ? "tied" : "frictionless";
   s["qp"] = qpJson(result);
   const double applied =
       std::hypot(problem.appliedForce[0], problem.appliedForce[1], problem.appliedForce[2]);
@@ -351,7 +377,7 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
     restartStep = readRestart(outputDirectory + "/restart", problem, saved).step;
   }
   const auto rows = static_cast<long long>(problem.contact.rows.size());
-  const std::string solver = tfeti::FetiSolver::dualSolverFor(params.sublist("FETI"), rows);
+  const std::string solver = tfeti::FetiSolver::dualSolverFor(fetiParameters(params, spec), rows);
 
   std::vector<std::string> lines;
   std::ostringstream s;

@@ -16,6 +16,11 @@ void addElasticContactParameters(Teuchos::ParameterList& valid);
 // The problem description from the "Contact problem" and "Material" sublists (validated).
 ElasticContactSpec elasticContactSpec(const Teuchos::ParameterList& params);
 
+// The FETI list of a run: "Inequality rows" = equalities when the pair is tied (an error when
+// set there for a frictionless pair).
+Teuchos::ParameterList fetiParameters(const Teuchos::ParameterList& params,
+                                      const ElasticContactSpec& spec);
+
 int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
                       const std::string& dir);
 

@@ -93,6 +93,11 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
             "(equality constraints only); SMALBE: augmented Lagrangian with MPRGP inner solves; "
             "penalty: MPRGP on P F P + rho Q (the reference paper's choice)",
             choice({"auto", "PCPG", "SMALBE", "penalty"}));
+    pl->set("Inequality rows", "inequalities",
+            "inequalities: B_I u <= c_I with lambda_I >= 0 (frictionless contact); equalities: "
+            "B_I u = c_I with lambda_I free (the pair tied: bonded bodies, the gap closed), a "
+            "linear problem that \"Dual solver\" = auto solves by PCPG",
+            choice({"inequalities", "equalities"}));
     pl->sublist("PCPG").setParameters(*Pcpg::validParameters());
     pl->sublist("MPRGP").setParameters(
         *MprgpSolMgr<Scalar, MultiVector, Operator>::getValidParameters());
@@ -132,6 +137,11 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
         "Preconditioning in face", true,
         "SMALBE / penalty: precondition MPRGP's conjugate gradient steps by P M P + Q / rho (M the "
         "chosen dual preconditioner) restricted to the free set");
+    pl->set("Initial equality multiplier", "gap",
+            "SMALBE's first multiplier of G lambda = e (unless warm-started): zero, or gap: Q c_I, "
+            "the multiplier at which lambda = 0 is the solution when no load acts (c_I the gaps "
+            "of the inequality rows; at the solution it is Q (c - B u), the gaps left open)",
+            choice({"gap", "zero"}));
     pl->set("Warm start", true,
             "SMALBE / penalty after update(): start from the multipliers of the previous solve "
             "(projected onto G lambda = e and the bounds) when the dual dimension is unchanged");
@@ -320,7 +330,14 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
   u_.clear();
 }
 
+bool FetiSolver::inequalitiesTied(const Teuchos::ParameterList& feti) {
+  return feti.isParameter("Inequality rows") &&
+         feti.get<std::string>("Inequality rows") == "equalities";
+}
+
 std::string FetiSolver::dualSolverFor(const Teuchos::ParameterList& feti, GO inequalityRows) {
+  // Tied inequality rows are equality rows: no bound constrains their multipliers.
+  if (inequalitiesTied(feti)) inequalityRows = 0;
   std::string method = feti.get<std::string>("Dual solver");
   if (method == "auto") method = inequalityRows > 0 ? "SMALBE" : "PCPG";
   if (method == "PCPG" && inequalityRows > 0)
@@ -332,6 +349,7 @@ std::string FetiSolver::dualSolverFor(const Teuchos::ParameterList& feti, GO ine
 
 DualResult FetiSolver::solve() {
   const std::string method = dualSolverFor(params_, tearing_.numInequalityRows);
+  const bool tied = inequalitiesTied(params_);
   lambda_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
   Vector g(tearing_.multiplierMap);
   DualResult result;
@@ -339,8 +357,14 @@ DualResult FetiSolver::solve() {
     PhaseTimer t(*comm_, timings_.solve);
     Tpetra::deep_copy(*lambda_, *lambda0_);
     Pcpg pcpg(F_, *coarse_, M_, params_.sublist("PCPG"));
+    const long long before = F_->numApplies();
     static_cast<PcpgResult&>(result) = pcpg.solve(*d_, *lambda_, g);
     result.method = "PCPG";
+    // The same counters as the QP solvers, so that a tied and a contact solve compare directly.
+    result.qp.hessianMultiplications = F_->numApplies() - before;
+    result.qp.cgSteps = result.iterations;
+    result.qp.converged = result.converged;
+    result.qp.projectedGradientNorm = result.projectedGradientNorm;
   } else {
     result = solveQp(method);
   }
@@ -353,11 +377,26 @@ DualResult FetiSolver::solve() {
     Tpetra::deep_copy(rhs, *f_);
     tearing_.B->apply(*lambda_, rhs, Teuchos::TRANS, -1.0, 1.0);
     Kplus_->apply(rhs, u);
-    if (coarse_->dimension() > 0) {
+    // Nothing acts (no load, no multiplier, no prescribed value): u = 0 exactly. The fit below
+    // would be singular when a body is held by contact alone and, unloaded, touches nothing;
+    // of the rigid motions it leaves free, zero is the smallest.
+    Teuchos::Array<double> fNorm(1);
+    f_->normInf(fNorm());
+    double acting[3] = {fNorm[0], lambda_->normInf(), 0.0}, anyActing[3];
+    {
+      auto c = tearing_.rhs->getData();
+      const auto& map = *tearing_.multiplierMap;
+      for (std::size_t i = 0; i < map.getNodeNumElements(); ++i)
+        if (!tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i))))
+          acting[2] = std::max(acting[2], std::abs(c[i]));
+    }
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 3, acting, anyActing);
+    const bool unloaded = anyActing[0] == 0.0 && anyActing[1] == 0.0 && anyActing[2] == 0.0;
+    if (coarse_->dimension() > 0 && !unloaded) {
       F_->apply(*lambda_, g);
       g.update(-1.0, *d_, 1.0);
       Vector alpha(coarse_->coarseMap());
-      if (tearing_.numInequalityRows == 0) {
+      if (tearing_.numInequalityRows == 0 || tied) {
         coarse_->leastSquaresCoefficients(g, alpha);
       } else {
         // Inactive inequality rows (lambda_i = 0) have a gap: they must not enter the fit.
@@ -401,8 +440,9 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   {
     auto lo = lower->getDataNonConst();
     auto l0 = lambda0_->getData();
+    const bool tied = inequalitiesTied(params_);
     for (std::size_t i = 0; i < map->getNodeNumElements(); ++i)
-      lo[i] = tearing_.isInequality(map->getGlobalElement(static_cast<LO>(i)))
+      lo[i] = !tied && tearing_.isInequality(map->getGlobalElement(static_cast<LO>(i)))
                   ? -l0[i]
                   : -std::numeric_limits<double>::infinity();
   }
@@ -460,6 +500,23 @@ DualResult FetiSolver::solveQp(const std::string& method) {
     SmalbeSolMgr<Scalar, MV, Operator> solver(qp, Q, sp, prec);
     solver.setAugmentedHessian(H);
     // SMALBE's equality multiplier of the previous solve, moved into the new range(Q).
+    // Otherwise, from the geometry: with lambda = lambda~ + mu, the KKT conditions read
+    // P F P mu - b + nu = c - B u (zero on the equality rows and the active inequality rows, the
+    // open gap elsewhere) with nu = Q (c - B u); u = 0 gives nu_0 = Q c_I. Without a load
+    // (lambda~ = 0, b = P c) mu = 0 then meets them at once, so the result is the exact zero.
+    if (warmAll != 1 && tearing_.numInequalityRows > 0 && !inequalitiesTied(params_) &&
+        params_.get<std::string>("Initial equality multiplier") == "gap") {
+      Vector gaps(map);
+      {
+        auto dst = gaps.getDataNonConst();
+        auto c = tearing_.rhs->getData();
+        for (std::size_t i = 0; i < map->getNodeNumElements(); ++i)
+          dst[i] = tearing_.isInequality(map->getGlobalElement(static_cast<LO>(i))) ? c[i] : 0.0;
+      }
+      auto nu0 = Teuchos::rcp(new Vector(map));
+      Q->apply(gaps, *nu0);
+      solver.setInitialMultiplier(nu0);
+    }
     if (warmAll == 1 && !previousEqualityMultiplier_.is_null()) {
       Vector previous(map);
       {
@@ -530,8 +587,10 @@ ConstraintReport FetiSolver::constraintReport() const {
   double mx[4] = {-std::numeric_limits<double>::infinity(), 0.0, 0.0,
                   -std::numeric_limits<double>::infinity()};  // penetration, compl, eq, -min l
   double sums[2] = {0.0, 0.0};                                // force, active rows
+  const bool tied = inequalitiesTied(params_);
   for (std::size_t i = 0; i < map.getNodeNumElements(); ++i) {
     if (tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i)))) {
+      if (tied) mx[2] = std::max(mx[2], std::abs(v[i]));
       mx[0] = std::max(mx[0], v[i]);
       mx[1] = std::max(mx[1], std::abs(l[i] * v[i]));
       mx[3] = std::max(mx[3], -l[i]);

@@ -66,7 +66,7 @@ struct ConstraintReport {
   double minMultiplier = 0.0;             // min lambda_I: >= 0
   double maxPenetration = 0.0;            // max (B_I u - c_I): <= 0 when feasible
   double maxComplementarity = 0.0;        // max |lambda_i (B_I u - c_I)_i|
-  double equalityResidual = 0.0;          // max |B_E u - c_E|
+  double equalityResidual = 0.0;          // max |B_E u - c_E| (and |B_I u - c_I| when tied)
 };
 
 struct FetiTimings {
@@ -91,6 +91,9 @@ class FetiSolver {
   // inequality rows; throws std::invalid_argument when it cannot handle them (checkable before
   // any set-up, e.g. by a dry run).
   static std::string dualSolverFor(const Teuchos::ParameterList& feti, GO inequalityRows);
+  // "Inequality rows" = equalities: the inequality rows are held with equality (B_I u = c_I,
+  // lambda_I of either sign), e.g. a tied contact pair.
+  static bool inequalitiesTied(const Teuchos::ParameterList& feti);
 
   // local: the subdomains assigned to this rank (see subdomainsOfRank), in increasing id order.
   // inequalities: the non-penetration rows this rank contributes (see buildTearing).
