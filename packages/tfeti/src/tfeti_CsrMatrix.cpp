@@ -129,6 +129,7 @@ std::string csrError(const CsrMatrix& A, const std::string& what) {
 }
 
 std::string asymmetryError(const CsrMatrix& A, const std::string& what, double tol) {
+  if (A.rows != A.cols) return "";  // only a square matrix can be symmetric: checked elsewhere
   const double scale = A.maxAbs();
   double worst = 0.0;
   int wi = 0, wj = 0;

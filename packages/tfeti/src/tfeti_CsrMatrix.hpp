@@ -39,7 +39,7 @@ CsrMatrix csrFromTriplets(int rows, int cols, const std::vector<int>& ri,
 std::string csrError(const CsrMatrix& A, const std::string& what);
 
 // The largest |A(i,j) - A(j,i)| relative to max |A|, where it is, as text when it exceeds tol
-// (empty when A is symmetric to tol).
+// (empty when A is symmetric to tol, or not square). A must pass csrError.
 std::string asymmetryError(const CsrMatrix& A, const std::string& what, double tol);
 
 }  // namespace tfeti

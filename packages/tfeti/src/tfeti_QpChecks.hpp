@@ -36,8 +36,10 @@ std::string operatorMismatch(const OP&, const MV&, const std::string&) {
 template <class S, class LO, class GO, class N>
 std::string operatorMismatch(const Tpetra::Operator<S, LO, GO, N>& A,
                              const Tpetra::MultiVector<S, LO, GO, N>& x, const std::string& what) {
-  std::string e = mapMismatch(*x.getMap(), *A.getDomainMap(), "the domain of " + what, "x");
-  if (e.empty()) e = mapMismatch(*x.getMap(), *A.getRangeMap(), "the range of " + what, "x");
+  const auto domain = A.getDomainMap(), range = A.getRangeMap();
+  if (domain.is_null() || range.is_null()) return what + " has no domain or range map";
+  std::string e = mapMismatch(*x.getMap(), *domain, "the domain of " + what, "x");
+  if (e.empty()) e = mapMismatch(*x.getMap(), *range, "the range of " + what, "x");
   return e;
 }
 
