@@ -1,6 +1,8 @@
 # Finds the project's third-party dependencies and wraps them in imported targets.
 # Included by the build tree and, installed, by every package's CMake config, so that an
 # application calling find_package(tfeti) gets the same dependencies the library was built with.
+# Gmsh is not among them: only the contact package meshes (TfetiGmsh.cmake, included by the tree
+# and by contact's config).
 include_guard(GLOBAL)
 include(CMakeFindDependencyMacro)
 list(APPEND CMAKE_MODULE_PATH "${CMAKE_CURRENT_LIST_DIR}")
@@ -9,8 +11,6 @@ find_package(MPI REQUIRED COMPONENTS CXX)
 find_package(Trilinos 13.2 REQUIRED
              COMPONENTS Teuchos Kokkos KokkosKernels Tpetra Belos Amesos2 Zoltan2)
 find_package(METIS REQUIRED)
-# Unstructured meshes (contact package): .geo meshing and .msh reading through the C++ API.
-find_package(Gmsh 4.8 REQUIRED)
 find_package(CHOLMOD REQUIRED)
 
 if(NOT TARGET TfetiDeps::Trilinos)

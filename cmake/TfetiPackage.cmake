@@ -1,17 +1,26 @@
-# tfeti_package(NAME <name> SOURCES ... DEPENDS ...): a namespaced, installable library
-# with an exported CMake config, so that an application outside the tree can call
-# find_package(<name>) and link <name>::<name>.
+# tfeti_package(NAME <name> SOURCES ... DEPENDS ... [PACKAGE_DEPENDS ...] [CONFIG_INCLUDES ...]):
+# a namespaced, installable library with an exported CMake config, so that an application
+# outside the tree can call find_package(<name>) and link <name>::<name>. Static or shared as
+# BUILD_SHARED_LIBS says. Its usage requirements: C++17, and in a TFETI_SANITIZE build the
+# sanitizer flags (an application linking a sanitized library must compile and link with them).
+# CONFIG_INCLUDES: files of the installed TfetiCommon directory the config includes (e.g.
+# TfetiGmsh.cmake for a package that needs Gmsh).
 include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 
 function(tfeti_package)
-  cmake_parse_arguments(P "" "NAME" "SOURCES;DEPENDS;PACKAGE_DEPENDS" ${ARGN})
+  cmake_parse_arguments(P "" "NAME" "SOURCES;DEPENDS;PACKAGE_DEPENDS;CONFIG_INCLUDES" ${ARGN})
   add_library(${P_NAME} ${P_SOURCES})
   add_library(${P_NAME}::${P_NAME} ALIAS ${P_NAME})
   target_include_directories(${P_NAME} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/src>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/${P_NAME}>)
   target_link_libraries(${P_NAME} PUBLIC ${P_DEPENDS})
+  target_compile_features(${P_NAME} PUBLIC cxx_std_17)
+  if(TFETI_SANITIZE_FLAGS)
+    target_compile_options(${P_NAME} INTERFACE ${TFETI_SANITIZE_FLAGS})
+    target_link_options(${P_NAME} INTERFACE ${TFETI_SANITIZE_FLAGS})
+  endif()
   target_compile_options(${P_NAME} PRIVATE -Wall -Wextra -Wno-unused-parameter)
   set_target_properties(${P_NAME} PROPERTIES EXPORT_NAME ${P_NAME} OUTPUT_NAME tfeti_${P_NAME})
   if(P_NAME STREQUAL "tfeti")
@@ -28,6 +37,7 @@ function(tfeti_package)
           DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/${P_NAME})
 
   set(PACKAGE_DEPENDS "${P_PACKAGE_DEPENDS}")
+  set(CONFIG_INCLUDES "${P_CONFIG_INCLUDES}")
   configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/PackageConfig.cmake.in
     ${CMAKE_CURRENT_BINARY_DIR}/${P_NAME}Config.cmake
     INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/${P_NAME})

@@ -1,17 +1,33 @@
-# Installs the build tree into a scratch prefix, then configures, builds and runs the consumer
-# project against it with find_package. FLAGS (a ;-list, e.g. the sanitizer flags of a
-# TFETI_SANITIZE build) are passed on: the consumer must compile and link like the packages.
+# Installs the build tree into a scratch prefix, then configures, builds and runs two consumer
+# projects against it with find_package: SOURCE (all packages) and TFETI_SOURCE (tfeti alone,
+# which must not need Gmsh). They set no compiler or linker flags of their own: what they need
+# comes with the exported targets. FLAGS (the sanitizer flags of a TFETI_SANITIZE build, or empty)
+# must then appear on every compile and link line of the consumers.
 set(prefix ${WORK}/prefix)
-string(REPLACE ";" " " flags "${FLAGS}")
 file(REMOVE_RECURSE ${WORK})
-foreach(step
-    "${CMAKE_COMMAND};--install;${BUILD};--prefix;${prefix}"
-    "${CMAKE_COMMAND};-S;${SOURCE};-B;${WORK}/build;-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release;-DCMAKE_CXX_FLAGS=${flags};-DCMAKE_EXE_LINKER_FLAGS=${flags}"
-    "${CMAKE_COMMAND};--build;${WORK}/build"
-    "${WORK}/build/consumer")
+function(run step)
   execute_process(COMMAND ${step} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "step failed (${rc}): ${step}\n${out}\n${err}")
   endif()
+  set(out "${out}" PARENT_SCOPE)
+endfunction()
+run("${CMAKE_COMMAND};--install;${BUILD};--prefix;${prefix}")
+foreach(project consumer tfeti_only)
+  if(project STREQUAL "consumer")
+    set(src ${SOURCE})
+  else()
+    set(src ${TFETI_SOURCE})
+  endif()
+  set(bin ${WORK}/${project})
+  run("${CMAKE_COMMAND};-S;${src};-B;${bin};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release")
+  run("${CMAKE_COMMAND};--build;${bin};--verbose")
+  foreach(flag ${FLAGS})
+    string(FIND "${out}" "${flag}" at)
+    if(at LESS 0)
+      message(FATAL_ERROR "${project}: the build does not pass ${flag}:\n${out}")
+    endif()
+  endforeach()
+  run("${bin}/${project}")
+  message("${out}")
 endforeach()
-message("${out}")

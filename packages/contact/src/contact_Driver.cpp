@@ -465,6 +465,8 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
 
 void validateDriverParameters(ParameterList& params, const std::string& source) {
   try {
+    if (params.isSublist("FETI"))
+      tfeti::FetiSolver::rejectMisplacedParameters(params.sublist("FETI"));
     params.validateParametersAndSetDefaults(*validDriverParameters());
     const auto& sc = params.sublist("Scalability");
     const auto problems = sc.get<Array<std::string>>("Problems");

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <numeric>
+#include <sstream>
+#include <string>
 
 namespace tfeti {
 
@@ -92,6 +95,64 @@ CsrMatrix csrFromTriplets(int rows, int cols, const std::vector<int>& ri,
   }
   for (int i = 0; i < rows; ++i) m.rowPtr[i + 1] += m.rowPtr[i];
   return m;
+}
+
+std::string csrError(const CsrMatrix& A, const std::string& what) {
+  if (A.rows < 0 || A.cols < 0)
+    return what + " is " + std::to_string(A.rows) + " x " + std::to_string(A.cols);
+  if (A.rowPtr.size() != static_cast<std::size_t>(A.rows) + 1)
+    return what + " has " + std::to_string(A.rows) + " rows but rowPtr has " +
+           std::to_string(A.rowPtr.size()) + " entries (rows + 1 expected)";
+  if (A.colInd.size() != A.values.size())
+    return what + " has " + std::to_string(A.colInd.size()) + " column indices but " +
+           std::to_string(A.values.size()) + " values";
+  if (A.rowPtr.front() != 0 || A.rowPtr.back() != static_cast<long long>(A.colInd.size()))
+    return what + ": rowPtr runs from " + std::to_string(A.rowPtr.front()) + " to " +
+           std::to_string(A.rowPtr.back()) + ", expected 0 to the " +
+           std::to_string(A.colInd.size()) + " entries";
+  for (int i = 0; i < A.rows; ++i) {
+    if (A.rowPtr[i + 1] < A.rowPtr[i])
+      return what + ": rowPtr decreases at row " + std::to_string(i);
+    for (int k = A.rowPtr[i]; k < A.rowPtr[i + 1]; ++k) {
+      const int j = A.colInd[k];
+      if (j < 0 || j >= A.cols)
+        return what + ": row " + std::to_string(i) + " has column " + std::to_string(j) +
+               ", outside 0 .. " + std::to_string(A.cols - 1);
+      if (k > A.rowPtr[i] && j <= A.colInd[k - 1])
+        return what + ": the column indices of row " + std::to_string(i) +
+               " are not strictly increasing (sort them and sum duplicates)";
+      if (!std::isfinite(A.values[k]))
+        return what + "(" + std::to_string(i) + ", " + std::to_string(j) + ") is not finite";
+    }
+  }
+  return "";
+}
+
+std::string asymmetryError(const CsrMatrix& A, const std::string& what, double tol) {
+  if (A.rows != A.cols) return "";  // only a square matrix can be symmetric: checked elsewhere
+  const double scale = A.maxAbs();
+  double worst = 0.0;
+  int wi = 0, wj = 0;
+  for (int i = 0; i < A.rows; ++i)
+    for (int k = A.rowPtr[i]; k < A.rowPtr[i + 1]; ++k) {
+      const int j = A.colInd[k];
+      if (j <= i) continue;
+      const long t = A.find(j, i);
+      const double d = std::abs(A.values[k] - (t < 0 ? 0.0 : A.values[t]));
+      if (d > worst) {
+        worst = d;
+        wi = i;
+        wj = j;
+      }
+    }
+  if (!(scale > 0.0) || worst <= tol * scale) return "";
+  const long t = A.find(wj, wi);
+  std::ostringstream s;
+  s << std::setprecision(6) << what << " is not symmetric: " << what << "(" << wi << ", " << wj
+    << ") = " << A.values[A.find(wi, wj)] << " but " << what << "(" << wj << ", " << wi
+    << ") = " << (t < 0 ? 0.0 : A.values[t]) << std::scientific << std::setprecision(2)
+    << " (difference " << worst / scale << " of max |" << what << "|)";
+  return s.str();
 }
 
 }  // namespace tfeti

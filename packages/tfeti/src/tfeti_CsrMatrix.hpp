@@ -3,6 +3,7 @@
 // stiffness matrix. Subdomain matrices live on one rank and are factorized there, so they
 // need no Tpetra map; the local solvers read these arrays directly.
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace tfeti {
@@ -31,5 +32,14 @@ struct CsrMatrix {
 // Builds a CSR matrix from (row, col, value) triplets, summing duplicates.
 CsrMatrix csrFromTriplets(int rows, int cols, const std::vector<int>& ri,
                           const std::vector<int>& ci, const std::vector<double>& v);
+
+// The CSR arrays of a square or rectangular matrix: rowPtr of rows + 1 non-decreasing offsets
+// from 0 to nnz, column indices in range and strictly increasing within a row, finite values.
+// Empty when they are consistent; otherwise what is wrong, prefixed by `what` (e.g. "K").
+std::string csrError(const CsrMatrix& A, const std::string& what);
+
+// The largest |A(i,j) - A(j,i)| relative to max |A|, where it is, as text when it exceeds tol
+// (empty when A is symmetric to tol, or not square). A must pass csrError.
+std::string asymmetryError(const CsrMatrix& A, const std::string& what, double tol);
 
 }  // namespace tfeti

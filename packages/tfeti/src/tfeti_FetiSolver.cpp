@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "tfeti_Gather.hpp"
+#include "tfeti_InputChecks.hpp"
 #include "tfeti_MprgpSolMgr_decl.hpp"
 #include "tfeti_ProjectedOperators.hpp"
 #include "tfeti_SmalbeSolMgr_decl.hpp"
@@ -34,26 +35,14 @@ class PhaseTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
+const char* const kPreconditioningInFace = "Preconditioning in face";
+
 Teuchos::RCP<Teuchos::StringToIntegralParameterEntryValidator<int>> choice(
     const std::vector<std::string>& names) {
   return Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
       Teuchos::Array<std::string>(names.begin(), names.end()), names.front()));
 }
 }  // namespace
-
-// An error found on some ranks is raised on every rank, with every rank's message (no rank left
-// waiting in a collective).
-static void throwOnAnyRank(const Comm& comm, const std::string& error) {
-  int failed = error.empty() ? 0 : 1, anyFailed = 0;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &failed, &anyFailed);
-  if (!anyFailed) return;
-  std::vector<long long> chars(error.begin(), error.end());
-  if (!error.empty()) chars.push_back('\n');
-  const std::vector<long long> all = allGather(comm, chars);
-  std::string message(all.begin(), all.end());
-  if (!message.empty() && message.back() == '\n') message.pop_back();
-  throw std::runtime_error(message);
-}
 
 Formulation parseFormulation(const std::string& name) {
   return name == "FETI" ? Formulation::FETI : Formulation::TFETI;
@@ -63,6 +52,19 @@ PreconditionerType parsePreconditioner(const std::string& name) {
   if (name == "lumped") return PreconditionerType::Lumped;
   if (name == "dirichlet") return PreconditionerType::Dirichlet;
   return PreconditionerType::None;
+}
+
+void FetiSolver::rejectMisplacedParameters(const Teuchos::ParameterList& feti) {
+  const auto misplaced = [&](const Teuchos::ParameterList& list, const std::string& path) {
+    if (list.isParameter(kPreconditioningInFace))
+      throw std::invalid_argument(
+          "FETI: \"" + std::string(kPreconditioningInFace) + "\" is set in the " + path +
+          " sublist; it belongs to the FETI list itself (one switch for MPRGP alone and inside "
+          "SMALBE): move it there");
+  };
+  if (feti.isSublist("MPRGP")) misplaced(feti.sublist("MPRGP"), "\"MPRGP\"");
+  if (feti.isSublist("SMALBE") && feti.sublist("SMALBE").isSublist("MPRGP"))
+    misplaced(feti.sublist("SMALBE").sublist("MPRGP"), "\"SMALBE\" / \"MPRGP\"");
 }
 
 Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
@@ -120,6 +122,10 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
                "rho = value * ||P F P|| (FETI default 10; the component's default is 1)",
                strict::positive());
     projectedCg(smalbe.sublist("MPRGP"), "FETI default: projected CG (the component's: fixed)");
+    // One switch for MPRGP's preconditioner, alone or inside SMALBE: the FETI list's own
+    // "Preconditioning in face" below (the sublists would only contradict it).
+    pl->sublist("MPRGP").remove(kPreconditioningInFace);
+    smalbe.sublist("MPRGP").remove(kPreconditioningInFace);
     // At rho = 10 ||P F P|| the outer iterations grow with the subdomains per side (25 at 64 x 64
     // per membrane, 35 at 88 x 88; 3-6 multiplications each): the component's limit of 100
     // would be reached near 250 x 250.
@@ -134,7 +140,7 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
     pen.set("Power iterations", 20, "power iterations for the estimate of ||P F P||",
             strict::count());
     pl->set(
-        "Preconditioning in face", true,
+        kPreconditioningInFace, true,
         "SMALBE / penalty: precondition MPRGP's conjugate gradient steps by P M P + Q / rho (M the "
         "chosen dual preconditioner) restricted to the free set");
     pl->set("Initial equality multiplier", "gap",
@@ -158,7 +164,10 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       numSubdomains_(numSubdomains),
       data_(std::move(local)),
       equalities_(equalities) {
+  rejectMisplacedParameters(params_);
   params_.validateParametersAndSetDefaults(*validParameters());
+  // Every size the solver indexes by, on every rank, before anything is built from it.
+  checkSubdomainInput(*comm_, numSubdomains_, data_);
   // A rank may hold no subdomain; every rank must still agree on the dofs per node.
   int localDpn = data_.empty() ? 0 : data_.front().dofsPerNode;
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &localDpn, &dofsPerNode_);
@@ -175,8 +184,7 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
   PhaseTimer t(*comm_, timings_.factorization);
   subdomains_.clear();
   // An error in one subdomain is reported on every rank (no rank left waiting in a collective).
-  std::string error;
-  try {
+  collectively(*comm_, [&] {
     for (std::size_t i = 0; i < data_.size(); ++i) {
       auto& sd = data_[i];
       KernelOptions kernel;
@@ -189,10 +197,7 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
                                                         kernel, std::move(sd.K), sd.f,
                                                         dirichletDofs, formulation, solver));
     }
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  throwOnAnyRank(*comm_, error);
+  });
 }
 
 void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities,
@@ -233,16 +238,18 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
   }
   {
     PhaseTimer t(*comm_, timings_.preconditioner);
-    for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-      std::vector<int> dofs;
-      for (const auto& e : tearing_.subdomainRows[i]) dofs.push_back(e.dof);
-      std::sort(dofs.begin(), dofs.end());
-      dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
-      // Contact rows that move between iterations of a nonlinear solve mostly keep the same
-      // dofs: the interior factorization is redone only when they change.
-      if (newSubdomains || dofs != subdomains_[i]->interfaceDofs())
-        subdomains_[i]->setupPreconditioner(dofs, precType, solver);
-    }
+    collectively(*comm_, [&] {
+      for (std::size_t i = 0; i < subdomains_.size(); ++i) {
+        std::vector<int> dofs;
+        for (const auto& e : tearing_.subdomainRows[i]) dofs.push_back(e.dof);
+        std::sort(dofs.begin(), dofs.end());
+        dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+        // Contact rows that move between iterations of a nonlinear solve mostly keep the same
+        // dofs: the interior factorization is redone only when they change.
+        if (newSubdomains || dofs != subdomains_[i]->interfaceDofs())
+          subdomains_[i]->setupPreconditioner(dofs, precType, solver);
+      }
+    });
     if (precType != PreconditionerType::None)
       M_ = Teuchos::rcp(new DualPreconditioner(tearing_, subdomains_));
   }
@@ -292,11 +299,13 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
 
 void FetiSolver::update(const std::vector<std::vector<double>>& loads,
                         const std::vector<InequalityRow>& inequalities) {
-  if (loads.size() != subdomains_.size())
-    throw std::invalid_argument("FetiSolver::update: " + std::to_string(loads.size()) +
-                                " load vectors for " + std::to_string(subdomains_.size()) +
-                                " local subdomains");
-  for (std::size_t i = 0; i < subdomains_.size(); ++i) subdomains_[i]->setLoad(loads[i]);
+  collectively(*comm_, [&] {
+    if (loads.size() != subdomains_.size())
+      throw std::invalid_argument("FetiSolver::update: " + std::to_string(loads.size()) +
+                                  " load vectors for " + std::to_string(subdomains_.size()) +
+                                  " local subdomains");
+    for (std::size_t i = 0; i < subdomains_.size(); ++i) subdomains_[i]->setLoad(loads[i]);
+  });
   previousLambda_ = lambda_;
   previousEqualityMultiplier_ = equalityMultiplier_;
   previousNorm_ = normEstimate_;
@@ -311,10 +320,17 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
                                  const std::vector<std::vector<double>>& coords,
                                  const std::vector<std::vector<double>>& loads,
                                  const std::vector<InequalityRow>& inequalities) {
-  if (K.size() != data_.size() || coords.size() != data_.size() || loads.size() != data_.size())
-    throw std::invalid_argument("FetiSolver::updateStiffness: expected " +
-                                std::to_string(data_.size()) +
-                                " matrices, coordinate sets and loads");
+  collectively(*comm_, [&] {
+    if (K.size() != data_.size() || coords.size() != data_.size() || loads.size() != data_.size())
+      throw std::invalid_argument("FetiSolver::updateStiffness: expected " +
+                                  std::to_string(data_.size()) +
+                                  " matrices, coordinate sets and loads");
+    for (std::size_t i = 0; i < data_.size(); ++i) {
+      const std::string error = subdomainDataError(data_[i].mesh, coords[i], data_[i].dofsPerNode,
+                                                   K[i], loads[i], {}, numSubdomains_);
+      if (!error.empty()) throw std::invalid_argument("FetiSolver::updateStiffness: " + error);
+    }
+  });
   for (std::size_t i = 0; i < data_.size(); ++i) {
     data_[i].K = std::move(K[i]);
     data_[i].f = loads[i];
@@ -358,6 +374,7 @@ DualResult FetiSolver::solve() {
     Tpetra::deep_copy(*lambda_, *lambda0_);
     Pcpg pcpg(F_, *coarse_, M_, params_.sublist("PCPG"));
     const long long before = F_->numApplies();
+    pcpg.setOutputStream(out_);
     static_cast<PcpgResult&>(result) = pcpg.solve(*d_, *lambda_, g);
     result.method = "PCPG";
     // The same counters as the QP solvers, so that a tied and a contact solve compare directly.
@@ -483,7 +500,7 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   // Preconditioning in face: P M P acts on range(P), where the Hessian is P F P; on range(Q) the
   // Hessian is rho I, so the preconditioner is P M P + Q / rho (singular without the Q part).
   Teuchos::RCP<const Operator> prec;
-  if (params_.get<bool>("Preconditioning in face") && !M_.is_null())
+  if (params_.get<bool>(kPreconditioningInFace) && !M_.is_null())
     prec = Teuchos::rcp(new ProjectedPlusComplement(M_, *coarse_, 1.0 / result.rho));
   // P F P + rho Q sharing P x between its two terms: two coarse projections, not three.
   const auto H = Teuchos::rcp(new ProjectedPlusComplement(F_, *coarse_, result.rho));
@@ -496,8 +513,9 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   if (smalbe) {
     qp.A = PFP;
     sp.set("Norm of A", norm);
-    if (!prec.is_null()) sp.sublist("MPRGP").set("Preconditioning in face", true);
+    sp.sublist("MPRGP").set(kPreconditioningInFace, !prec.is_null());
     SmalbeSolMgr<Scalar, MV, Operator> solver(qp, Q, sp, prec);
+    solver.setOutputStream(out_);
     solver.setAugmentedHessian(H);
     // SMALBE's equality multiplier of the previous solve, moved into the new range(Q).
     // Otherwise, from the geometry: with lambda = lambda~ + mu, the KKT conditions read
@@ -536,8 +554,9 @@ DualResult FetiSolver::solveQp(const std::string& method) {
     qp.A = H;
     // ||P F P + rho Q|| = max(||P F P||, rho): P and Q are complementary orthogonal projectors.
     if (mp.get<double>("Norm of A") == 0.0) mp.set("Norm of A", std::max(norm, result.rho));
-    if (!prec.is_null()) mp.set("Preconditioning in face", true);
+    mp.set(kPreconditioningInFace, !prec.is_null());
     Mgr solver(qp, mp, prec);
+    solver.setOutputStream(out_);
     ret = solver.solve();
     result.qp = solver.counters();
     Vector qmu(map);
@@ -654,7 +673,7 @@ void FetiSolver::requireNoRowOnEliminatedDofs() const {
         break;
       }
   }
-  throwOnAnyRank(*comm_, error);
+  throwIfAnyRankFailed(*comm_, error);
 }
 
 std::vector<std::vector<FetiSolver::InequalityOnDof>>

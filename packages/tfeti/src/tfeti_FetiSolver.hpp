@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "tfeti_CoarseSpace.hpp"
+#include "tfeti_CollectiveError.hpp"
 #include "tfeti_DualOperators.hpp"
 #include "tfeti_Pcpg.hpp"
 #include "tfeti_QpProblem.hpp"
@@ -87,6 +88,11 @@ class FetiSolver {
   // solver" (cholmod | klu2 | tacho), "Dual solver" (auto | PCPG | SMALBE | penalty) and the
   // sublists "PCPG", "MPRGP", "SMALBE" and "Penalty".
   static Teuchos::RCP<const Teuchos::ParameterList> validParameters();
+  // "Preconditioning in face" is a parameter of the FETI list only: the solver sets it for MPRGP
+  // (alone or inside SMALBE). Throws std::invalid_argument, saying where it belongs, when it is
+  // in the "MPRGP" or "SMALBE"/"MPRGP" sublist of `feti` (call before validating a list that
+  // holds the FETI list; the constructor calls it).
+  static void rejectMisplacedParameters(const Teuchos::ParameterList& feti);
   // The dual solver "Dual solver" (a validated FETI list) selects for a problem with this many
   // inequality rows; throws std::invalid_argument when it cannot handle them (checkable before
   // any set-up, e.g. by a dry run).
@@ -96,6 +102,8 @@ class FetiSolver {
   static bool inequalitiesTied(const Teuchos::ParameterList& feti);
 
   // local: the subdomains assigned to this rank (see subdomainsOfRank), in increasing id order.
+  // Every size and index of `local` is checked first (tfeti_InputChecks.hpp); an error found on
+  // any rank is thrown on every rank as CollectiveError.
   // inequalities: the non-penetration rows this rank contributes (see buildTearing).
   // equalities: the equality rows with right-hand sides this rank contributes (see above).
   FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
@@ -104,6 +112,9 @@ class FetiSolver {
              const std::vector<EqualityRow>& equalities = {});
 
   DualResult solve();
+  // Progress lines of PCPG, MPRGP and SMALBE (their "Verbosity") go here, e.g. a
+  // Teuchos::FancyOStream; null (default): std::cout. Its format state is never changed.
+  void setOutputStream(Teuchos::RCP<std::ostream> os) { out_ = std::move(os); }
 
   // For nonlinear drivers, which keep K (and its factorizations) and change the rest between
   // solves: new loads f for the local subdomains and new inequality rows (contact rows on the
@@ -202,6 +213,7 @@ class FetiSolver {
   Teuchos::RCP<MultiVector> f_, u_vec_;
   std::vector<std::vector<double>> u_;
   FetiTimings timings_;
+  Teuchos::RCP<std::ostream> out_;
 };
 
 Formulation parseFormulation(const std::string& name);

@@ -319,10 +319,12 @@ template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::record(const char* kind) {
   counters_.history.push_back(gpNorm_);
   if (opts_.verbosity >= 2 && root_) {
-    std::ostream& os = opts_.out != nullptr ? *opts_.out : std::cout;
+    // Formatted apart: the target stream's precision and flags stay the caller's.
+    std::ostringstream os;
     os << "  MPRGP " << std::setw(5) << iter_ + 1 << "  " << std::left << std::setw(28) << kind
        << std::right << " ||g^P||/||b|| = " << std::scientific << std::setprecision(3)
-       << gpNorm_ / opts_.printScale << std::defaultfloat << "\n";
+       << gpNorm_ / opts_.printScale << "\n";
+    (opts_.out != nullptr ? *opts_.out : std::cout) << os.str() << std::flush;
   }
 }
 

@@ -32,6 +32,7 @@
 #include <Teuchos_RCP.hpp>
 
 #include "tfeti_QpProblem.hpp"
+#include "tfeti_SolverOutput.hpp"
 
 namespace tfeti {
 
@@ -61,6 +62,9 @@ class MprgpSolMgr {
   // g = A x - b at the initial guess x, known to the caller (SMALBE: the last inner gradient
   // plus the multiplier change); saves the first multiplication. Ignored when x is infeasible.
   void setInitialGradient(Teuchos::RCP<const MV> g) { g0_ = std::move(g); }
+  // Progress lines (Verbosity >= 1, rank 0) go here, e.g. a Teuchos::FancyOStream; null:
+  // std::cout. Its format state is never changed.
+  void setOutputStream(Teuchos::RCP<std::ostream> os) { out_.setStream(std::move(os)); }
 
   // Throws std::runtime_error for a Hessian that is not positive definite on a free set and for
   // NaN/Inf in the data; otherwise Converged, or Unconverged with counters().message saying why.
@@ -87,6 +91,7 @@ class MprgpSolMgr {
   QpCounters counters_;
   Teuchos::RCP<const MV> g_, g0_;
   int numIters_ = 0;
+  SolverOutput out_;
 };
 
 }  // namespace tfeti

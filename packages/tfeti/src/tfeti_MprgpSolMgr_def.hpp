@@ -13,6 +13,7 @@
 #include "tfeti_BoundTraits.hpp"
 #include "tfeti_MprgpIteration_def.hpp"
 #include "tfeti_MprgpSolMgr_decl.hpp"
+#include "tfeti_QpChecks.hpp"
 #include "tfeti_QpStatusTests.hpp"
 #include "tfeti_StrictParameters.hpp"
 
@@ -126,6 +127,7 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using BT = BoundTraits<S, MV>;
   counters_ = QpCounters{};
+  checkQpMaps(qp_, "MPRGP");
   MprgpIteration<S, MV, OP>::checkProblemData(qp_);
   const int verbosity = params_.get<int>("Verbosity");
   const bool root = BT::commRank(*qp_.x) == 0;
@@ -173,6 +175,7 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
   opts.projectedCgExpansion = params_.get<std::string>("Expansion step") == "projected CG";
   opts.printScale = scale;
   opts.verbosity = verbosity;
+  opts.out = &out_.stream();
   const Teuchos::RCP<const OP> M =
       params_.get<bool>("Preconditioning in face") ? M_ : Teuchos::RCP<const OP>();
   MprgpIteration<S, MV, OP> iteration(qp_, M, combo, opts);
@@ -216,11 +219,14 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
         << counters_.projectedGradientNorm / scale << " relative, tolerance "
         << params_.get<double>("Relative tolerance") << ")";
   counters_.message = msg.str();
-  if (verbosity >= 1 && root)
-    std::cout << "MPRGP: " << counters_.message << "; " << counters_.cgSteps << " CG, "
-              << counters_.expansionSteps << " expansion, " << counters_.proportioningSteps
-              << " proportioning steps, " << counters_.hessianMultiplications
-              << " multiplications by A, ||A|| = " << normA_ << std::endl;
+  if (verbosity >= 1 && root) {
+    auto line = SolverOutput::line();
+    line << "MPRGP: " << counters_.message << "; " << counters_.cgSteps << " CG, "
+         << counters_.expansionSteps << " expansion, " << counters_.proportioningSteps
+         << " proportioning steps, " << counters_.hessianMultiplications
+         << " multiplications by A, ||A|| = " << normA_ << "\n";
+    out_.write(line);
+  }
   return converged ? Belos::Converged : Belos::Unconverged;
 }
 

@@ -74,9 +74,12 @@ PcpgResult Pcpg::solve(const Vector& d, Vector& lambda, Vector& g) const {
     wNorm = w.norm2();
     ++it;
     res.history.push_back(wNorm / scale);
-    if (verbosity_ >= 2 && root)
-      std::cout << "  PCPG " << std::setw(4) << it << "  ||Pg||/||Pd|| = " << std::scientific
-                << std::setprecision(3) << wNorm / scale << std::defaultfloat << "\n";
+    if (verbosity_ >= 2 && root) {
+      auto line = SolverOutput::line();
+      line << "  PCPG " << std::setw(4) << it << "  ||Pg||/||Pd|| = " << std::scientific
+           << std::setprecision(3) << wNorm / scale << "\n";
+      out_.write(line);
+    }
     if (wNorm <= tol_ * scale) break;
     precondition(w, z);
     const double wzNew = w.dot(z);
@@ -87,9 +90,12 @@ PcpgResult Pcpg::solve(const Vector& d, Vector& lambda, Vector& g) const {
   res.projectedGradientNorm = wNorm;
   res.relativeResidual = wNorm / scale;
   res.converged = wNorm <= tol_ * scale;
-  if (verbosity_ >= 1 && root)
-    std::cout << "PCPG: " << (res.converged ? "converged" : "NOT converged") << " in " << it
-              << " iterations, ||Pg||/||Pd|| = " << res.relativeResidual << "\n";
+  if (verbosity_ >= 1 && root) {
+    auto line = SolverOutput::line();
+    line << "PCPG: " << (res.converged ? "converged" : "NOT converged") << " in " << it
+         << " iterations, ||Pg||/||Pd|| = " << res.relativeResidual << "\n";
+    out_.write(line);
+  }
   return res;
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tfeti_CoarseSpace.hpp"
+#include "tfeti_SolverOutput.hpp"
 
 namespace tfeti {
 
@@ -34,6 +35,8 @@ class Pcpg {
   // Solves from lambda (on entry the particular solution, G lambda = e; on exit the solution);
   // g returns F lambda - d.
   PcpgResult solve(const Vector& d, Vector& lambda, Vector& g) const;
+  // Progress lines (Verbosity >= 1, rank 0) go here; null: std::cout (never reformatted).
+  void setOutputStream(Teuchos::RCP<std::ostream> os) { out_.setStream(std::move(os)); }
 
  private:
   Teuchos::RCP<const Operator> F_;
@@ -42,6 +45,7 @@ class Pcpg {
   double tol_;
   int maxIter_;
   int verbosity_;
+  SolverOutput out_;
 };
 
 }  // namespace tfeti

@@ -70,6 +70,9 @@ class SmalbeSolMgr {
   void setAugmentedHessian(Teuchos::RCP<const OP> H) { augmented_ = std::move(H); }
   // Starting multiplier (in range(Q); default zero).
   void setInitialMultiplier(Teuchos::RCP<const MV> mu0) { mu0_ = std::move(mu0); }
+  // Progress lines of SMALBE and its inner MPRGP (Verbosity >= 1, rank 0) go here, e.g. a
+  // Teuchos::FancyOStream; null: std::cout. Its format state is never changed.
+  void setOutputStream(Teuchos::RCP<std::ostream> os) { out_.setStream(std::move(os)); }
 
   // Converged, or Unconverged with counters().message saying why. Throws like MPRGP.
   Belos::ReturnType solve();
@@ -92,6 +95,7 @@ class SmalbeSolMgr {
   QpCounters counters_;
   long long qApplies_ = 0;
   magnitude_type normA_ = 0, rho_ = 0, M_ = 0;
+  SolverOutput out_;
 };
 
 }  // namespace tfeti

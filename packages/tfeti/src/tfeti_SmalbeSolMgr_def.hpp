@@ -13,6 +13,7 @@
 #include "tfeti_BoundTraits.hpp"
 #include "tfeti_MprgpSolMgr_def.hpp"
 #include "tfeti_OperatorSum.hpp"
+#include "tfeti_QpChecks.hpp"
 #include "tfeti_QpStatusTests.hpp"
 #include "tfeti_SmalbeSolMgr_decl.hpp"
 #include "tfeti_StrictParameters.hpp"
@@ -90,6 +91,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
   using BT = BoundTraits<S, MV>;
   counters_ = QpCounters{};
   qApplies_ = 0;
+  checkQpMaps(qp_, "SMALBE", Q_.get());
   MprgpIteration<S, MV, OP>::checkProblemData(qp_);
   const int verbosity = params_.get<int>("Verbosity");
   const bool root = BT::commRank(*qp_.x) == 0;
@@ -147,6 +149,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
     MVT::MvAddMv(S(1), *qp_.b, S(-1), *mu_, *bInner);  // L's linear term: b - mu
     innerTest->setM(M_);
     MprgpSolMgr<S, MV, OP> mprgp(inner, innerParams, P_);
+    mprgp.setOutputStream(out_.getStream());
     mprgp.setNormOfA(normA_ + rho_);
     if (reuseGradient && k > 0) mprgp.setInitialGradient(gNext);
     mprgp.setConvergenceTest(innerTest, true);
@@ -191,16 +194,18 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
     // decision, and with it the iteration, would depend on the order of the reductions).
     const bool reduceM =
         !converged && k > 0 && lagrangian + std::max(noise, noisePrev) < lagrangianPrev + required;
-    if (verbosity >= 2 && root)
-      std::cout << "SMALBE " << std::setw(4) << k + 1 << "  ||g^P||/||b|| = " << std::scientific
-                << std::setprecision(3) << gp / scale
-                << "  ||A|| ||Qx||/||b|| = " << normA_ * qxNorm / scale
-                << "  M/||A|| = " << M_ / normA_ << "  MPRGP steps " << mprgp.getNumIters()
-                << "  L increase " << (k > 0 ? lagrangian - lagrangianPrev : S(0)) << " (needed "
-                << required << (reduceM ? ", M reduced)" : ")") << std::fixed
-                << std::setprecision(2) << "  [QP "
-                << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
-                << " s]" << std::defaultfloat << std::setprecision(6) << std::endl;
+    if (verbosity >= 2 && root) {
+      auto line = SolverOutput::line();
+      line << "SMALBE " << std::setw(4) << k + 1 << "  ||g^P||/||b|| = " << std::scientific
+           << std::setprecision(3) << gp / scale
+           << "  ||A|| ||Qx||/||b|| = " << normA_ * qxNorm / scale << "  M/||A|| = " << M_ / normA_
+           << "  MPRGP steps " << mprgp.getNumIters() << "  L increase "
+           << (k > 0 ? lagrangian - lagrangianPrev : S(0)) << " (needed " << required
+           << (reduceM ? ", M reduced)" : ")") << std::fixed << std::setprecision(2) << "  [QP "
+           << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+           << " s]\n";
+      out_.write(line);
+    }
     if (converged) {
       ++k;
       break;
@@ -233,11 +238,14 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
     msg << "; some inner MPRGP solves hit their \"Maximum iterations\" before reaching the "
            "inner precision";
   counters_.message = msg.str();
-  if (verbosity >= 1 && root)
-    std::cout << "SMALBE: " << counters_.message << "; " << counters_.cgSteps << " CG, "
-              << counters_.expansionSteps << " expansion, " << counters_.proportioningSteps
-              << " proportioning steps, " << counters_.hessianMultiplications
-              << " Hessian multiplications, rho = " << rho_ << ", final M = " << M_ << std::endl;
+  if (verbosity >= 1 && root) {
+    auto line = SolverOutput::line();
+    line << "SMALBE: " << counters_.message << "; " << counters_.cgSteps << " CG, "
+         << counters_.expansionSteps << " expansion, " << counters_.proportioningSteps
+         << " proportioning steps, " << counters_.hessianMultiplications
+         << " Hessian multiplications, rho = " << rho_ << ", final M = " << M_ << "\n";
+    out_.write(line);
+  }
   return converged ? Belos::Converged : Belos::Unconverged;
 }
 

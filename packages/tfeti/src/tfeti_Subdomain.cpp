@@ -59,6 +59,10 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
   // Sizes first, in the caller's terms: everything below indexes by them.
   const auto fail = [&](const std::string& what) { throw std::invalid_argument(name() + what); };
   if (dofsPerNode < 1) fail(": " + std::to_string(dofsPerNode) + " dofs per node");
+  if (const std::string e = csrError(K_, "K"); !e.empty()) fail(": " + e);
+  // The factorizations read one triangle of K: an unsymmetric K would be solved as another
+  // matrix without a word. Assembly rounding stays far below this tolerance.
+  if (const std::string e = asymmetryError(K_, "K", 1e-10); !e.empty()) fail(": " + e);
   if (kernel.kernel.empty()) {
     try {
       rigidModesPerPiece(kernel.dim, dofsPerNode);
@@ -116,8 +120,8 @@ std::string Subdomain::name() const {
 
 void Subdomain::setLoad(std::vector<double> f) {
   if (static_cast<int>(f.size()) != K_.rows)
-    throw std::invalid_argument("subdomain " + std::to_string(id_) + ": load of size " +
-                                std::to_string(f.size()) + ", expected " + std::to_string(K_.rows));
+    throw std::invalid_argument(name() + ": the load vector f has " + std::to_string(f.size()) +
+                                " entries, K has " + std::to_string(K_.rows) + " rows");
   f_ = std::move(f);
   for (int d : dirichlet_) f_[d] = 0.0;
 }
