@@ -485,13 +485,6 @@ void validateDriverParameters(ParameterList& params, const std::string& source) 
           throw std::invalid_argument(
               "Scalability: \"Subdomains per side\" " + std::to_string(hinv) + " x \"H over h\" " +
               std::to_string(ratio) + " elements per side; at most " + std::to_string(1 << 15));
-    if (params.get<std::string>("Problem") == "nonlinear_contact" &&
-        params.sublist("Contact problem").get<Array<std::string>>("Prescribed boundaries").size() >
-            0)
-      throw std::invalid_argument(
-          "Contact problem: \"Prescribed boundaries\" is available for Problem = "
-          "elastic_contact; the nonlinear loop (nonlinear_contact) does not apply prescribed "
-          "displacements yet");
     for (const auto& p : sc.get<Array<std::string>>("Dual solvers"))
       if (p != "SMALBE" && p != "penalty")
         throw std::invalid_argument("Scalability: \"Dual solvers\" has \"" + p +

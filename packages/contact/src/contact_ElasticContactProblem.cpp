@@ -135,12 +135,16 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     } catch (const std::exception& e) {
       throw std::invalid_argument(std::string("Bodies: ") + e.what());
     }
-    // A body cannot have more METIS parts than elements; name the parameter that asks for them.
+    // A body cannot have more METIS parts than elements; name the parameter that asks for them
+    // (and the size factor when it is what made the mesh so coarse).
+    std::ostringstream factor;
+    if (spec.meshOptions.sizeFactor != 1.0)
+      factor << " at \"Mesh size factor\" " << spec.meshOptions.sizeFactor;
     if (body.subdomains > gb->numElements())
       throw std::invalid_argument("Contact problem: \"Subdomains per body\" asks for " +
                                   std::to_string(body.subdomains) + " subdomains of body \"" +
                                   body.name + "\", which has " + std::to_string(gb->numElements()) +
-                                  " elements");
+                                  " elements" + factor.str());
     BodyPartition part;
     try {
       part = partitionBody(mesh, *gb, body.subdomains, p.numSubdomains());

@@ -257,8 +257,8 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   const ParameterList feti = fetiParameters(params, spec);
   const int verbosity = params.sublist("Output").get<int>("Verbosity");
   ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
-  tfeti::FetiSolver solver(comm, problem.numSubdomains(), problem.local, feti,
-                           problem.inequalities, problem.equalities);
+  tfeti::FetiSolver solver(comm, problem.numSubdomains(), problem.local, feti, problem.inequalities,
+                           problem.equalities);
   const tfeti::DualResult result = solver.solve();
   const tfeti::ConstraintReport report = solver.constraintReport();
 
@@ -369,7 +369,7 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   if (nonlinear) {
     const NonlinearOptions options = nonlinearOptionsFrom(params);
     checkNonlinearOptionsFor(options, problem.dim(), spec.obstacle.has_value());
-    requireLoadOrMotion(*comm, problem.local, options);
+    requireLoadOrMotion(*comm, problem.local, options, !problem.prescribed.empty());
   }
   int restartStep = -1;
   if (nonlinear && params.sublist("Nonlinear").get<bool>("Restart")) {

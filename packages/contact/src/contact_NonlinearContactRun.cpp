@@ -17,6 +17,7 @@
 #include "contact_NonlinearModel.hpp"
 #include "contact_NonlinearOptions.hpp"
 #include "contact_NonlinearStepOutput.hpp"
+#include "contact_PrescribedDisplacement.hpp"
 
 namespace contact {
 
@@ -53,8 +54,8 @@ double requireLoad(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainDa
 }
 
 double requireLoadOrMotion(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local,
-                           const NonlinearOptions& options) {
-  if (options.obstacleDisplacement.empty()) return requireLoad(comm, local);
+                           const NonlinearOptions& options, bool prescribedMotion) {
+  if (options.obstacleDisplacement.empty() && !prescribedMotion) return requireLoad(comm, local);
   Field f;
   for (const auto& s : local) f.push_back(s.f);
   return globalNorm(comm, f);
@@ -106,7 +107,8 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   ElasticContactProblem& problem = model.problem;
   const int dim = problem.dim();
   checkNonlinearOptionsFor(opt, dim, spec.obstacle.has_value());
-  const double loadNorm = requireLoadOrMotion(*comm, problem.local, opt);
+  const double loadNorm =
+      requireLoadOrMotion(*comm, problem.local, opt, !problem.prescribed.empty());
   const double* F = problem.appliedForce;
   const double appliedForce = dim == 3 ? std::hypot(F[0], F[1], F[2]) : std::hypot(F[0], F[1]);
   // The contact force is reported along the applied load, or along the obstacle's motion.
@@ -117,6 +119,13 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
     double n = 0.0;
     for (double v : opt.obstacleDisplacement) n += v * v;
     for (int c = 0; c < dim; ++c) loadDirection[c] = opt.obstacleDisplacement[c] / std::sqrt(n);
+  } else if (!spec.prescribed.empty()) {
+    // Driven by prescribed boundary displacements: the force along their direction (the sum of
+    // the prescribed vectors), as a load in that direction would be reported.
+    double n = 0.0;
+    for (const PrescribedDisplacement& p : spec.prescribed) loadDirection[p.component] += p.value;
+    for (int c = 0; c < dim; ++c) n += loadDirection[c] * loadDirection[c];
+    for (int c = 0; c < dim && n > 0.0; ++c) loadDirection[c] /= std::sqrt(n);
   }
 
   const std::string restartDir = dir + "/restart";
@@ -136,8 +145,11 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   if (root) std::filesystem::create_directories(restartDir);
 
   // K of the undeformed elastic bodies, factorized once; loads and rows change per iteration.
-  tfeti::FetiSolver solver(comm, problem.numSubdomains(), problem.local, params.sublist("FETI"),
-                           problem.inequalities);
+  // The prescribed displacements' rows are set per increment (LoadStepIteration); here at the
+  // state the run starts from, so that they exist from the start.
+  tfeti::FetiSolver solver(
+      comm, problem.numSubdomains(), problem.local, params.sublist("FETI"), problem.inequalities,
+      prescribedDisplacementRows(problem.local, problem.prescribed, history.loadFactor, model.u));
   for (auto& sd : problem.local) sd.K = tfeti::CsrMatrix();  // the solver holds its own copy
 
   LoadStepIteration iteration(comm, model, solver, opt, spec.slave, spec.master,

@@ -45,10 +45,11 @@ NonlinearHistory readRestart(const std::string& restartDir, const ElasticContact
                              std::vector<SubdomainRestart>& subdomains);
 // The norm of the external load of the subdomains (every rank); throws when no load is applied.
 double requireLoad(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local);
-// As requireLoad, but a prescribed obstacle motion ("Nonlinear"/"Obstacle displacement") may
-// drive the run alone: then 0 when no load is applied.
+// As requireLoad, but a prescribed obstacle motion ("Nonlinear"/"Obstacle displacement") or a
+// prescribed displacement of a boundary (`prescribedMotion`) may drive the run alone: then 0 when
+// no load is applied.
 double requireLoadOrMotion(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local,
-                           const NonlinearOptions& options);
+                           const NonlinearOptions& options, bool prescribedMotion);
 
 // 0: converged at load factor 1 (or stopped as asked by "Stop after step"); 3: a load step did
 // not converge after the allowed cut-backs (everything up to the last converged step written).

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "contact_ContactMaster.hpp"
+#include "contact_PrescribedDisplacement.hpp"
 
 namespace contact {
 
@@ -64,16 +65,24 @@ Field LoadStepIteration::incrementLoads(const Field& fint, double t) const {
   return rhs;
 }
 
+std::vector<tfeti::EqualityRow> LoadStepIteration::prescribedIncrementRows(const Field& u,
+                                                                           double t) const {
+  // The increment du must take every prescribed component from where u has it to t times its
+  // value: the rows du = t value - u (zero rows after the first iteration of a step).
+  return prescribedDisplacementRows(model_.problem.local, model_.problem.prescribed, t, u);
+}
+
 tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field& fint, double t,
                                                     int iteration) const {
   const Field rhs = incrementLoads(fint, t);
+  const std::vector<tfeti::EqualityRow> prescribed = prescribedIncrementRows(u, t);
   const bool refactor =
       options_.stiffness == "iteration" || (options_.stiffness == "step" && iteration == 1);
   if (refactor)
     solver_.updateStiffness(model_.tangent(u, options_.kinematics), model_.currentCoordinates(u),
-                            rhs, model_.problem.inequalities);
+                            rhs, model_.problem.inequalities, prescribed);
   else
-    solver_.update(rhs, model_.problem.inequalities);
+    solver_.update(rhs, model_.problem.inequalities, prescribed);
   return solver_.solve();
 }
 

@@ -60,10 +60,11 @@ class LoadStepIteration {
                                    int iteration) const;
 
  private:
-  // The right-hand sides of the increment's QP: t f - f_int(u) per subdomain. The equality rows
-  // B_E du = c_E keep c_E = 0 (FetiSolver's gluing and zero Dirichlet rows); prescribed
-  // Dirichlet values would enter here as c_E(t) - B_E u.
+  // The right-hand sides of the increment's QP: t f - f_int(u) per subdomain. The gluing and
+  // zero Dirichlet rows B_E du = 0 are FetiSolver's own.
   Field incrementLoads(const Field& fint, double t) const;
+  // The prescribed displacements' rows of the increment: c_E(t) - B_E u.
+  std::vector<tfeti::EqualityRow> prescribedIncrementRows(const Field& u, double t) const;
 
   Teuchos::RCP<const tfeti::Comm> comm_;
   NonlinearModel& model_;
