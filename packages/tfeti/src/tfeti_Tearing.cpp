@@ -355,12 +355,14 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   std::size_t numMyEq = 0;
   while (numMyEq < myRows.size() && myRows[numMyEq] < numEq) ++numMyEq;
   std::map<int, std::vector<LO>> groupLids;  // owned group -> local rows, ascending
-  for (std::size_t l = 0; l < numMyEq; ++l) groupLids[groupOf[myRows[l]]].push_back(static_cast<LO>(l));
+  for (std::size_t l = 0; l < numMyEq; ++l)
+    groupLids[groupOf[myRows[l]]].push_back(static_cast<LO>(l));
   for (auto& [group, lids] : groupLids) {
     const int m = static_cast<int>(lids.size());
     std::vector<std::map<std::pair<int, int>, double>> coefs(m);
     for (int i = 0; i < m; ++i)
-      for (const auto& e : entriesOf(myRows[lids[i]])) coefs[i][std::make_pair(e.subdomain, e.dof)] += e.coef;
+      for (const auto& e : entriesOf(myRows[lids[i]]))
+        coefs[i][std::make_pair(e.subdomain, e.dof)] += e.coef;
     std::vector<double> BBt(m * m, 0.0);
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < m; ++j)
