@@ -183,18 +183,8 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   if (!sp.prescribed.empty()) {
     s["prescribed_rows"] = static_cast<long long>(solver.userEqualityRows());
     s["equality_residual"] = solver.constraintReport().equalityResidual;
-    const std::vector<double> reactions = prescribedReactions(
-        solver, sp.prescribed, [&](const std::string& f) { return sp.faceNodes(f); });
-    Json list = Json::array();
-    for (std::size_t k = 0; k < reactions.size(); ++k) {
-      Json r = Json::object();
-      r["boundary"] = sp.prescribed[k].boundary;
-      r["component"] = sp.prescribed[k].component;
-      r["value"] = sp.prescribed[k].value;
-      r["reaction"] = reactions[k];
-      list.push(std::move(r));
-    }
-    s["prescribed"] = std::move(list);
+    s["prescribed"] = prescribedSummary(solver, sp.prescribed,
+                                        [&](const std::string& f) { return sp.faceNodes(f); });
   }
   if (out.get<bool>("Compare with direct solve")) {
     const double err = relativeErrorAgainstDirectSolve(sp, solver);

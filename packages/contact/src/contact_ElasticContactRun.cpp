@@ -321,21 +321,10 @@ int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList
   s["max_abs_u"] = maxAbsSolution(*comm, solver);
   if (!spec.prescribed.empty()) {
     s["prescribed_rows"] = static_cast<long long>(solver.userEqualityRows());
-    const std::vector<double> reactions =
-        prescribedReactions(solver, spec.prescribed, [&](const std::string& name) {
-          const auto nodes = boundaryNodeIds(problem.mesh, name);
-          return std::vector<long long>(nodes.begin(), nodes.end());
-        });
-    Json list = Json::array();
-    for (std::size_t k = 0; k < reactions.size(); ++k) {
-      Json r = Json::object();
-      r["boundary"] = spec.prescribed[k].boundary;
-      r["component"] = spec.prescribed[k].component;
-      r["value"] = spec.prescribed[k].value;
-      r["reaction"] = reactions[k];
-      list.push(std::move(r));
-    }
-    s["prescribed"] = std::move(list);
+    s["prescribed"] = prescribedSummary(solver, spec.prescribed, [&](const std::string& name) {
+      const auto nodes = boundaryNodeIds(problem.mesh, name);
+      return std::vector<long long>(nodes.begin(), nodes.end());
+    });
   }
   s["timings"] = timingsJson(solver.timings(), result.iterations);
   s["peak_rss_mb"] = peakRssMb(*comm);

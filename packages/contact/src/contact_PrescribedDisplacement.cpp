@@ -149,4 +149,20 @@ std::vector<double> prescribedReactions(const tfeti::FetiSolver& solver,
   return all;
 }
 
+Json prescribedSummary(const tfeti::FetiSolver& solver,
+                       const std::vector<PrescribedDisplacement>& prescribed,
+                       const BoundaryNodes& nodesOf) {
+  const std::vector<double> reactions = prescribedReactions(solver, prescribed, nodesOf);
+  Json list = Json::array();
+  for (std::size_t k = 0; k < reactions.size(); ++k) {
+    Json r = Json::object();
+    r["boundary"] = prescribed[k].boundary;
+    r["component"] = prescribed[k].component;
+    r["value"] = prescribed[k].value;
+    r["reaction"] = reactions[k];
+    list.push(std::move(r));
+  }
+  return list;
+}
+
 }  // namespace contact

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "contact_Json.hpp"
 #include "tfeti_FetiSolver.hpp"
 #include "tfeti_StrictParameters.hpp"
 
@@ -73,6 +74,12 @@ std::vector<tfeti::EqualityRow> prescribedDisplacementRows(
 std::vector<double> prescribedReactions(const tfeti::FetiSolver& solver,
                                         const std::vector<PrescribedDisplacement>& prescribed,
                                         const BoundaryNodes& nodesOf);
+
+// The summary's record of the prescribed entries after a solve: per entry boundary, component,
+// value and reaction (prescribedReactions). Collective.
+Json prescribedSummary(const tfeti::FetiSolver& solver,
+                       const std::vector<PrescribedDisplacement>& prescribed,
+                       const BoundaryNodes& nodesOf);
 
 // "u_x = 0.001" (u for a scalar problem): for reports.
 std::string describePrescribed(const PrescribedDisplacement& p, int dofsPerNode);
