@@ -194,7 +194,7 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
   counters_.projectedGradientNorm = iteration.projectedGradientNorm();
   numIters_ = iteration.getNumIters();
   g_ = iteration.getGradient();
-  // Every step ends with a projection or only moves up from the bounds: this cannot fail.
+  // Every step ends with a projection onto the box or only moves into it: this cannot fail.
   TEUCHOS_TEST_FOR_EXCEPTION(!BT::isFeasible(*qp_.x, *qp_.lower, qp_.upper.get()), std::logic_error,
                              "MPRGP: internal error, the solution violates the bounds");
 

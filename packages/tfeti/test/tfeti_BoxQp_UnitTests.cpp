@@ -238,6 +238,29 @@ TEUCHOS_UNIT_TEST(BoxQp, EveryComponentFixed) {
   TEST_EQUALITY(solver.counters().projectedGradientNorm, 0.0);
 }
 
+// Narrow boxes [0, 0.01] and a load of +-10 on alternate components, from x = 0: the chopped
+// gradient -10 at the even components (on their lower bounds) makes a proportioning step whose
+// minimizing length (0.5) would carry them 500 times past their upper bounds. It must stop at
+// the upper bounds (length 0.001), which is the solution: x = u on even, l on odd components.
+TEUCHOS_UNIT_TEST(BoxQp, ProportioningStepStopsAtTheOtherBound) {
+  auto map = uniformMap(50, world());
+  BoxProblem p;
+  p.A = laplacian1D(map);
+  p.b = vectorOf(map, [](GO i) { return i % 2 == 0 ? 10.0 : -10.0; });
+  p.lower = vectorOf(map, [](GO) { return 0.0; });
+  p.upper = vectorOf(map, [](GO) { return 0.01; });
+  p.x = rcp(new Vector(map));
+  Mprgp solver(p.qp(), mprgpParams(1e-12));
+  const Belos::ReturnType result = solver.solve();
+  out << solver.counters().message << "\n";
+  TEST_EQUALITY(result, Belos::Converged);
+  TEST_EQUALITY(solver.counters().proportioningSteps, 1);
+  TEST_EQUALITY(solver.getNumIters(), 1);
+  expectKkt(p.kkt(), 1e-12 * p.b->norm2(), out, success);
+  auto exact = vectorOf(map, [](GO i) { return i % 2 == 0 ? 0.01 : 0.0; });
+  TEST_EQUALITY(maxAbsDiff(*p.x, *exact), 0.0);
+}
+
 // ---------------------------------------------------------------------------------------------
 // 2. Between two obstacles: reaction-diffusion -(c u')' + r u = f with a load that changes sign,
 // components of every kind (lower-only, boxed, free, upper-only, fixed), against projected
