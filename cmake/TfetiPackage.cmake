@@ -22,7 +22,11 @@ function(tfeti_package)
     target_link_options(${P_NAME} INTERFACE ${TFETI_SANITIZE_FLAGS})
   endif()
   target_compile_options(${P_NAME} PRIVATE -Wall -Wextra -Wno-unused-parameter)
-  set_target_properties(${P_NAME} PROPERTIES EXPORT_NAME ${P_NAME} OUTPUT_NAME tfeti_${P_NAME})
+  # No <name>_EXPORTS define for a shared build: no code uses it (every symbol is visible), and
+  # without it a shared and a static build compile each object with the same command (both with
+  # -fPIC), so that ccache serves one from the other (docs/shared_libraries.md).
+  set_target_properties(${P_NAME} PROPERTIES EXPORT_NAME ${P_NAME} OUTPUT_NAME tfeti_${P_NAME}
+                                             DEFINE_SYMBOL "")
   if(P_NAME STREQUAL "tfeti")
     set_target_properties(${P_NAME} PROPERTIES OUTPUT_NAME tfeti)
   endif()

@@ -2,7 +2,8 @@
 # projects against it with find_package: SOURCE (all packages) and TFETI_SOURCE (tfeti alone,
 # which must not need Gmsh). They set no compiler or linker flags of their own: what they need
 # comes with the exported targets. FLAGS (the sanitizer flags of a TFETI_SANITIZE build, or empty)
-# must then appear on every compile and link line of the consumers.
+# must then appear on every compile and link line of the consumers. With SHARED_FROM the
+# installed tree is a shared build made here (see below), so that both kinds are covered.
 set(prefix ${WORK}/prefix)
 file(REMOVE_RECURSE ${WORK})
 function(run step)
@@ -12,7 +13,29 @@ function(run step)
   endif()
   set(out "${out}" PARENT_SCOPE)
 endfunction()
+# SHARED_FROM (a source tree): build the packages there first as shared libraries (tests off,
+# the compiler launcher LAUNCHER, e.g. ccache, when given), and install that build; then the
+# installed tfeti_contact must run through its relative RPATH with the build tree gone.
+if(SHARED_FROM)
+  set(BUILD ${WORK}/package)
+  set(launcher)
+  if(LAUNCHER)
+    set(launcher "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
+  endif()
+  run("${CMAKE_COMMAND};-S;${SHARED_FROM};-B;${BUILD};-DCMAKE_BUILD_TYPE=Release;-DBUILD_SHARED_LIBS=ON;-DTFETI_ENABLE_TESTS=OFF;${launcher}")
+  run("${CMAKE_COMMAND};--build;${BUILD};-j2")
+endif()
 run("${CMAKE_COMMAND};--install;${BUILD};--prefix;${prefix}")
+if(SHARED_FROM)
+  foreach(lib tfeti tfeti_plasticity tfeti_contact)
+    file(GLOB found ${prefix}/lib*/lib${lib}.so)
+    if(NOT found)
+      message(FATAL_ERROR "the shared build installed no lib${lib}.so under ${prefix}")
+    endif()
+  endforeach()
+  file(REMOVE_RECURSE ${BUILD})
+  run("${prefix}/bin/tfeti_contact;--print-parameters")
+endif()
 foreach(project consumer tfeti_only)
   if(project STREQUAL "consumer")
     set(src ${SOURCE})

@@ -1,5 +1,8 @@
 #include "tfeti_FetiSolver.hpp"
 
+#include "tfeti_SolverConventions.hpp"
+#include "tfeti_TpetraInterface.hpp"
+
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
@@ -65,6 +68,23 @@ void FetiSolver::rejectMisplacedParameters(const Teuchos::ParameterList& feti) {
   if (feti.isSublist("MPRGP")) misplaced(feti.sublist("MPRGP"), "\"MPRGP\"");
   if (feti.isSublist("SMALBE") && feti.sublist("SMALBE").isSublist("MPRGP"))
     misplaced(feti.sublist("SMALBE").sublist("MPRGP"), "\"SMALBE\" / \"MPRGP\"");
+}
+
+void FetiSolver::applySolverAliases(Teuchos::ParameterList& feti) {
+  const auto apply = [&](const std::vector<std::string>& path, const std::string& maxIterations) {
+    Teuchos::ParameterList* list = &feti;
+    std::string name;
+    for (const std::string& p : path) {
+      if (!list->isSublist(p)) return;
+      list = &list->sublist(p);
+      name += (name.empty() ? "" : "/") + p;
+    }
+    applyParameterAliases(*list, "FETI/" + name, belosAliases(maxIterations));
+  };
+  apply({"PCPG"}, "Maximum iterations");
+  apply({"MPRGP"}, "Maximum iterations");
+  apply({"SMALBE"}, "Maximum outer iterations");
+  apply({"SMALBE", "MPRGP"}, "Maximum iterations");
 }
 
 Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
@@ -165,7 +185,19 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       data_(std::move(local)),
       equalities_(equalities) {
   rejectMisplacedParameters(params_);
+  applySolverAliases(params_);
   params_.validateParametersAndSetDefaults(*validParameters());
+  // Subdomain matrices given as Tpetra::CrsMatrix become CSR arrays (checked with the rest).
+  collectively(*comm_, [&] {
+    for (auto& sd : data_) {
+      if (sd.tpetraK.is_null()) continue;
+      const std::string what = "subdomain " + std::to_string(sd.mesh.id) + ": tpetraK";
+      if (sd.K.rows != 0 || !sd.K.rowPtr.empty())
+        throw std::invalid_argument(what + " and K are both given; give one");
+      sd.K = csrFromTpetra(*sd.tpetraK, what);
+      sd.tpetraK = Teuchos::null;
+    }
+  });
   // Every size the solver indexes by, on every rank, before anything is built from it.
   checkSubdomainInput(*comm_, numSubdomains_, data_);
   // A rank may hold no subdomain; every rank must still agree on the dofs per node.
@@ -723,6 +755,14 @@ std::size_t FetiSolver::globalPreconditionerFactorBytes() const {
   for (const auto& s : subdomains_) mine += s->preconditionerFactorBytes();
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &mine, &all);
   return all;
+}
+
+Teuchos::RCP<MultiVector> FetiSolver::solution(const Teuchos::RCP<const Map>& untornMap) const {
+  TEUCHOS_TEST_FOR_EXCEPTION(u_.size() != data_.size(), std::logic_error,
+                             "FetiSolver::solution: no solution yet (call solve() first)");
+  std::vector<std::vector<GO>> nodes;
+  for (const auto& sd : data_) nodes.push_back(sd.mesh.globalNode);
+  return untornVector(untornMap, nodes, dofsPerNode_, u_);
 }
 
 }  // namespace tfeti

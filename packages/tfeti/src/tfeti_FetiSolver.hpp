@@ -50,6 +50,9 @@ struct SubdomainData {
   SubdomainMesh mesh;
   int dofsPerNode = 1;
   CsrMatrix K;
+  // K as a Tpetra::CrsMatrix instead (K then empty): all rows on this rank, row ids 0 .. n-1 the
+  // local dofs (tfeti_TpetraInterface.hpp); converted to K by FetiSolver's constructor.
+  Teuchos::RCP<const CrsMatrix> tpetraK;
   std::vector<double> f;
   std::vector<double> kernel;  // optional: column-major numDofs x k, checked by ||K R||
 };
@@ -93,6 +96,11 @@ class FetiSolver {
   // in the "MPRGP" or "SMALBE"/"MPRGP" sublist of `feti` (call before validating a list that
   // holds the FETI list; the constructor calls it).
   static void rejectMisplacedParameters(const Teuchos::ParameterList& feti);
+  // Replaces Belos's names ("Convergence Tolerance", "Maximum Iterations") in the "PCPG",
+  // "MPRGP", "SMALBE" and "SMALBE"/"MPRGP" sublists by the package's (tfeti_SolverConventions.hpp;
+  // both names with different values: std::invalid_argument). The constructor calls it; call it
+  // before validating a list that holds the FETI list.
+  static void applySolverAliases(Teuchos::ParameterList& feti);
   // The dual solver "Dual solver" (a validated FETI list) selects for a problem with this many
   // inequality rows; throws std::invalid_argument when it cannot handle them (checkable before
   // any set-up, e.g. by a dry run).
@@ -165,6 +173,11 @@ class FetiSolver {
 
   // Primal solution of the i-th local subdomain (after solve()).
   const std::vector<double>& solution(std::size_t i) const { return u_[i]; }
+  // Collective. The primal solution on the caller's untorn map: entry dofsPerNode * global node +
+  // component (SubdomainMesh::globalNode), the mean over the subdomains sharing the dof (equal to
+  // the solver's tolerance). The map must hold exactly the dofs of all subdomains, distributed
+  // in any way; otherwise CollectiveError on every rank.
+  Teuchos::RCP<MultiVector> solution(const Teuchos::RCP<const Map>& untornMap) const;
   const SubdomainList& subdomains() const { return subdomains_; }
   const std::vector<SubdomainData>& data() const { return data_; }
 

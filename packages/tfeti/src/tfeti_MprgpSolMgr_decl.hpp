@@ -20,7 +20,15 @@
 //  "Power iterations"     20     power iterations for the estimate of ||A||
 //  "Preconditioning in face" false  CG directions M phi restricted to the free set (needs the
 //                                constructor's preconditioner M ~ A^{-1})
-//  "Verbosity"            0      0 silent, 1 summary, 2 every step (rank 0, std::cout)
+//  "Verbosity"            0      0 silent, 1 summary, 2 every step (rank 0, std::cout or the
+//                                stream given), or a Belos::MsgType mask: FinalSummary (the
+//                                summary), IterationDetails (every step), Warnings (a line when
+//                                not converged), TimingDetails (the solve's and the Hessian's
+//                                time), StatusTestDetails (the status tests at the end)
+// Belos's names are accepted as aliases: "Convergence Tolerance" = "Relative tolerance",
+// "Maximum Iterations" = "Maximum iterations" (tfeti_SolverConventions.hpp). Timers (Teuchos::
+// TimeMonitor): "tfeti: MPRGP solve" per solve, "tfeti: Hessian apply" per multiplication by A
+// (Tpetra operators), the power iterations included.
 //
 // The estimate of ||A||: ||A v_k|| for the k-th normalized power iterate v_k, started from a
 // deterministic vector that depends only on global indices (the same on any number of ranks),
@@ -32,6 +40,7 @@
 #include <Teuchos_RCP.hpp>
 
 #include "tfeti_QpProblem.hpp"
+#include "tfeti_SolverConventions.hpp"
 #include "tfeti_SolverOutput.hpp"
 
 namespace tfeti {
@@ -46,10 +55,26 @@ class MprgpSolMgr {
   // "Preconditioning in face" = true.
   MprgpSolMgr(const BoundConstrainedQp<S, MV, OP>& qp, const Teuchos::ParameterList& params,
               Teuchos::RCP<const OP> preconditioner = Teuchos::null);
+  // Belos's way: construct, then setProblem and setParameters (defaults until then).
+  MprgpSolMgr();
 
+  // The problem to solve (A, b, lower and x must be set); the next solve() starts from qp.x.
+  void setProblem(const BoundConstrainedQp<S, MV, OP>& qp);
+  const BoundConstrainedQp<S, MV, OP>& getProblem() const { return qp_; }
+  // M ~ A^{-1} for "Preconditioning in face".
+  void setPreconditioner(Teuchos::RCP<const OP> preconditioner);
+  // Changes the parameters given (Belos aliases resolved) and keeps the others as they are.
+  void setParameters(const Teuchos::ParameterList& params);
+  void setParameters(const Teuchos::RCP<Teuchos::ParameterList>& params) { setParameters(*params); }
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
-  // The parameters in use, defaults filled in.
+  // The parameters in use, defaults filled in, under the package's names.
   const Teuchos::ParameterList& getCurrentParameters() const { return params_; }
+  // Resolves the Belos aliases in params, validates it against getValidParameters() (defaults
+  // filled in) and checks the values; throws std::invalid_argument naming the parameter.
+  static void checkParameters(Teuchos::ParameterList& params);
+  // Forgets the results of the last solve (counters, gradient, the initial gradient given) and,
+  // with Belos::Problem, the estimate of ||A|| (the problem changed). Settings stay.
+  void reset(Belos::ResetType type = Belos::Problem);
 
   // An extra convergence test, ORed with the projected-gradient test, or (replaceDefault) used
   // instead of it. "Maximum iterations" always applies. Converged means this test (or the
@@ -75,6 +100,8 @@ class MprgpSolMgr {
   // g = A x - b at the solution (recursively updated between restarts of MPRGP).
   Teuchos::RCP<const MV> getGradient() const { return g_; }
   int getNumIters() const { return numIters_; }
+  // ||g^P|| / ||b|| reached by the last solve (the quantity "Relative tolerance" bounds).
+  magnitude_type achievedTol() const { return achievedTol_; }
 
   // ||A v_k|| * 1.05 after k power iterations from a deterministic start (see above); adds the k
   // multiplications to *multiplications when given.
@@ -92,7 +119,10 @@ class MprgpSolMgr {
   QpCounters counters_;
   Teuchos::RCP<const MV> g_, g0_;
   int numIters_ = 0;
+  magnitude_type achievedTol_ = 0;
   SolverOutput out_;
+  void checkReady() const;
+  Belos::ReturnType solveTimed();
 };
 
 }  // namespace tfeti

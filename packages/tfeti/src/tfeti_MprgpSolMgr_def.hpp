@@ -3,6 +3,9 @@
 #include <BelosStatusTestMaxIters.hpp>
 #include <Teuchos_Assert.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_TimeMonitor.hpp>
+
+#include <chrono>
 
 #include <cmath>
 #include <iomanip>
@@ -16,6 +19,7 @@
 #include "tfeti_QpChecks.hpp"
 #include "tfeti_QpStatusTests.hpp"
 #include "tfeti_StrictParameters.hpp"
+#include "tfeti_TimedOperator.hpp"
 
 namespace tfeti {
 
@@ -46,39 +50,95 @@ Teuchos::RCP<const Teuchos::ParameterList> MprgpSolMgr<S, MV, OP>::getValidParam
     pl->set("Power iterations", 20, "power iterations for estimating ||A||", strict::count());
     pl->set("Preconditioning in face", false,
             "CG directions from the preconditioner restricted to the free set");
-    pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every step (rank 0)", strict::intBetween(0, 2));
+    pl->set("Verbosity", 0,
+            "0 silent, 1 summary, 2 every step (rank 0), or a sum of Belos::MsgType values "
+            "(Warnings 1, IterationDetails 2, FinalSummary 8, TimingDetails 16, "
+            "StatusTestDetails 32)",
+            strict::intBetween(0, kAllMsgTypes));
   }
   return pl;
+}
+
+template <class S, class MV, class OP>
+void MprgpSolMgr<S, MV, OP>::checkParameters(Teuchos::ParameterList& params) {
+  applyParameterAliases(params, "MPRGP", belosAliases("Maximum iterations"));
+  params.validateParametersAndSetDefaults(*getValidParameters());
+  auto fail = [](bool bad, const std::string& what) {
+    TEUCHOS_TEST_FOR_EXCEPTION(bad, std::invalid_argument, "MPRGP: parameter " << what);
+  };
+  const double tol = params.get<double>("Relative tolerance");
+  const double factor = params.get<double>("Step length factor");
+  fail(!(tol >= 0.0), "\"Relative tolerance\" must be >= 0");
+  fail(params.get<int>("Maximum iterations") < 1, "\"Maximum iterations\" must be >= 1");
+  fail(!(params.get<double>("Gamma") > 0.0), "\"Gamma\" must be > 0");
+  fail(!(factor > 0.0 && factor <= 2.0), "\"Step length factor\" must be in (0, 2]");
+  fail(!(params.get<double>("Norm of A") >= 0.0), "\"Norm of A\" must be >= 0 (0: estimate)");
+  fail(params.get<int>("Power iterations") < 1, "\"Power iterations\" must be >= 1");
+  verbosityMask(params.get<int>("Verbosity"), "MPRGP");
 }
 
 template <class S, class MV, class OP>
 MprgpSolMgr<S, MV, OP>::MprgpSolMgr(const BoundConstrainedQp<S, MV, OP>& qp,
                                     const Teuchos::ParameterList& params,
                                     Teuchos::RCP<const OP> preconditioner)
-    : qp_(qp), M_(std::move(preconditioner)), params_(params) {
-  params_.validateParametersAndSetDefaults(*getValidParameters());
-  auto fail = [](bool bad, const std::string& what) {
-    TEUCHOS_TEST_FOR_EXCEPTION(bad, std::invalid_argument, "MPRGP: parameter " << what);
-  };
-  const double tol = params_.get<double>("Relative tolerance");
-  const double factor = params_.get<double>("Step length factor");
-  fail(!(tol >= 0.0), "\"Relative tolerance\" must be >= 0");
-  fail(params_.get<int>("Maximum iterations") < 1, "\"Maximum iterations\" must be >= 1");
-  fail(!(params_.get<double>("Gamma") > 0.0), "\"Gamma\" must be > 0");
-  fail(!(factor > 0.0 && factor <= 2.0), "\"Step length factor\" must be in (0, 2]");
-  fail(!(params_.get<double>("Norm of A") >= 0.0), "\"Norm of A\" must be >= 0 (0: estimate)");
-  fail(params_.get<int>("Power iterations") < 1, "\"Power iterations\" must be >= 1");
-  const int verbosity = params_.get<int>("Verbosity");
-  fail(verbosity < 0 || verbosity > 2, "\"Verbosity\" must be 0, 1 or 2");
-  fail(params_.get<bool>("Preconditioning in face") && M_.is_null(),
-       "\"Preconditioning in face\" = true needs a preconditioner");
-  TEUCHOS_TEST_FOR_EXCEPTION(
-      qp_.A.is_null() || qp_.b.is_null() || qp_.lower.is_null() || qp_.x.is_null(),
-      std::invalid_argument, "MPRGP: A, b, lower and x of the problem must all be set");
+    : M_(std::move(preconditioner)) {
+  setParameters(params);
+  setProblem(qp);
+  checkReady();
+}
+
+template <class S, class MV, class OP>
+MprgpSolMgr<S, MV, OP>::MprgpSolMgr() {
+  setParameters(Teuchos::ParameterList("MPRGP"));
+}
+
+template <class S, class MV, class OP>
+void MprgpSolMgr<S, MV, OP>::setParameters(const Teuchos::ParameterList& params) {
+  // Aliases are resolved within the list given, so that a Belos name there replaces the
+  // package's name set earlier instead of conflicting with it.
+  Teuchos::ParameterList given = params;
+  applyParameterAliases(given, "MPRGP", belosAliases("Maximum iterations"));
+  Teuchos::ParameterList merged = params_.numParams() == 0 ? given : params_;
+  if (params_.numParams() != 0) merged.setParameters(given);
+  checkParameters(merged);
+  params_ = merged;
+  out_.setMask(verbosityMask(params_.get<int>("Verbosity"), "MPRGP"));
   if (params_.get<double>("Norm of A") > 0.0) {
     normA_ = params_.get<double>("Norm of A");
     normGiven_ = true;
   }
+}
+
+template <class S, class MV, class OP>
+void MprgpSolMgr<S, MV, OP>::setProblem(const BoundConstrainedQp<S, MV, OP>& qp) {
+  TEUCHOS_TEST_FOR_EXCEPTION(
+      qp.A.is_null() || qp.b.is_null() || qp.lower.is_null() || qp.x.is_null(),
+      std::invalid_argument, "MPRGP: A, b, lower and x of the problem must all be set");
+  qp_ = qp;
+}
+
+template <class S, class MV, class OP>
+void MprgpSolMgr<S, MV, OP>::setPreconditioner(Teuchos::RCP<const OP> preconditioner) {
+  M_ = std::move(preconditioner);
+}
+
+template <class S, class MV, class OP>
+void MprgpSolMgr<S, MV, OP>::checkReady() const {
+  TEUCHOS_TEST_FOR_EXCEPTION(qp_.A.is_null(), std::invalid_argument,
+                             "MPRGP: no problem to solve (setProblem was not called)");
+  TEUCHOS_TEST_FOR_EXCEPTION(
+      params_.get<bool>("Preconditioning in face") && M_.is_null(), std::invalid_argument,
+      "MPRGP: parameter \"Preconditioning in face\" = true needs a preconditioner");
+}
+
+template <class S, class MV, class OP>
+void MprgpSolMgr<S, MV, OP>::reset(Belos::ResetType type) {
+  counters_ = QpCounters{};
+  g_ = Teuchos::null;
+  g0_ = Teuchos::null;
+  numIters_ = 0;
+  achievedTol_ = 0;
+  if ((type & Belos::Problem) != 0 && !normGiven_) normA_ = 0;
 }
 
 template <class S, class MV, class OP>
@@ -124,16 +184,29 @@ typename MprgpSolMgr<S, MV, OP>::magnitude_type MprgpSolMgr<S, MV, OP>::estimate
 
 template <class S, class MV, class OP>
 Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
+  Teuchos::TimeMonitor monitor(*solverTimer("tfeti: MPRGP solve"));
+  const bool root = qp_.x.is_null() || BoundTraits<S, MV>::commRank(*qp_.x) == 0;
+  return out_.reportingErrors("MPRGP", root, [&] { return solveTimed(); });
+}
+
+template <class S, class MV, class OP>
+Belos::ReturnType MprgpSolMgr<S, MV, OP>::solveTimed() {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using BT = BoundTraits<S, MV>;
+  checkReady();
   counters_ = QpCounters{};
   checkQpMaps(qp_, "MPRGP");
   MprgpIteration<S, MV, OP>::checkProblemData(qp_);
-  const int verbosity = params_.get<int>("Verbosity");
   const bool root = BT::commRank(*qp_.x) == 0;
+  const auto start = std::chrono::steady_clock::now();
+  // The same problem with A under the "tfeti: Hessian apply" timer.
+  const auto hessianTimer = solverTimer("tfeti: Hessian apply");
+  const double hessianTime0 = hessianTimer->totalElapsedTime();
+  BoundConstrainedQp<S, MV, OP> timed = qp_;
+  timed.A = TimedOperator<S, MV, OP>::wrap(qp_.A, hessianTimer);
 
   if (!normGiven_)
-    normA_ = estimateNorm(*qp_.A, *qp_.x, params_.get<int>("Power iterations"),
+    normA_ = estimateNorm(*timed.A, *qp_.x, params_.get<int>("Power iterations"),
                           &counters_.hessianMultiplications);
   std::vector<magnitude_type> n(1);
   MVT::MvNorm(*qp_.b, n);
@@ -145,7 +218,7 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
     auto Ay = MVT::Clone(*qp_.x, 1);
     MVT::MvInit(*y, S(0));
     BT::project(*y, *qp_.lower, qp_.upper.get());
-    Belos::OperatorTraits<S, MV, OP>::Apply(*qp_.A, *y, *Ay);
+    Belos::OperatorTraits<S, MV, OP>::Apply(*timed.A, *y, *Ay);
     ++counters_.hessianMultiplications;
     MVT::MvNorm(*Ay, n);
     scale = n[0];
@@ -174,11 +247,11 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
   opts.optimalExpansion = params_.get<std::string>("Expansion step") == "optimal";
   opts.projectedCgExpansion = params_.get<std::string>("Expansion step") == "projected CG";
   opts.printScale = scale;
-  opts.verbosity = verbosity;
+  opts.verbosity = out_.wants(Belos::IterationDetails) ? 2 : 0;
   opts.out = &out_.stream();
   const Teuchos::RCP<const OP> M =
       params_.get<bool>("Preconditioning in face") ? M_ : Teuchos::RCP<const OP>();
-  MprgpIteration<S, MV, OP> iteration(qp_, M, combo, opts);
+  MprgpIteration<S, MV, OP> iteration(timed, M, combo, opts);
   if (!g0_.is_null() && BT::isFeasible(*qp_.x, *qp_.lower, qp_.upper.get()))
     iteration.setInitialGradient(g0_);
   iteration.initialize();
@@ -220,13 +293,29 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
         << counters_.projectedGradientNorm / scale << " relative, tolerance "
         << params_.get<double>("Relative tolerance") << ")";
   counters_.message = msg.str();
-  if (verbosity >= 1 && root) {
+  achievedTol_ = counters_.projectedGradientNorm / scale;
+  if (out_.wants(Belos::FinalSummary) && root) {
     auto line = SolverOutput::line();
     line << "MPRGP: " << counters_.message << "; " << counters_.cgSteps << " CG, "
          << counters_.expansionSteps << " expansion, " << counters_.proportioningSteps
          << " proportioning steps, " << counters_.hessianMultiplications
          << " multiplications by A, ||A|| = " << normA_ << "\n";
     out_.write(line);
+  } else if (!converged && out_.wants(Belos::Warnings) && root) {
+    out_.write("MPRGP: warning: " + counters_.message + "\n");
+  }
+  if (out_.wants(Belos::TimingDetails) && root) {
+    auto line = SolverOutput::line();
+    line << "MPRGP: solve " << std::scientific << std::setprecision(3)
+         << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+         << " s, of which " << hessianTimer->totalElapsedTime() - hessianTime0 << " s in "
+         << counters_.hessianMultiplications << " multiplications by A\n";
+    out_.write(line);
+  }
+  if (out_.wants(Belos::StatusTestDetails) && root) {
+    std::ostringstream tests;
+    combo->print(tests);
+    out_.write("MPRGP: status tests at the end:\n" + tests.str());
   }
   return converged ? Belos::Converged : Belos::Unconverged;
 }

@@ -1,12 +1,16 @@
 #include "tfeti_Pcpg.hpp"
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
 
+#include "tfeti_SolverConventions.hpp"
 #include "tfeti_StrictParameters.hpp"
+#include "tfeti_TimedOperator.hpp"
 
 namespace tfeti {
 
@@ -18,8 +22,10 @@ Teuchos::RCP<const Teuchos::ParameterList> Pcpg::validParameters() {
             strict::positive());
     pl->set("Maximum iterations", 1000, "iteration limit; reaching it is a failure",
             strict::count());
-    pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every iteration (rank 0)",
-            strict::intBetween(0, 2));
+    pl->set("Verbosity", 0,
+            "0 silent, 1 summary, 2 every iteration (rank 0), or a sum of Belos::MsgType "
+            "values (Warnings 1, IterationDetails 2, FinalSummary 8, TimingDetails 16)",
+            strict::intBetween(0, kAllMsgTypes));
   }
   return pl;
 }
@@ -27,14 +33,18 @@ Teuchos::RCP<const Teuchos::ParameterList> Pcpg::validParameters() {
 Pcpg::Pcpg(Teuchos::RCP<const Operator> F, const CoarseSpace& coarse,
            Teuchos::RCP<const Operator> preconditioner, const Teuchos::ParameterList& params)
     : F_(std::move(F)), coarse_(coarse), M_(std::move(preconditioner)) {
-  Teuchos::ParameterList p = params;
-  p.validateParametersAndSetDefaults(*validParameters());
-  tol_ = p.get<double>("Relative tolerance");
-  maxIter_ = p.get<int>("Maximum iterations");
-  verbosity_ = p.get<int>("Verbosity");
+  params_ = params;
+  applyParameterAliases(params_, "PCPG", belosAliases("Maximum iterations"));
+  params_.validateParametersAndSetDefaults(*validParameters());
+  tol_ = params_.get<double>("Relative tolerance");
+  maxIter_ = params_.get<int>("Maximum iterations");
+  out_.setMask(verbosityMask(params_.get<int>("Verbosity"), "PCPG"));
+  F_ = TimedOperator<Scalar, MultiVector, Operator>::wrap(F_, solverTimer("tfeti: Hessian apply"));
 }
 
-PcpgResult Pcpg::solve(const Vector& d, Vector& lambda, Vector& g) const {
+PcpgResult Pcpg::solve(const Vector& d, Vector& lambda, Vector& g) {
+  Teuchos::TimeMonitor monitor(*solverTimer("tfeti: PCPG solve"));
+  const auto start = std::chrono::steady_clock::now();
   const auto map = lambda.getMap();
   const bool root = map->getComm()->getRank() == 0;
   Vector w(map), z(map), p(map), q(map);
@@ -74,7 +84,7 @@ PcpgResult Pcpg::solve(const Vector& d, Vector& lambda, Vector& g) const {
     wNorm = w.norm2();
     ++it;
     res.history.push_back(wNorm / scale);
-    if (verbosity_ >= 2 && root) {
+    if (out_.wants(Belos::IterationDetails) && root) {
       auto line = SolverOutput::line();
       line << "  PCPG " << std::setw(4) << it << "  ||Pg||/||Pd|| = " << std::scientific
            << std::setprecision(3) << wNorm / scale << "\n";
@@ -90,12 +100,21 @@ PcpgResult Pcpg::solve(const Vector& d, Vector& lambda, Vector& g) const {
   res.projectedGradientNorm = wNorm;
   res.relativeResidual = wNorm / scale;
   res.converged = wNorm <= tol_ * scale;
-  if (verbosity_ >= 1 && root) {
+  if ((out_.wants(Belos::FinalSummary) || (!res.converged && out_.wants(Belos::Warnings))) &&
+      root) {
     auto line = SolverOutput::line();
     line << "PCPG: " << (res.converged ? "converged" : "NOT converged") << " in " << it
          << " iterations, ||Pg||/||Pd|| = " << res.relativeResidual << "\n";
     out_.write(line);
   }
+  if (out_.wants(Belos::TimingDetails) && root) {
+    auto line = SolverOutput::line();
+    line << "PCPG: solve " << std::scientific << std::setprecision(3)
+         << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+         << " s\n";
+    out_.write(line);
+  }
+  last_ = res;
   return res;
 }
 

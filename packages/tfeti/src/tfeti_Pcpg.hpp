@@ -5,6 +5,11 @@
 //
 // Stopping rule: ||P (F l - d)|| <= tolerance * ||P d||, the projected gradient relative to the
 // projected right-hand side (independent of the initial guess).
+// Belos conventions (tfeti_SolverConventions.hpp): "Convergence Tolerance" and "Maximum
+// Iterations" are aliases of "Relative tolerance" and "Maximum iterations"; "Verbosity" takes a
+// Belos::MsgType mask too (IterationDetails: every iteration, FinalSummary: the summary,
+// Warnings: a line when not converged, TimingDetails: the solve's time); timers "tfeti: PCPG
+// solve" and "tfeti: Hessian apply" (every application of F).
 #include <Teuchos_ParameterList.hpp>
 
 #include <functional>
@@ -28,13 +33,21 @@ class Pcpg {
   // Valid parameters with their defaults: "Relative tolerance" (1e-6), "Maximum iterations"
   // (1000), "Verbosity" (0: silent, 1: summary, 2: every iteration).
   static Teuchos::RCP<const Teuchos::ParameterList> validParameters();
+  static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters() {
+    return validParameters();
+  }
+  // The parameters in use, defaults filled in, under the package's names.
+  const Teuchos::ParameterList& getCurrentParameters() const { return params_; }
 
   Pcpg(Teuchos::RCP<const Operator> F, const CoarseSpace& coarse,
        Teuchos::RCP<const Operator> preconditioner, const Teuchos::ParameterList& params);
 
   // Solves from lambda (on entry the particular solution, G lambda = e; on exit the solution);
   // g returns F lambda - d.
-  PcpgResult solve(const Vector& d, Vector& lambda, Vector& g) const;
+  PcpgResult solve(const Vector& d, Vector& lambda, Vector& g);
+  // Of the last solve: iterations, and ||P g|| / ||P d|| (the quantity the tolerance bounds).
+  int getNumIters() const { return last_.iterations; }
+  double achievedTol() const { return last_.relativeResidual; }
   // Progress lines (Verbosity >= 1, rank 0) go here; null: std::cout (never reformatted).
   void setOutputStream(Teuchos::RCP<std::ostream> os) { out_.setStream(std::move(os)); }
 
@@ -42,10 +55,11 @@ class Pcpg {
   Teuchos::RCP<const Operator> F_;
   const CoarseSpace& coarse_;
   Teuchos::RCP<const Operator> M_;
+  Teuchos::ParameterList params_;
   double tol_;
   int maxIter_;
-  int verbosity_;
   SolverOutput out_;
+  PcpgResult last_;
 };
 
 }  // namespace tfeti

@@ -42,11 +42,22 @@
 //                                    ||A|| + rho (an upper bound of ||A + rho Q||, no power
 //                                    iterations); "Maximum iterations" limits each inner solve.
 // When b = 0, ||b|| in the tolerances is replaced by ||A P(0)|| as in MPRGP.
+// Belos's names are accepted as aliases (tfeti_SolverConventions.hpp): "Convergence Tolerance" =
+// "Relative tolerance", "Maximum Iterations" = "Maximum outer iterations" (and in the "MPRGP"
+// sublist as there). "Verbosity" also takes a Belos::MsgType mask: FinalSummary (the summary),
+// IterationDetails (a line per outer iteration), Warnings (a line when not converged),
+// TimingDetails, StatusTestDetails (the final test's values). Timers (Teuchos::TimeMonitor):
+// "tfeti: SMALBE solve", and the inner solves' "tfeti: MPRGP solve" and "tfeti: Hessian apply"
+// (the power iterations on A included).
+// The equality constraints C x = d of a user's problem become the Q and the shift this solver
+// takes through tfeti_EqualityConstraints.hpp.
 #include <BelosTypes.hpp>
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_RCP.hpp>
 
 #include "tfeti_QpProblem.hpp"
+#include "tfeti_SolverConventions.hpp"
+#include "tfeti_SolverOutput.hpp"
 
 namespace tfeti {
 
@@ -61,8 +72,22 @@ class SmalbeSolMgr {
                const Teuchos::ParameterList& params,
                Teuchos::RCP<const OP> preconditioner = Teuchos::null);
 
+  // Belos's way: construct, then setProblem and setParameters (defaults until then).
+  SmalbeSolMgr();
+
+  // The problem (A, b, lower, x and Q must be set); the next solve() starts from qp.x.
+  void setProblem(const BoundConstrainedQp<S, MV, OP>& qp, Teuchos::RCP<const OP> Q);
+  const BoundConstrainedQp<S, MV, OP>& getProblem() const { return qp_; }
+  void setPreconditioner(Teuchos::RCP<const OP> preconditioner) { P_ = std::move(preconditioner); }
+  // Changes the parameters given (Belos aliases resolved) and keeps the others as they are.
+  void setParameters(const Teuchos::ParameterList& params);
+  void setParameters(const Teuchos::RCP<Teuchos::ParameterList>& params) { setParameters(*params); }
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
+  // The parameters in use, defaults filled in, under the package's names.
   const Teuchos::ParameterList& getCurrentParameters() const { return params_; }
+  // Forgets the results of the last solve (counters, multiplier); the initial multiplier, the
+  // augmented Hessian and the settings stay.
+  void reset(Belos::ResetType type = Belos::Problem);
 
   // The augmented Hessian A + rho Q applied by the caller's own operator (e.g. one that shares
   // work between A and Q) instead of the OperatorSum of the two; its rho must be
@@ -82,6 +107,12 @@ class SmalbeSolMgr {
   // The equality multiplier mu (in range(Q)): A x - b + mu is the Lagrangian's gradient.
   Teuchos::RCP<const MV> getMultiplier() const { return mu_; }
   long long projectorApplications() const { return qApplies_; }
+  // Outer iterations of the last solve.
+  int getNumIters() const { return counters_.outerIterations; }
+  // ||g^P|| / ||b|| reached (the quantity "Relative tolerance" bounds) and ||A|| ||Q x|| / ||b||
+  // (bounded by "Equality tolerance").
+  magnitude_type achievedTol() const { return achievedTol_; }
+  magnitude_type achievedEqualityTol() const { return achievedEqualityTol_; }
   magnitude_type getNormOfA() const { return normA_; }
   magnitude_type getPenalty() const { return rho_; }
   magnitude_type getM() const { return M_; }
@@ -95,7 +126,9 @@ class SmalbeSolMgr {
   QpCounters counters_;
   long long qApplies_ = 0;
   magnitude_type normA_ = 0, rho_ = 0, M_ = 0;
+  magnitude_type achievedTol_ = 0, achievedEqualityTol_ = 0;
   SolverOutput out_;
+  Belos::ReturnType solveTimed();
 };
 
 }  // namespace tfeti

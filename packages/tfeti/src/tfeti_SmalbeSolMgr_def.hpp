@@ -1,6 +1,7 @@
 #pragma once
 #include <Teuchos_Assert.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include "tfeti_QpStatusTests.hpp"
 #include "tfeti_SmalbeSolMgr_decl.hpp"
 #include "tfeti_StrictParameters.hpp"
+#include "tfeti_TimedOperator.hpp"
 
 namespace tfeti {
 
@@ -47,8 +49,11 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "change) instead of a multiplication; false: recompute it (the earlier behaviour)");
     pl->set("Norm of A", 0.0, "||A||; 0: estimate by power iterations", strict::nonNegative());
     pl->set("Power iterations", 20, "power iterations for estimating ||A||", strict::count());
-    pl->set("Verbosity", 0, "0 silent, 1 summary, 2 every outer iteration (rank 0)",
-            strict::intBetween(0, 2));
+    pl->set("Verbosity", 0,
+            "0 silent, 1 summary, 2 every outer iteration (rank 0), or a sum of Belos::MsgType "
+            "values (Warnings 1, IterationDetails 2, FinalSummary 8, TimingDetails 16, "
+            "StatusTestDetails 32)",
+            strict::intBetween(0, kAllMsgTypes));
     pl->sublist("MPRGP", false, "inner solver (MPRGP) parameters")
         .setParameters(*MprgpSolMgr<S, MV, OP>::getValidParameters());
   }
@@ -60,47 +65,93 @@ SmalbeSolMgr<S, MV, OP>::SmalbeSolMgr(const BoundConstrainedQp<S, MV, OP>& qp,
                                       Teuchos::RCP<const OP> Q,
                                       const Teuchos::ParameterList& params,
                                       Teuchos::RCP<const OP> preconditioner)
-    : qp_(qp), Q_(std::move(Q)), P_(std::move(preconditioner)), params_(params) {
-  params_.validateParametersAndSetDefaults(*getValidParameters());
-  auto fail = [](bool bad, const std::string& what) {
-    TEUCHOS_TEST_FOR_EXCEPTION(bad, std::invalid_argument, "SMALBE: parameter " << what);
-  };
-  fail(!(params_.get<double>("Relative tolerance") >= 0.0), "\"Relative tolerance\" must be >= 0");
-  fail(!(params_.get<double>("Equality tolerance") >= 0.0), "\"Equality tolerance\" must be >= 0");
-  fail(params_.get<int>("Maximum outer iterations") < 1,
-       "\"Maximum outer iterations\" must be >= 1");
-  fail(!(params_.get<double>("Penalty") > 0.0), "\"Penalty\" must be > 0");
-  fail(!(params_.get<double>("Initial M") > 0.0), "\"Initial M\" must be > 0");
-  fail(!(params_.get<double>("Beta") > 1.0), "\"Beta\" must be > 1");
-  fail(!(params_.get<double>("Eta") > 0.0), "\"Eta\" must be > 0");
-  fail(!(params_.get<double>("Norm of A") >= 0.0), "\"Norm of A\" must be >= 0 (0: estimate)");
-  fail(params_.get<int>("Power iterations") < 1, "\"Power iterations\" must be >= 1");
-  const int verbosity = params_.get<int>("Verbosity");
-  fail(verbosity < 0 || verbosity > 2, "\"Verbosity\" must be 0, 1 or 2");
-  TEUCHOS_TEST_FOR_EXCEPTION(
-      qp_.A.is_null() || qp_.b.is_null() || qp_.lower.is_null() || qp_.x.is_null() || Q_.is_null(),
-      std::invalid_argument, "SMALBE: A, b, lower, x and Q must all be set");
-  // Validates the inner parameters now rather than at the first inner solve.
+    : P_(std::move(preconditioner)) {
+  setParameters(params);
+  setProblem(qp, std::move(Q));
+  // Validates the inner solver's use of the preconditioner now rather than at the first solve.
   MprgpSolMgr<S, MV, OP> check(qp_, params_.sublist("MPRGP"), P_);
 }
 
 template <class S, class MV, class OP>
+SmalbeSolMgr<S, MV, OP>::SmalbeSolMgr() {
+  setParameters(Teuchos::ParameterList("SMALBE"));
+}
+
+template <class S, class MV, class OP>
+void SmalbeSolMgr<S, MV, OP>::setProblem(const BoundConstrainedQp<S, MV, OP>& qp,
+                                         Teuchos::RCP<const OP> Q) {
+  TEUCHOS_TEST_FOR_EXCEPTION(
+      qp.A.is_null() || qp.b.is_null() || qp.lower.is_null() || qp.x.is_null() || Q.is_null(),
+      std::invalid_argument, "SMALBE: A, b, lower, x and Q must all be set");
+  qp_ = qp;
+  Q_ = std::move(Q);
+}
+
+template <class S, class MV, class OP>
+void SmalbeSolMgr<S, MV, OP>::reset(Belos::ResetType) {
+  counters_ = QpCounters{};
+  mu_ = Teuchos::null;
+  qApplies_ = 0;
+  achievedTol_ = achievedEqualityTol_ = 0;
+}
+
+template <class S, class MV, class OP>
+void SmalbeSolMgr<S, MV, OP>::setParameters(const Teuchos::ParameterList& params) {
+  // Aliases resolved within the list given (see MprgpSolMgr::setParameters), also in the inner
+  // solver's sublist.
+  Teuchos::ParameterList given = params;
+  applyParameterAliases(given, "SMALBE", belosAliases("Maximum outer iterations"));
+  if (given.isSublist("MPRGP"))
+    applyParameterAliases(given.sublist("MPRGP"), "SMALBE/MPRGP",
+                          belosAliases("Maximum iterations"));
+  Teuchos::ParameterList merged = params_.numParams() == 0 ? given : params_;
+  if (params_.numParams() != 0) merged.setParameters(given);
+  merged.validateParametersAndSetDefaults(*getValidParameters());
+  auto fail = [](bool bad, const std::string& what) {
+    TEUCHOS_TEST_FOR_EXCEPTION(bad, std::invalid_argument, "SMALBE: parameter " << what);
+  };
+  fail(!(merged.get<double>("Relative tolerance") >= 0.0), "\"Relative tolerance\" must be >= 0");
+  fail(!(merged.get<double>("Equality tolerance") >= 0.0), "\"Equality tolerance\" must be >= 0");
+  fail(merged.get<int>("Maximum outer iterations") < 1,
+       "\"Maximum outer iterations\" must be >= 1");
+  fail(!(merged.get<double>("Penalty") > 0.0), "\"Penalty\" must be > 0");
+  fail(!(merged.get<double>("Initial M") > 0.0), "\"Initial M\" must be > 0");
+  fail(!(merged.get<double>("Beta") > 1.0), "\"Beta\" must be > 1");
+  fail(!(merged.get<double>("Eta") > 0.0), "\"Eta\" must be > 0");
+  fail(!(merged.get<double>("Norm of A") >= 0.0), "\"Norm of A\" must be >= 0 (0: estimate)");
+  fail(merged.get<int>("Power iterations") < 1, "\"Power iterations\" must be >= 1");
+  const int mask = verbosityMask(merged.get<int>("Verbosity"), "SMALBE");
+  MprgpSolMgr<S, MV, OP>::checkParameters(merged.sublist("MPRGP"));
+  params_ = merged;
+  out_.setMask(mask);
+}
+
+template <class S, class MV, class OP>
 Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
+  Teuchos::TimeMonitor monitor(*solverTimer("tfeti: SMALBE solve"));
+  const bool root = qp_.x.is_null() || BoundTraits<S, MV>::commRank(*qp_.x) == 0;
+  return out_.reportingErrors("SMALBE", root, [&] { return solveTimed(); });
+}
+
+template <class S, class MV, class OP>
+Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using OPT = Belos::OperatorTraits<S, MV, OP>;
   using BT = BoundTraits<S, MV>;
+  TEUCHOS_TEST_FOR_EXCEPTION(qp_.A.is_null(), std::invalid_argument,
+                             "SMALBE: no problem to solve (setProblem was not called)");
   counters_ = QpCounters{};
   qApplies_ = 0;
   checkQpMaps(qp_, "SMALBE", Q_.get());
   MprgpIteration<S, MV, OP>::checkProblemData(qp_);
-  const int verbosity = params_.get<int>("Verbosity");
   const bool root = BT::commRank(*qp_.x) == 0;
   const auto start = std::chrono::steady_clock::now();
 
   normA_ = params_.get<double>("Norm of A");
   if (!(normA_ > 0))
     normA_ = MprgpSolMgr<S, MV, OP>::estimateNorm(
-        *qp_.A, *qp_.x, params_.get<int>("Power iterations"), &counters_.hessianMultiplications);
+        *TimedOperator<S, MV, OP>::wrap(qp_.A, solverTimer("tfeti: Hessian apply")), *qp_.x,
+        params_.get<int>("Power iterations"), &counters_.hessianMultiplications);
   rho_ = params_.get<double>("Penalty") * normA_;
   M_ = params_.get<double>("Initial M") * normA_;
   const magnitude_type beta = params_.get<double>("Beta");
@@ -117,7 +168,8 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
     auto Ay = MVT::Clone(*qp_.x, 1);
     MVT::MvInit(*y, S(0));
     BT::project(*y, *qp_.lower, qp_.upper.get());
-    OPT::Apply(*qp_.A, *y, *Ay);
+    OPT::Apply(*TimedOperator<S, MV, OP>::wrap(qp_.A, solverTimer("tfeti: Hessian apply")), *y,
+               *Ay);
     ++counters_.hessianMultiplications;
     MVT::MvNorm(*Ay, n);
     scale = n[0] > magnitude_type(0) ? n[0] : magnitude_type(1);
@@ -194,7 +246,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
     // decision, and with it the iteration, would depend on the order of the reductions).
     const bool reduceM =
         !converged && k > 0 && lagrangian + std::max(noise, noisePrev) < lagrangianPrev + required;
-    if (verbosity >= 2 && root) {
+    if (out_.wants(Belos::IterationDetails) && root) {
       auto line = SolverOutput::line();
       line << "SMALBE " << std::setw(4) << k + 1 << "  ||g^P||/||b|| = " << std::scientific
            << std::setprecision(3) << gp / scale
@@ -238,12 +290,31 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
     msg << "; some inner MPRGP solves hit their \"Maximum iterations\" before reaching the "
            "inner precision";
   counters_.message = msg.str();
-  if (verbosity >= 1 && root) {
+  achievedTol_ = gp / scale;
+  achievedEqualityTol_ = normA_ * qxNorm / scale;
+  if (out_.wants(Belos::FinalSummary) && root) {
     auto line = SolverOutput::line();
     line << "SMALBE: " << counters_.message << "; " << counters_.cgSteps << " CG, "
          << counters_.expansionSteps << " expansion, " << counters_.proportioningSteps
          << " proportioning steps, " << counters_.hessianMultiplications
          << " Hessian multiplications, rho = " << rho_ << ", final M = " << M_ << "\n";
+    out_.write(line);
+  } else if (!converged && out_.wants(Belos::Warnings) && root) {
+    out_.write("SMALBE: warning: " + counters_.message + "\n");
+  }
+  if (out_.wants(Belos::TimingDetails) && root) {
+    auto line = SolverOutput::line();
+    line << "SMALBE: solve " << std::scientific << std::setprecision(3)
+         << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+         << " s\n";
+    out_.write(line);
+  }
+  if (out_.wants(Belos::StatusTestDetails) && root) {
+    auto line = SolverOutput::line();
+    line << "SMALBE: final test: ||g^P|| = " << std::scientific << std::setprecision(3) << gp
+         << (gp <= gTol ? " <= " : " > ") << gTol << " and ||Q x|| = " << qxNorm
+         << (qxNorm <= eTol ? " <= " : " > ") << eTol << (converged ? ": Passed" : ": Failed")
+         << "\n";
     out_.write(line);
   }
   return converged ? Belos::Converged : Belos::Unconverged;
