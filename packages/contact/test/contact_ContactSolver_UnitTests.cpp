@@ -218,9 +218,9 @@ TEUCHOS_UNIT_TEST(ContactSolver, NonlinearStepsThroughTheObject) {
   TEST_EQUALITY(solver.stresses().size(), solver.problem().local.size());
 
   // The one-step elastic run of the same problem. The nonlinear loop searches the contact on the
-  // current geometry and reports the nodes where they are (the slave nodes move by up to ~1e-4 m
-  // along x, against a half-width of 0.021 m): measured 2.5e-5 for p_max and 2.2e-3 for the
-  // half-width on 1, 2 and 3 ranks.
+  // current geometry and reports the nodes at their current positions (the elastic run: the
+  // reference ones), so the half-width, measured between nodes, moves with them: measured 2.5e-5
+  // for p_max and 2.2e-3 for the half-width on 1, 2 and 3 ranks.
   contact::ContactSolver elastic(comm());
   elastic.setParameters(twoCylinders());
   const contact::ContactResult e = elastic.solve();
