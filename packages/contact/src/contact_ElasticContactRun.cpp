@@ -1,6 +1,5 @@
-// The driver's study for Problem = elastic_contact: bodies on a Gmsh mesh in frictionless
-// contact, solved by TFETI with SMALBE (or the penalty method), compared with Hertz's line
-// contact when asked.
+// The parameters of Problem = elastic_contact (bodies on a Gmsh mesh in contact) and the dry run
+// of both contact problems; the run itself is contact::ContactSolver's.
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 

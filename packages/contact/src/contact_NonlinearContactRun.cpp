@@ -1,23 +1,11 @@
 #include "contact_NonlinearContactRun.hpp"
 
-#include <Teuchos_CommHelpers.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
-#include <chrono>
-#include <cmath>
-#include <filesystem>
-#include <iomanip>
-#include <iostream>
-#include <sstream>
-
-#include "contact_ContactOutput.hpp"
-#include "contact_DriverCommon.hpp"
 #include "contact_ElasticContactRun.hpp"
-#include "contact_LoadStepControl.hpp"
-#include "contact_NonlinearIteration.hpp"
 #include "contact_NonlinearModel.hpp"
-#include "contact_NonlinearOptions.hpp"
-#include "contact_NonlinearStepOutput.hpp"
-#include "contact_PrescribedDisplacement.hpp"
 
 namespace contact {
 
