@@ -13,7 +13,8 @@ namespace contact {
 std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                                       const tfeti::FetiSolver& solver,
                                       const ContactExtentRule& rule,
-                                      const std::vector<double>& surfaceDisplacement) {
+                                      const std::vector<double>& surfaceDisplacement,
+                                      const std::vector<double>& surfaceSolution) {
   // The tearing numbers its rows canonically: match them to the node-to-segment rows by content.
   const auto lambdas = solver.inequalityMultipliers();
   using Key = std::tuple<std::vector<std::tuple<int, int, double>>, double>;
@@ -54,6 +55,10 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
         r2 += (r[c] - along * rule.axis[c]) * (r[c] - along * rule.axis[c]);
       radius = std::sqrt(r2);
     }
+    double gap = row.gap;  // the row is sum coef u <= gap
+    if (!surfaceSolution.empty())
+      for (const NodeEntry& e : row.entries)
+        gap -= e.coef * surfaceSolution[dim * e.node + e.component];
     nodes.push_back({x[0],
                      x[1],
                      x[2],
@@ -61,7 +66,8 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                      w > 0.0 ? lambda / w : 0.0,
                      angle,
                      radius,
-                     {row.normal[0], row.normal[1], row.normal[2]}});
+                     {row.normal[0], row.normal[1], row.normal[2]},
+                     gap});
   }
   std::sort(nodes.begin(), nodes.end(), [&](const ContactNode& a, const ContactNode& b) {
     if (dim == 3) return a.radius < b.radius;
@@ -182,10 +188,10 @@ bool lineContact(const Teuchos::ParameterList& params, int dim) {
   return zone == "line" || (zone == "auto" && dim == 2);
 }
 
-void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pMax,
-                        double halfWidth, int dim) {
+std::optional<HertzReference> hertzReference(const Teuchos::ParameterList& params, double pMax,
+                                             double extent, int dim) {
   const auto& hz = params.sublist("Contact problem").sublist("Hertz");
-  if (!hz.get<bool>("Compare")) return;
+  if (!hz.get<bool>("Compare")) return std::nullopt;
   const auto& mat = params.sublist("Material");
   const double E = mat.get<double>("Young's modulus"), nu = mat.get<double>("Poisson's ratio");
   const double R1 = hz.get<double>("Radius 1"), R2 = hz.get<double>("Radius 2");
@@ -197,29 +203,35 @@ void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pM
                      cp.sublist("Rigid obstacle").isParameter("Type") &&
                      cp.sublist("Rigid obstacle").get<std::string>("Type") != "none";
   const double Estar = E / ((rigid ? 1.0 : 2.0) * (1.0 - nu * nu));
-  double a = 0.0, p0 = 0.0, vm = 0.0;
-  const bool line = lineContact(params, dim);
-  const char* extent = line ? "half_width" : "contact_radius";
-  if (!line) {
+  HertzReference h;
+  h.line = lineContact(params, dim);
+  if (!h.line) {
     // Point contact: a = (3 F R / (4 E*))^(1/3), p0 = 3 F / (2 pi a^2).
     const double F = hz.get<double>("Force");
-    a = std::cbrt(3.0 * F * R / (4.0 * Estar));
-    p0 = 3.0 * F / (2.0 * M_PI * a * a);
-    vm = hertzSphereMaxVonMises(p0, nu);
+    h.extent = std::cbrt(3.0 * F * R / (4.0 * Estar));
+    h.pMax = 3.0 * F / (2.0 * M_PI * h.extent * h.extent);
+    h.maxVonMises = hertzSphereMaxVonMises(h.pMax, nu);
   } else {
     const double l = hz.get<double>("Line load");
-    a = std::sqrt(4.0 * l * R / (M_PI * Estar));
-    p0 = 2.0 * l / (M_PI * a);
-    vm = 0.557 * p0;  // Hertz line contact, nu = 0.3, at depth 0.78 a
+    h.extent = std::sqrt(4.0 * l * R / (M_PI * Estar));
+    h.pMax = 2.0 * l / (M_PI * h.extent);
+    h.maxVonMises = 0.557 * h.pMax;  // Hertz line contact, nu = 0.3, at depth 0.78 a
   }
+  h.pMaxError = std::abs(pMax - h.pMax) / h.pMax;
+  h.extentError = std::abs(extent - h.extent) / h.extent;
+  return h;
+}
+
+void addHertzComparison(Json& c, const HertzReference& hertz) {
+  const char* extent = hertz.line ? "half_width" : "contact_radius";
   Json h = Json::object();
-  h["p_max"] = p0;
-  h[extent] = a;
-  h["max_von_mises"] = vm;
+  h["p_max"] = hertz.pMax;
+  h[extent] = hertz.extent;
+  h["max_von_mises"] = hertz.maxVonMises;
   c["hertz"] = std::move(h);
   Json err = Json::object();
-  err["p_max"] = std::abs(pMax - p0) / p0;
-  err[extent] = std::abs(halfWidth - a) / a;
+  err["p_max"] = hertz.pMaxError;
+  err[extent] = hertz.extentError;
   c["relative_error"] = std::move(err);
 }
 

@@ -2,6 +2,7 @@
 // What the contact drivers report of a solved contact problem: the multiplier and pressure of
 // every slave node, p_max and the extent of the contact zone, and the stress fields of the
 // subdomains as a VTU piece.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct ContactNode {
   double radius;     // 3D: distance from the contact axis (ContactExtentRule::centre, axis)
   double normal[3];  // the master's outward normal of the row: lambda * normal is the force
                      // on the slave node
+  double gap;        // the row's gap left by the solve, c_I - B_I u (>= 0; 0 in contact); the
+                     // row's gap before it when contactNodes is given no solution
 };
 
 // How the contact zone's extent is measured. 2D: the half-width along x (a contact centred at
@@ -46,11 +49,13 @@ bool lineContact(const Teuchos::ParameterList& params, int dim);
 
 // The multiplier of every row of the last solve at its slave node, sorted by x (or angle; the
 // radius in 3D). surfaceDisplacement: dim per mesh node (only surface nodes read) or empty for
-// the reference.
+// the reference. surfaceSolution: the solve's primal solution (the increment of a nonlinear
+// iteration) in the same layout, for the gaps it leaves; empty: the rows' gaps.
 std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                                       const tfeti::FetiSolver& solver,
                                       const ContactExtentRule& rule,
-                                      const std::vector<double>& surfaceDisplacement = {});
+                                      const std::vector<double>& surfaceDisplacement = {},
+                                      const std::vector<double>& surfaceSolution = {});
 
 double maxPressure(const std::vector<ContactNode>& nodes);
 // The resultant contact force on the slave body, sum of lambda * normal, along `direction`
@@ -78,14 +83,25 @@ std::vector<PlaneHalfWidth> halfWidthPerPlane(const std::vector<ContactNode>& no
 void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
                      const std::vector<ContactNode>& nodes, int dim = 2);
 
-// When "Contact problem"/"Hertz"/"Compare" is set: for a line contact (lineContact: 2D, or a
-// 3D slab) Hertz's line contact of two cylinders (radii, line load l of the full model per unit
-// length, E and nu of "Material" for both bodies) as c["hertz"] = {p_max, half_width,
-// max_von_mises} and c["relative_error"] = {p_max, half_width}; for a 3D point contact that of
-// two spheres (radii, total force F of the full model) as c["hertz"] = {p_max, contact_radius,
-// max_von_mises}, c["relative_error"] = {p_max, contact_radius}.
-void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pMax,
-                        double halfWidth, int dim = 2);
+// Hertz's closed form for the run's contact, when "Contact problem"/"Hertz"/"Compare" is set:
+// for a line contact (lineContact: 2D, or a 3D slab) the line contact of two cylinders (radii,
+// line load l of the full model per unit length, E and nu of "Material" for both bodies), for a
+// 3D point contact that of two spheres (radii, total force F of the full model); against a
+// rigid obstacle the body's compliance alone.
+struct HertzReference {
+  bool line = true;          // extent is a half-width (line) or a contact radius (point)
+  double pMax = 0.0;         // p0
+  double extent = 0.0;       // a
+  double maxVonMises = 0.0;  // the largest von Mises stress below the surface
+  double pMaxError = 0.0;    // |p_max - p0| / p0 of the run's p_max
+  double extentError = 0.0;  // |extent - a| / a of the run's extent
+};
+// Empty when Hertz/Compare is not set.
+std::optional<HertzReference> hertzReference(const Teuchos::ParameterList& params, double pMax,
+                                             double extent, int dim = 2);
+// c["hertz"] = {p_max, half_width | contact_radius, max_von_mises} and c["relative_error"] =
+// {p_max, half_width | contact_radius}.
+void addHertzComparison(Json& c, const HertzReference& hertz);
 
 // The VTK cell type of an element; vtkNodeOrder(type)[k] is the element's local node at VTK's
 // position k (the identity but for Tet10 and Hex27, whose Gmsh order differs from VTK's).

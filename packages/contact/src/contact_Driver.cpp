@@ -13,6 +13,7 @@
 #include <limits>
 #include <sstream>
 
+#include "contact_ContactSolver.hpp"
 #include "contact_DriverCommon.hpp"
 #include "contact_DryRun.hpp"
 #include "contact_ElasticContactRun.hpp"
@@ -496,16 +497,20 @@ void validateDriverParameters(ParameterList& params, const std::string& source) 
   }
 }
 
-int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
-              const std::string& outputDirectory) {
-  if (comm->getRank() == 0) std::filesystem::create_directories(outputDirectory);
-  comm->barrier();
+void applyOutputVerbosity(ParameterList& params) {
   // Output verbosity 2 shows the progress of every contact QP: a line per SMALBE outer
   // iteration (unless the SMALBE sublist asks for its own verbosity).
   auto& smalbe = params.sublist("FETI").sublist("SMALBE");
   if (params.sublist("Output").get<int>("Verbosity") >= 2 &&
       smalbe.getEntry("Verbosity").isDefault())
     smalbe.set("Verbosity", 2);
+}
+
+int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
+              const std::string& outputDirectory) {
+  if (comm->getRank() == 0) std::filesystem::create_directories(outputDirectory);
+  comm->barrier();
+  applyOutputVerbosity(params);
   if (params.get<std::string>("Study") == "scalability") {
     if (params.sublist("Scalability").get<Array<std::string>>("Problems")[0] == "two_membranes")
       return runTwoMembranesScalability(comm, params, outputDirectory);
@@ -513,10 +518,9 @@ int runDriver(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   }
   if (params.get<std::string>("Problem") == "two_membranes")
     return runTwoMembranes(comm, params, outputDirectory);
-  if (params.get<std::string>("Problem") == "elastic_contact")
-    return runElasticContact(comm, params, outputDirectory);
-  if (params.get<std::string>("Problem") == "nonlinear_contact")
-    return runNonlinearContact(comm, params, outputDirectory);
+  const std::string problem = params.get<std::string>("Problem");
+  if (problem == "elastic_contact" || problem == "nonlinear_contact")
+    return runContactProblem(comm, params, outputDirectory);
   return runSingle(comm, params, outputDirectory);
 }
 

@@ -6,6 +6,8 @@
 //                          and TFETI for every preconditioner over H and H/h), or for
 //                          two_membranes the QP solvers' Hessian multiplications over H and H/h
 //   Problem = two_membranes: the contact benchmark (contact_TwoMembranes.hpp)
+//   Problem = elastic_contact, nonlinear_contact: contact::ContactSolver
+//   (contact_ContactSolver.hpp)
 #include <Teuchos_ParameterList.hpp>
 
 #include <ostream>
@@ -21,6 +23,9 @@ Teuchos::RCP<const Teuchos::ParameterList> validDriverParameters();
 // Validates params (throws std::invalid_argument naming the source and the bad parameter with the
 // valid ones) and fills in defaults.
 void validateDriverParameters(Teuchos::ParameterList& params, const std::string& source);
+
+// Output/Verbosity 2 shows every SMALBE outer iteration (SMALBE/Verbosity 2 unless set).
+void applyOutputVerbosity(Teuchos::ParameterList& params);
 
 // Runs the study. Returns the process exit code: 0 on success, 2 when a solve did not converge
 // (all output is still written).

@@ -1,6 +1,5 @@
-// The driver's study for Problem = elastic_contact: bodies on a Gmsh mesh in frictionless
-// contact, solved by TFETI with SMALBE (or the penalty method), compared with Hertz's line
-// contact when asked.
+// The parameters of Problem = elastic_contact (bodies on a Gmsh mesh in contact) and the dry run
+// of both contact problems; the run itself is contact::ContactSolver's.
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
@@ -53,25 +52,6 @@ std::vector<std::pair<std::string, std::vector<double>>> componentsPerName(
     out.push_back(
         {names[k], std::vector<double>(values.begin() + k * per, values.begin() + (k + 1) * per)});
   return out;
-}
-
-// A 3D line contact (a plane-strain slab): the length of the contact line (the slave nodes'
-// extent along z), the force per unit of it (to compare with a 2D run's force per unit
-// thickness) and the half-width on each node plane, whose spread shows how far the solution is
-// from independent of z.
-void addSlabContact(Json& c, const std::vector<ContactNode>& nodes, double force) {
-  const std::vector<PlaneHalfWidth> planes = halfWidthPerPlane(nodes);
-  const double length = planes.empty() ? 0.0 : planes.back().z - planes.front().z;
-  double lo = 0.0, hi = 0.0;
-  for (std::size_t k = 0; k < planes.size(); ++k) {
-    lo = k ? std::min(lo, planes[k].halfWidth) : planes[k].halfWidth;
-    hi = k ? std::max(hi, planes[k].halfWidth) : planes[k].halfWidth;
-  }
-  c["line_length"] = length;
-  c["force_per_unit_length"] = length > 0.0 ? force / length : 0.0;
-  c["node_planes"] = static_cast<int>(planes.size());
-  c["half_width_min"] = lo;
-  c["half_width_max"] = hi;
 }
 
 }  // namespace
@@ -248,102 +228,6 @@ ParameterList fetiParameters(const ParameterList& params, const ElasticContactSp
         "frictionless; a tied contact pair is chosen by \"Contact type\" = tied");
   }
   return feti;
-}
-
-int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
-                      const std::string& dir) {
-  const bool root = comm->getRank() == 0;
-  const ElasticContactSpec spec = elasticContactSpec(params);
-  const ParameterList feti = fetiParameters(params, spec);
-  const int verbosity = params.sublist("Output").get<int>("Verbosity");
-  ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
-  tfeti::FetiSolver solver(comm, problem.numSubdomains(), problem.local, feti, problem.inequalities,
-                           problem.equalities);
-  const tfeti::DualResult result = solver.solve();
-  const tfeti::ConstraintReport report = solver.constraintReport();
-
-  // The contact zone's extent: the half-width along x of a line contact (2D, or per node plane
-  // of a 3D slab), the radius from the z axis through the origin of a 3D point contact
-  // (ContactExtentRule's defaults).
-  const int dim = problem.dim();
-  ContactExtentRule rule;
-  rule.line = lineContact(params, dim);
-  const std::vector<ContactNode> nodes = contactNodes(problem, solver, rule);
-  double force = 0.0;
-  for (const auto& n : nodes) force += n.lambda;
-  const double pMax = maxPressure(nodes), halfWidth = contactExtent(nodes, rule, dim);
-
-  // Stresses per subdomain (nodal values averaged within the subdomain).
-  double maxVm = 0.0;
-  std::vector<plasticity::StressField> stresses;
-  for (std::size_t i = 0; i < problem.local.size(); ++i) {
-    const plasticity::LinearElasticMaterial law(spec.bodies[problem.localBody[i]].law);
-    stresses.push_back(
-        plasticity::recoverStresses(problem.localElements[i], law, solver.solution(i)));
-    const auto& st = stresses.back();
-    for (int e = 0; e < problem.localElements[i].numElements(); ++e)
-      for (int q = 0; q < st.gaussPointsPerElement; ++q)
-        maxVm = std::max(maxVm, st.atGaussPoint(e, q, plasticity::kVonMises));
-  }
-  std::vector<SubdomainFields> fields;
-  for (std::size_t i = 0; i < problem.local.size(); ++i)
-    fields.push_back({&problem.localElements[i],
-                      problem.local[i].mesh.id,
-                      &solver.solution(i),
-                      &stresses[i],
-                      {}});
-  const VtuPiece piece = stressPiece(fields);
-  double globalVm = 0.0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &maxVm, &globalVm);
-
-  Json s = Json::object();
-  s["study"] = "single";
-  s["problem"] = "elastic_contact";
-  s["ranks"] = comm->getSize();
-  s["subdomains"] = problem.numSubdomains();
-  s["nodes"] = problem.mesh.numNodes();
-  s["dimension"] = dim;
-  addSolverSummary(s, solver, result, feti);
-  s["contact_type"] = spec.tied ? "tied" : "frictionless";
-  s["qp"] = qpJson(result);
-  const double applied =
-      std::hypot(problem.appliedForce[0], problem.appliedForce[1], problem.appliedForce[2]);
-  Json c = constraintJson(report);
-  c["p_max"] = pMax;
-  c[rule.line ? "half_width" : "contact_radius"] = halfWidth;
-  c["force"] = force;
-  c["applied_force"] = applied;
-  c["force_relative_error"] = applied > 0.0 ? std::abs(force - applied) / applied : 0.0;
-  if (dim == 3 && rule.line) addSlabContact(c, nodes, force);
-  addHertzComparison(c, params, pMax, halfWidth, dim);
-  s["contact"] = std::move(c);
-  s["max_von_mises"] = globalVm;
-  s["max_abs_u"] = maxAbsSolution(*comm, solver);
-  if (!spec.prescribed.empty()) {
-    s["prescribed_rows"] = static_cast<long long>(solver.userEqualityRows());
-    s["prescribed"] = prescribedSummary(solver, spec.prescribed, [&](const std::string& name) {
-      const auto nodes = boundaryNodeIds(problem.mesh, name);
-      return std::vector<long long>(nodes.begin(), nodes.end());
-    });
-  }
-  s["timings"] = timingsJson(solver.timings(), result.iterations);
-  s["peak_rss_mb"] = peakRssMb(*comm);
-  writeContactCsv(*comm, dir + "/contact_pressure.csv", nodes, dim);
-  s["contact_csv"] = dir + "/contact_pressure.csv";
-  if (params.sublist("Output").get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", piece);
-  writeSummary(*comm, dir, s, params);
-  if (root && verbosity > 0)
-    std::cout << "elastic_contact: " << problem.numSubdomains() << " subdomains, primal "
-              << solver.primalDimension() << ", dual " << solver.dualDimension() << " ("
-              << solver.inequalityRows() << " contact rows), " << result.method << ": "
-              << result.qp.hessianMultiplications << " Hessian multiplications ("
-              << (result.converged ? "converged" : "NOT CONVERGED") << "); p_max " << pMax
-              << (rule.line ? ", half-width " : ", contact radius ") << halfWidth << ", force "
-              << force << " (applied " << applied << "), max von Mises " << globalVm << "\n";
-  if (!result.converged && root)
-    std::cerr << "tfeti_contact: " << result.method << " did not converge (" << result.qp.message
-              << "); results written to " << dir << "\n";
-  return result.converged ? 0 : 2;
 }
 
 void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,

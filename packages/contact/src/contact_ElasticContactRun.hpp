@@ -1,5 +1,7 @@
 #pragma once
-// Problem = elastic_contact of the tfeti_contact driver (see contact_ElasticContactProblem.hpp).
+// Problem = elastic_contact of the tfeti_contact driver (see contact_ElasticContactProblem.hpp):
+// its parameters and dry run; the run itself is contact::ContactSolver's
+// (contact_ContactSolver.hpp).
 #include <Teuchos_ParameterList.hpp>
 
 #include <ostream>
@@ -20,9 +22,6 @@ ElasticContactSpec elasticContactSpec(const Teuchos::ParameterList& params);
 // set there for a frictionless pair).
 Teuchos::ParameterList fetiParameters(const Teuchos::ParameterList& params,
                                       const ElasticContactSpec& spec);
-
-int runElasticContact(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
-                      const std::string& dir);
 
 // The dry run (--check, contact_DryRun.hpp) of Problem = elastic_contact and nonlinear_contact:
 // the runs' checks, meshing, partitioning and first contact search, and a nonlinear Restart's

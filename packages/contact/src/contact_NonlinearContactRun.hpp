@@ -15,7 +15,9 @@
 // lambda is the total multiplier (the paper's lambda^{i-1} + dlambda): B_I changes with the
 // geometry, so its previous value would act through rows that no longer exist.
 // A step that does not converge (iterations, QP, an inverted element) is cut back (halved) and
-// retried; every converged step writes its VTU, CSV rows and restart files.
+// retried; every converged step writes its VTU, CSV rows and restart files. The run is
+// contact::ContactSolver's (contact_ContactSolver.hpp); this header holds its parameters and
+// checks.
 #include <Teuchos_ParameterList.hpp>
 
 #include <string>
@@ -50,10 +52,5 @@ double requireLoad(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainDa
 // no load is applied.
 double requireLoadOrMotion(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local,
                            const NonlinearOptions& options, bool prescribedMotion);
-
-// 0: converged at load factor 1 (or stopped as asked by "Stop after step"); 3: a load step did
-// not converge after the allowed cut-backs (everything up to the last converged step written).
-int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
-                        const std::string& dir);
 
 }  // namespace contact

@@ -78,6 +78,9 @@ tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field&
   const std::vector<tfeti::EqualityRow> prescribed = prescribedIncrementRows(u, t);
   const bool refactor =
       options_.stiffness == "iteration" || (options_.stiffness == "step" && iteration == 1);
+  // The linear problem's only increment is the one the solver was built with (loads f, the
+  // rows of the reference geometry, the prescribed rows at their full value).
+  if (options_.linear && iteration == 1) return solver_.solve();
   if (refactor)
     solver_.updateStiffness(model_.tangent(u, options_.kinematics), model_.currentCoordinates(u),
                             rhs, model_.problem.inequalities, prescribed);
@@ -91,17 +94,21 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
   out.u = model_.u;
   Field& u = out.u;
   try {
-    Field fint = model_.internalForce(u, options_.kinematics);
+    // f_int(0) = 0 for the linear problem's laws: no evaluation needed.
+    Field fint = options_.linear ? Field(u.size()) : model_.internalForce(u, options_.kinematics);
+    for (std::size_t i = 0; i < fint.size() && options_.linear; ++i)
+      fint[i].assign(u[i].size(), 0.0);
     for (int it = 1; it <= options_.maxIterations; ++it) {
-      updateContact(u, t);
-      const tfeti::DualResult qp = solveIncrement(u, fint, t, it);
+      if (!options_.linear) updateContact(u, t);
+      out.qp = solveIncrement(u, fint, t, it);
+      const tfeti::DualResult& qp = out.qp;
       IterationRecord rec;
       rec.step = step;
       rec.loadFactor = t;
       rec.iteration = it;
       rec.mprgpIterations = qp.iterations;
       rec.hessianMultiplications = qp.qp.hessianMultiplications;
-      if (!qp.converged) {
+      if (!qp.converged && !options_.linear) {
         out.iterations.push_back(rec);
         out.reason = "the contact QP did not converge in iteration " + std::to_string(it) + " (" +
                      qp.qp.message + ")";
@@ -121,6 +128,13 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
       rec.relativeResidual = check.relativeResidual;
       out.iterations.push_back(rec);
       if (onIteration) onIteration(rec);
+      if (options_.linear) {
+        // One increment solves the linear problem: the QP's convergence is the step's (its
+        // state is kept either way and reported).
+        out.converged = qp.converged;
+        if (!qp.converged) out.reason = "the contact QP did not converge (" + qp.qp.message + ")";
+        return out;
+      }
       if (check.converged) {
         out.converged = true;
         return out;

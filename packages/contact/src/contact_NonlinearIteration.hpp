@@ -10,6 +10,8 @@
 //                     and ||res|| / ||t f|| < eta2 (||f_int|| when no load is applied: a
 //                     prescribed obstacle motion alone).
 // Step control (contact_LoadStepControl.hpp) decides the load factors and the cut-backs.
+// NonlinearOptions::linear makes it the one-step case of a linear problem: one increment from
+// u = 0 with the solver's own loads and rows, no contact update, no f_int(0).
 #include <functional>
 #include <string>
 #include <vector>
@@ -26,6 +28,7 @@ struct StepOutcome {
   std::string reason;  // why not
   Field u;             // the trial displacement at the end
   std::vector<IterationRecord> iterations;
+  tfeti::DualResult qp;  // the last QP solve of the attempt
 };
 
 struct ResidualCheck {

@@ -23,6 +23,12 @@ struct NonlinearOptions {
   // "Obstacle displacement": the rigid obstacle's motion at load factor 1 (it moves by t times
   // it); empty: the obstacle stays where it is.
   std::vector<double> obstacleDisplacement;
+  // The linear problem (elastic_contact, the loop's one-step case): small strain, linear laws
+  // and the contact rows of the reference geometry, so that one increment from u = 0 solves it.
+  // The iteration then neither searches the contact again nor evaluates f_int(0) = 0, solves
+  // the increment with the loads and rows the solver was built with, and stops after it (the
+  // QP's convergence is the step's).
+  bool linear = false;
 };
 
 // Throws std::invalid_argument naming the parameter that is wrong.

@@ -36,7 +36,11 @@ void NonlinearStepOutput::evaluate(const Field& u) {
   }
   maxVonMises_ = globalMax(*comm_, vm);
   maxPlasticStrain_ = globalMax(*comm_, ep);
-  nodes_ = contactNodes(problem, solver_, options_.rule, model_.surfaceDisplacement(*comm_, u));
+  // The gaps each row keeps after the last increment du (the solver's solution).
+  Field du;
+  for (std::size_t i = 0; i < u.size(); ++i) du.push_back(solver_.solution(i));
+  nodes_ = contactNodes(problem, solver_, options_.rule, model_.surfaceDisplacement(*comm_, u),
+                        model_.surfaceDisplacement(*comm_, du));
 }
 
 std::string NonlinearStepOutput::writeVtu(const std::string& base, const Field& u) const {

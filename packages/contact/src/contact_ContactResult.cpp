@@ -1,0 +1,160 @@
+#include "contact_ContactResult.hpp"
+
+#include "contact_DriverCommon.hpp"
+
+namespace contact {
+
+namespace {
+
+bool nonlinearRun(const ContactResult& r) {
+  return r.problem == "nonlinear_contact";
+}
+
+// The keys of the elastic run's "contact" object after the constraint report.
+void addElasticContact(Json& c, const ContactMeasures& m) {
+  c["p_max"] = m.pMax;
+  c[m.extentKey] = m.extent;
+  c["force"] = m.force;
+  c["applied_force"] = m.appliedForce;
+  c["force_relative_error"] = m.forceRelativeError;
+  if (m.slab) {
+    c["line_length"] = m.slab->lineLength;
+    c["force_per_unit_length"] = m.slab->forcePerUnitLength;
+    c["node_planes"] = m.slab->nodePlanes;
+    c["half_width_min"] = m.slab->halfWidthMin;
+    c["half_width_max"] = m.slab->halfWidthMax;
+  }
+  if (m.hertz) addHertzComparison(c, *m.hertz);
+}
+
+void addNonlinearContact(Json& c, const ContactMeasures& m) {
+  c["p_max"] = m.pMax;
+  c["extent_measure"] = m.extentKey;
+  c["contact_extent"] = m.extent;
+  if (m.extentKey != "angle") c[m.extentKey] = m.extent;
+  c["force"] = m.force;
+  c["applied_force"] = m.appliedForce;
+  c["force_relative_error"] = m.forceRelativeError;
+  c["support_force"] = m.supportForce;
+  c["support_relative_error"] = m.supportRelativeError;
+  if (m.hertz) addHertzComparison(c, *m.hertz);
+  // The contact conditions of the last QP solve (rows B_I du <= g on the last geometry).
+  Json last = constraintJson(m.constraints);
+  last["max_abs_du"] = m.lastMaxAbsIncrement;
+  c["last_solve"] = std::move(last);
+}
+
+Json elasticSummary(const ContactResult& r) {
+  Json s = Json::object();
+  s["study"] = "single";
+  s["problem"] = r.problem;
+  s["ranks"] = r.ranks;
+  s["subdomains"] = r.subdomains;
+  s["nodes"] = r.nodes;
+  s["dimension"] = r.dimension;
+  s["formulation"] = r.feti.formulation;
+  s["preconditioner"] = r.feti.preconditioner;
+  s["local_solver"] = r.feti.localSolver;
+  s["dual_solver"] = r.qp.method;
+  s["primal_dim"] = r.feti.primal;
+  s["dual_dim"] = r.feti.dual;
+  s["gluing_rows"] = r.feti.gluingRows;
+  s["dirichlet_rows"] = r.feti.dirichletRows;
+  s["contact_rows"] = r.feti.contactRows;
+  s["coarse_dim"] = r.feti.coarse;
+  s["converged"] = r.converged;
+  s["iterations"] = r.qp.iterations;
+  s["relative_residual"] = r.qp.relativeResidual;
+  Json history = Json::array();
+  for (double h : r.qp.history) history.push(h);
+  s["residual_history"] = std::move(history);
+  s["dual_operator_applies"] = r.feti.dualOperatorApplies;
+  s["factor_bytes"] = r.feti.factorBytes;
+  s["contact_type"] = r.contactType;
+  s["qp"] = qpJson(r.qp);
+  s["contact"] = contactJson(r);
+  s["max_von_mises"] = r.maxVonMises;
+  s["max_abs_u"] = r.maxAbsU;
+  if (r.prescribed) {
+    s["prescribed_rows"] = r.prescribedRows;
+    s["prescribed"] = *r.prescribed;
+  }
+  s["timings"] = timingsJson(r.timings, r.qp.iterations);
+  s["peak_rss_mb"] = r.peakRssMb;
+  if (!r.contactCsv.empty()) s["contact_csv"] = r.contactCsv;
+  if (!r.vtu.empty()) s["vtu"] = r.vtu;
+  return s;
+}
+
+Json nonlinearSummary(const ContactResult& r) {
+  Json s = Json::object();
+  s["study"] = "single";
+  s["problem"] = r.problem;
+  s["ranks"] = r.ranks;
+  s["subdomains"] = r.subdomains;
+  s["nodes"] = r.nodes;
+  s["dimension"] = r.dimension;
+  s["primal_dim"] = r.feti.primal;
+  s["dual_dim"] = r.feti.dual;
+  s["contact_rows"] = r.feti.contactRows;
+  s["converged"] = r.converged;
+  const NonlinearOutcome& o = r.nonlinear;
+  Json m = Json::object();
+  m["youngs_modulus"] = o.youngsModulus;
+  m["poissons_ratio"] = o.poissonsRatio;
+  if (o.yieldStress > 0.0) {
+    m["yield_stress"] = o.yieldStress;
+    m["hardening_modulus"] = o.hardeningModulus;
+  }
+  s["material"] = std::move(m);
+  const IterationTotals totals = iterationTotals(r.history);
+  s["iterations"] = totals.iterations;
+  Json nl = Json::object();
+  nl["geometrically_nonlinear"] = o.geometricallyNonlinear;
+  nl["stiffness"] = o.stiffness;
+  nl["eta1"] = o.eta1;
+  nl["eta2"] = o.eta2;
+  nl["load_factor"] = r.history.loadFactor;
+  nl["converged_steps"] = r.history.step;
+  nl["stopped"] = o.stopped;
+  nl["restarted"] = o.restarted;
+  nl["total_iterations"] = totals.iterations;
+  nl["rejected_iterations"] = totals.rejected;
+  nl["total_mprgp_iterations"] = totals.mprgpIterations;
+  nl["total_hessian_multiplications"] = totals.hessianMultiplications;
+  if (r.exitCode == 3) nl["message"] = r.message;
+  s["nonlinear"] = std::move(nl);
+  s["steps"] = stepsJson(r.history);
+  if (r.haveContact) {
+    s["contact"] = contactJson(r);
+    s["max_von_mises"] = r.maxVonMises;
+    s["max_plastic_strain"] = r.maxPlasticStrain;
+  }
+  s["max_abs_u"] = r.maxAbsU;
+  if (!r.contactCsv.empty()) s["contact_csv"] = r.contactCsv;
+  if (!r.iterationsCsv.empty()) s["iterations_csv"] = r.iterationsCsv;
+  if (!r.stepsCsv.empty()) s["steps_csv"] = r.stepsCsv;
+  s["timings"] = timingsJson(r.timings, static_cast<int>(totals.iterations));
+  s["wall_time"] = r.wallTime;
+  s["peak_rss_mb"] = r.peakRssMb;
+  return s;
+}
+
+}  // namespace
+
+Json contactJson(const ContactResult& r) {
+  if (nonlinearRun(r)) {
+    Json c = Json::object();
+    addNonlinearContact(c, r.contact);
+    return c;
+  }
+  Json c = constraintJson(r.contact.constraints);
+  addElasticContact(c, r.contact);
+  return c;
+}
+
+Json summaryJson(const ContactResult& r) {
+  return nonlinearRun(r) ? nonlinearSummary(r) : elasticSummary(r);
+}
+
+}  // namespace contact

@@ -1,0 +1,111 @@
+#pragma once
+// What a contact run (contact::ContactSolver::solve, Problem = elastic_contact or
+// nonlinear_contact) produced: every figure summary.json reports, as values, and the JSON writer
+// that turns them into summary.json. summary.json is written from this object and nothing else,
+// so a run through the tfeti_contact executable and one through ContactSolver report the same.
+//
+// Extending it (a new figure of the run, e.g. a friction force or stick/slip counts): add the
+// value to the struct it belongs to (ContactMeasures for the "contact" object, StepRecord in
+// contact_NonlinearHistory.hpp for a per-step value, ContactResult for a top-level key), fill it
+// in ContactSolver (contact_ContactSolver.cpp: measureContact for the contact object,
+// fillResult for the rest), and write its key in contactJson / summaryJson
+// (contact_ContactResult.cpp), where each key of the file is written.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact_ContactOutput.hpp"
+#include "contact_Json.hpp"
+#include "contact_NonlinearHistory.hpp"
+#include "tfeti_FetiSolver.hpp"
+
+namespace contact {
+
+// A 3D line contact (a plane-strain slab, "Contact zone" = line): the half-width per node plane.
+struct SlabContact {
+  double lineLength = 0.0, forcePerUnitLength = 0.0;
+  int nodePlanes = 0;
+  double halfWidthMin = 0.0, halfWidthMax = 0.0;
+};
+
+// The "contact" object of summary.json: the contact zone of the final state.
+struct ContactMeasures {
+  tfeti::ConstraintReport constraints;  // of the (last) QP solve: rows B_I u <= c_I
+  double pMax = 0.0;
+  // The contact zone's extent: a half-width along x (metres), a half-angle (degrees) or a
+  // contact radius (metres), as extentKey says.
+  double extent = 0.0;
+  std::string extentKey = "half_width";  // half_width | angle | contact_radius
+  double force = 0.0;                    // the resultant contact force (along the load)
+  double appliedForce = 0.0;
+  double forceRelativeError = 0.0;  // |force - applied| / applied
+  std::optional<SlabContact> slab;
+  std::optional<HertzReference> hertz;
+  // nonlinear_contact: the fixed boundaries' reaction along the load and its relative
+  // difference from the contact force; max |du| of the last increment.
+  double supportForce = 0.0, supportRelativeError = 0.0, lastMaxAbsIncrement = 0.0;
+};
+
+// The FETI solver's dimensions and counters.
+struct FetiDimensions {
+  std::string formulation, preconditioner, localSolver;
+  long long primal = 0, dual = 0, gluingRows = 0, dirichletRows = 0, contactRows = 0, coarse = 0;
+  long long dualOperatorApplies = 0;
+  unsigned long long factorBytes = 0;
+};
+
+// nonlinear_contact: how the load steps went ("nonlinear" object; the steps are in history).
+struct NonlinearOutcome {
+  bool geometricallyNonlinear = true;
+  std::string stiffness;
+  double eta1 = 0.0, eta2 = 0.0;
+  bool stopped = false, restarted = false;
+  double youngsModulus = 0.0, poissonsRatio = 0.0, yieldStress = 0.0, hardeningModulus = 0.0;
+};
+
+struct ContactResult {
+  std::string problem;  // elastic_contact | nonlinear_contact
+  int ranks = 0, subdomains = 0, dimension = 0;
+  long long nodes = 0;
+  // Every QP converged (elastic) / the run reached load factor 1 (nonlinear; false when stopped
+  // by "Stop after step" or a step failed after the allowed cut-backs).
+  bool converged = false;
+  // The process exit code a run with this result gives: 0; 2 a QP did not converge (elastic);
+  // 3 a load step did not converge after the allowed cut-backs (nonlinear).
+  int exitCode = 0;
+  std::string message;  // why not converged (empty when converged)
+
+  FetiDimensions feti;
+  tfeti::DualResult qp;  // the (last) QP solve: counters, residual history, method, rho
+  std::string contactType = "frictionless";  // elastic_contact: frictionless | tied
+
+  bool haveContact = false;  // the contact object is filled (nonlinear: a step converged)
+  ContactMeasures contact;
+  // The slave nodes with a contact row (every rank holds all): position, multiplier, pressure
+  // and the node's gap direction; the gap itself is contactGaps[k] (B_I u - c_I, <= 0 in contact).
+  std::vector<ContactNode> contactNodes;
+
+  double maxVonMises = 0.0, maxPlasticStrain = 0.0, maxAbsU = 0.0;
+
+  // Prescribed displacements: the rows and the record per entry (boundary, component, value,
+  // reaction) as prescribedSummary writes it.
+  long long prescribedRows = 0;
+  std::optional<Json> prescribed;
+
+  // The per-step history: one step for elastic_contact (its single increment), the converged
+  // load steps (and every iteration, rejected ones too) for nonlinear_contact.
+  NonlinearHistory history;
+  NonlinearOutcome nonlinear;
+
+  tfeti::FetiTimings timings;
+  double wallTime = 0.0, peakRssMb = 0.0;
+  // Files written (empty without an output directory).
+  std::string contactCsv, iterationsCsv, stepsCsv, vtu;
+};
+
+// The "contact" object of summary.json.
+Json contactJson(const ContactResult& result);
+// summary.json of the run, without "parameters" (writeSummary adds them).
+Json summaryJson(const ContactResult& result);
+
+}  // namespace contact
