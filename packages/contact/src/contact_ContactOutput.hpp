@@ -16,13 +16,20 @@
 namespace contact {
 
 struct ContactNode {
-  double x, y, z;    // position (reference, or current when a displacement is given); z = 0 in 2D
-  double lambda;     // the row's multiplier: force (per unit thickness in 2D) at the node
-  double pressure;   // lambda over the node's share of the slave boundary length (area in 3D)
-  double angle;      // 2D: degrees, seen from ContactExtentRule::centre, from its direction
-  double radius;     // 3D: distance from the contact axis (ContactExtentRule::centre, axis)
-  double normal[3];  // the master's outward normal of the row: lambda * normal is the force
-                     // on the slave node
+  double x, y, z;      // position (reference, or current when a displacement is given); z = 0 in 2D
+  double lambda;       // the row's multiplier: force (per unit thickness in 2D) at the node
+  double pressure;     // lambda over the node's share of the slave boundary length (area in 3D)
+  double angle;        // 2D: degrees, seen from ContactExtentRule::centre, from its direction
+  double radius;       // 3D: distance from the contact axis (ContactExtentRule::centre, axis)
+  double normal[3];    // the master's outward normal of the row: lambda * normal is the force
+                       // on the slave node
+  int slaveNode = -1;  // its global node id
+  // Friction (addFrictionResults; state -1 without friction): the tangential multiplier (force
+  // along the tangent t = (-n_y, n_x) in 2D), it over the node's share (traction), the slave's
+  // slip relative to the master along t in the load step, state 0 open, 1 stick, 2 slip.
+  int frictionState = -1;
+  double tangentialForce = 0.0, tangentialTraction = 0.0, slip = 0.0, tangent[3] = {0, 0, 0};
+  double slipBound = 0.0;  // the bound of |tangentialForce| in the last solve
 };
 
 // How the contact zone's extent is measured. 2D: the half-width along x (a contact centred at

@@ -12,6 +12,7 @@
 #include "contact_ContactOutput.hpp"
 #include "contact_DriverCommon.hpp"
 #include "contact_ElasticContactRun.hpp"
+#include "contact_FrictionStep.hpp"
 #include "contact_LoadStepControl.hpp"
 #include "contact_NonlinearIteration.hpp"
 #include "contact_NonlinearModel.hpp"
@@ -154,6 +155,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
 
   LoadStepIteration iteration(comm, model, solver, opt, spec.slave, spec.master,
                               spec.obstacle ? &*spec.obstacle : nullptr, loadNorm);
+  iteration.friction = frictionSpec(params, spec.slave, spec.master);
   if (root && verbosity > 1)
     iteration.onIteration = [&](const IterationRecord& r) {
       std::cout << "  step " << r.step << " (t = " << r.loadFactor << ") iteration " << r.iteration
@@ -162,6 +164,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
                 << " Hessian multiplications [" << elapsed() << "]\n";
     };
   NonlinearStepOutput output(comm, model, solver, opt, dir);
+  output.friction = iteration.friction;
   const auto writeTables = [&]() {
     if (!root) return;
     writeIterationsCsv(dir + "/iterations.csv", history);
@@ -171,6 +174,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   // The load steps: attempt, then accept (commit, report, save) or cut back.
   LoadStepControl control(history, opt.steps, opt.maxCutbacks, opt.stopAfter);
   bool failed = false, stopped = false;
+  std::vector<std::pair<int, FixedPointRecord>> fixedPointSteps;  // Coulomb, per converged step
   std::string failure;
   while (!control.finished()) {
     if (control.stopRequested()) {
@@ -179,7 +183,9 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
     }
     const double t = control.nextLoadFactor();
     const int step = control.nextStep();
-    StepOutcome out = iteration.attempt(step, t);
+    FixedPointRecord fixedPoint;
+    StepOutcome out =
+        attemptFrictionalStep(iteration, solver, problem, opt.rule, step, t, fixedPoint);
     for (auto& r : out.iterations) r.accepted = out.converged;
     history.iterations.insert(history.iterations.end(), out.iterations.begin(),
                               out.iterations.end());
@@ -215,6 +221,8 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
       rec.increments.push_back(r.relativeIncrement);
     }
     output.fill(rec, loadDirection);
+    if (iteration.friction.law == FrictionSpec::Law::Coulomb)
+      fixedPointSteps.push_back({step, fixedPoint});
     history.steps.push_back(rec);
     control.accept();
     const std::string base = stepBaseName(step);
@@ -231,7 +239,12 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
                 << " Hessian multiplications); p_max " << rec.pMax << ", contact extent "
                 << rec.contactExtent << ", max von Mises " << rec.maxVonMises
                 << ", max plastic strain " << rec.maxPlasticStrain << ", contact force "
-                << rec.contactForce << " [" << elapsed() << "]\n";
+                << rec.contactForce
+                << (fixedPointSteps.empty() || fixedPointSteps.back().first != step
+                        ? std::string()
+                        : ", " + std::to_string(fixedPointSteps.back().second.iterations) +
+                              " Coulomb fixed-point iterations")
+                << " [" << elapsed() << "]\n";
   }
 
   // The final state: the last converged step (outputs re-evaluated when this run converged no
@@ -285,6 +298,18 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   nl["total_mprgp_iterations"] = totals.mprgpIterations;
   nl["total_hessian_multiplications"] = mults;
   if (failed) nl["message"] = failure;
+  if (!fixedPointSteps.empty()) {
+    Json fp = Json::array();
+    for (const auto& [step, r] : fixedPointSteps) {
+      Json e = Json::object();
+      e["step"] = step;
+      e["iterations"] = r.iterations;
+      e["relative_change"] = r.change;
+      fp.push(std::move(e));
+    }
+    nl["fixed_point"] = std::move(fp);
+    nl["fixed_point_tolerance"] = iteration.friction.fixedPointTolerance;
+  }
   s["nonlinear"] = std::move(nl);
   s["steps"] = stepsJson(history);
   if (haveStep) {
@@ -312,6 +337,8 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
     // The contact conditions of the last QP solve (rows B_I du <= g on the last geometry).
     c["last_solve"] = constraintJson(solver.constraintReport());
     c["last_solve"]["max_abs_du"] = maxAbsSolution(*comm, solver);
+    if (iteration.friction.active() && output.evaluated())
+      addFrictionJson(c, output.nodes(), iteration.friction, dim);
     s["contact"] = std::move(c);
     s["max_von_mises"] = last.maxVonMises;
     s["max_plastic_strain"] = last.maxPlasticStrain;

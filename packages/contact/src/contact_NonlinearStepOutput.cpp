@@ -36,7 +36,11 @@ void NonlinearStepOutput::evaluate(const Field& u) {
   }
   maxVonMises_ = globalMax(*comm_, vm);
   maxPlasticStrain_ = globalMax(*comm_, ep);
-  nodes_ = contactNodes(problem, solver_, options_.rule, model_.surfaceDisplacement(*comm_, u));
+  const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
+  nodes_ = contactNodes(problem, solver_, options_.rule, current);
+  if (friction.active())
+    addFrictionResults(nodes_, problem, solver_, friction,
+                       model_.surfaceDisplacement(*comm_, model_.u), current);
 }
 
 std::string NonlinearStepOutput::writeVtu(const std::string& base, const Field& u) const {
