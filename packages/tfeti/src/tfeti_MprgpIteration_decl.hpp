@@ -1,19 +1,23 @@
 #pragma once
 // MPRGP (modified proportioning with reduced gradient projections; Dostál & Schöberl 2005,
 // Dostál, "Optimal Quadratic Programming Algorithms", 2009) as a Belos::Iteration for
-//   min 1/2 x^T A x - b^T x  subject to  x >= l.
+//   min 1/2 x^T A x - b^T x  subject to  l <= x <= u   (u optional: the box version).
 //
-// Notation (g = A x - b): the free gradient phi (g on the free set x_i > l_i), the chopped
-// gradient beta (min(g_i, 0) on the active set x_i = l_i), the projected gradient
-// g^P = phi + beta (zero exactly at the solution), the reduced free gradient
-// phi~_i = min((x_i - l_i) / alphaBar, phi_i). Each step of iterate() is one of
+// Notation (g = A x - b): the free gradient phi (g on the free set l_i < x_i < u_i), the
+// chopped gradient beta (min(g_i, 0) where x_i = l_i, max(g_i, 0) where x_i = u_i, 0 where
+// l_i = u_i), the projected gradient g^P = phi + beta (zero exactly at the solution), the reduced
+// free gradient phi~_i = min((x_i - l_i) / alphaBar, phi_i) for phi_i >= 0 and
+// max((x_i - u_i) / alphaBar, phi_i) for phi_i < 0. The feasible step along a direction stops at
+// the first bound reached on either side, the projection is onto the box. Without u (or with
+// u = +infinity) every step is the lower-bound-only algorithm's. Each step of iterate() is one of
 //  - CG step: when x is proportional (||beta||^2 <= Gamma^2 phi~^T phi) and the CG step along p
 //    stays feasible;
 //  - expansion step: proportional, but the CG step would leave the feasible set: go to the bound
 //    along p, then take the projected free-gradient step x = P(x - alphaBar phi) (it may add or
 //    remove several active constraints at once) and restart CG;
 //  - proportioning step: not proportional (the chopped gradient dominates): a minimizing step
-//    along -beta, which releases constraints, and restart CG.
+//    along -beta, which releases constraints (with u: shortened to the first bound reached on
+//    the other side of the box), and restart CG.
 //
 // Preconditioning in face: given an operator M (an approximate inverse of A, symmetric positive
 // definite), the CG directions use z = R M R phi, R zeroing the active components, instead of
@@ -63,7 +67,8 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
     std::ostream* out = nullptr;  // std::cout when null
   };
 
-  // qp.A, qp.b, qp.lower and qp.x must be set; M (optional) enables preconditioning in face.
+  // qp.A, qp.b, qp.lower and qp.x must be set, qp.upper may; M (optional) enables
+  // preconditioning in face.
   MprgpIteration(const BoundConstrainedQp<S, MV, OP>& qp, Teuchos::RCP<const OP> M,
                  Teuchos::RCP<Belos::StatusTest<S, MV, OP>> tester, const Options& options);
 
@@ -88,8 +93,9 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   bool isInitialized() override { return initialized_; }
 
   // Extras.
-  // Throws std::runtime_error naming the culprit when b, x or the bounds contain NaN or Inf
-  // (bounds may be -Inf).
+  // Throws std::runtime_error naming the culprit (and the component of a bound) when b, x or the
+  // bounds contain NaN or Inf (lower bounds may be -Inf, upper bounds +Inf), or when a lower
+  // bound exceeds the upper bound. Collective.
   static void checkProblemData(const BoundConstrainedQp<S, MV, OP>& qp);
   void setPrintScale(S scale) { opts_.printScale = scale; }
   // g = A x - b at the (feasible) initial x: initialize() copies it instead of multiplying.
@@ -125,6 +131,7 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   void record(const char* kind);
 
   BoundConstrainedQp<S, MV, OP> qp_;
+  const MV* upper_ = nullptr;  // qp_.upper when it has a finite entry, else null
   Teuchos::RCP<const OP> M_;
   Teuchos::RCP<Belos::StatusTest<S, MV, OP>> tester_;
   Options opts_;

@@ -1,12 +1,14 @@
 #pragma once
 #include <Teuchos_Assert.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "tfeti_BoundTraits.hpp"
 #include "tfeti_MprgpIteration_decl.hpp"
@@ -28,9 +30,13 @@ MprgpIteration<S, MV, OP>::MprgpIteration(const BoundConstrainedQp<S, MV, OP>& q
                              std::invalid_argument,
                              "MprgpIteration: the step length alphaBar and Gamma must be > 0");
   TEUCHOS_TEST_FOR_EXCEPTION(MVT::GetNumberVecs(*qp_.x) != 1 || MVT::GetNumberVecs(*qp_.b) != 1 ||
-                                 MVT::GetNumberVecs(*qp_.lower) != 1,
+                                 MVT::GetNumberVecs(*qp_.lower) != 1 ||
+                                 (!qp_.upper.is_null() && MVT::GetNumberVecs(*qp_.upper) != 1),
                              std::invalid_argument,
-                             "MprgpIteration: x, b and lower must be single vectors");
+                             "MprgpIteration: x, b, lower and upper must be single vectors");
+  // An upper bound vector without a finite entry changes nothing: drop it, so that such a
+  // problem takes the lower-bound-only path (no extra reduction in the proportioning step).
+  if (!qp_.upper.is_null() && BoundTraits<S, MV>::anyFinite(*qp_.upper)) upper_ = qp_.upper.get();
   // Built directly, not through setProblem, which would compute residuals and shuffle columns
   // for Belos' block solvers; status tests only need A, b and the iterate.
   problem_ = Teuchos::rcp(new Belos::LinearProblem<S, MV, OP>(qp_.A, qp_.x, qp_.b));
@@ -70,15 +76,15 @@ void MprgpIteration<S, MV, OP>::applyA(const MV& in, MV& out) {
 template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::updateGradientSplit() {
   using BT = BoundTraits<S, MV>;
-  BT::freeGradient(*qp_.x, *qp_.lower, *g_, *phi_);
-  BT::choppedGradient(*qp_.x, *qp_.lower, *g_, *beta_);
+  BT::freeGradient(*qp_.x, *qp_.lower, upper_, *g_, *phi_);
+  BT::choppedGradient(*qp_.x, *qp_.lower, upper_, *g_, *beta_);
   std::vector<magnitude_type> n(1);
   MVT::MvNorm(*phi_, n);
   const magnitude_type phiNorm = n[0];
   MVT::MvNorm(*beta_, n);
   betaNorm2_ = n[0] * n[0];
   gpNorm_ = std::sqrt(phiNorm * phiNorm + betaNorm2_);
-  phiTildePhi_ = BT::reducedFreeGradientDot(*qp_.x, *qp_.lower, *phi_, opts_.alphaBar);
+  phiTildePhi_ = BT::reducedFreeGradientDot(*qp_.x, *qp_.lower, upper_, *phi_, opts_.alphaBar);
   if (!std::isfinite(gpNorm_))
     throw std::runtime_error(
         "MPRGP: the gradient A x - b contains NaN or Inf (the operator A produced a non-finite "
@@ -92,7 +98,7 @@ void MprgpIteration<S, MV, OP>::precondition(MV& z) {
     return;
   }
   OPT::Apply(*M_, *phi_, z);
-  BoundTraits<S, MV>::restrictToFree(*qp_.x, *qp_.lower, z);
+  BoundTraits<S, MV>::restrictToFree(*qp_.x, *qp_.lower, upper_, z);
 }
 
 template <class S, class MV, class OP>
@@ -100,9 +106,28 @@ void MprgpIteration<S, MV, OP>::checkProblemData(const BoundConstrainedQp<S, MV,
   using BT = BoundTraits<S, MV>;
   if (!BT::allFinite(*qp.b))
     throw std::runtime_error("MPRGP: the right-hand side b contains NaN or Inf");
-  if (!BT::allFinite(*qp.lower, true))
-    throw std::runtime_error(
-        "MPRGP: the lower bounds contain NaN or +Inf (use -Inf for an unconstrained component)");
+  const auto value = [](const MV& v, long long i) {
+    std::ostringstream os;
+    os << BT::valueAt(v, i);
+    return os.str();
+  };
+  const long long badLower = BT::firstNonFinite(*qp.lower, true, false);
+  if (badLower >= 0)
+    throw std::runtime_error("MPRGP: the lower bounds contain NaN or +Inf: component " +
+                             std::to_string(badLower) + " is " + value(*qp.lower, badLower) +
+                             " (use -Inf for a component without lower bound)");
+  if (!qp.upper.is_null()) {
+    const long long badUpper = BT::firstNonFinite(*qp.upper, false, true);
+    if (badUpper >= 0)
+      throw std::runtime_error("MPRGP: the upper bounds contain NaN or -Inf: component " +
+                               std::to_string(badUpper) + " is " + value(*qp.upper, badUpper) +
+                               " (use +Inf for a component without upper bound)");
+    const long long crossing = BT::firstCrossing(*qp.lower, *qp.upper);
+    if (crossing >= 0)
+      throw std::runtime_error("MPRGP: the bounds cross at component " + std::to_string(crossing) +
+                               ": lower " + value(*qp.lower, crossing) + " > upper " +
+                               value(*qp.upper, crossing) + " (the feasible set is empty)");
+  }
   if (!BT::allFinite(*qp.x))
     throw std::runtime_error("MPRGP: the initial guess x contains NaN or Inf");
 }
@@ -111,7 +136,7 @@ template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::initialize() {
   using BT = BoundTraits<S, MV>;
   checkProblemData(qp_);
-  BT::project(*qp_.x, *qp_.lower);
+  BT::project(*qp_.x, *qp_.lower, upper_);
   if (!g0_.is_null()) {
     MVT::Assign(*g0_, *g_);
   } else {
@@ -168,7 +193,7 @@ void MprgpIteration<S, MV, OP>::iterate() {
       }
       MVT::MvDot(*g_, *p_, d);
       const S alphaCg = d[0] / pAp;
-      const S alphaF = BoundTraits<S, MV>::maxFeasibleStep(*qp_.x, *qp_.lower, *p_);
+      const S alphaF = BoundTraits<S, MV>::maxFeasibleStep(*qp_.x, *qp_.lower, upper_, *p_);
       if (alphaCg <= alphaF) {
         cgStep(alphaCg);
         record("CG");
@@ -187,7 +212,7 @@ template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::cgStep(S alphaCg) {
   MVT::MvAddMv(S(1), *qp_.x, -alphaCg, *p_, *qp_.x);
   // Mathematically feasible; the projection only removes rounding below the bounds.
-  BoundTraits<S, MV>::project(*qp_.x, *qp_.lower);
+  BoundTraits<S, MV>::project(*qp_.x, *qp_.lower, upper_);
   MVT::MvAddMv(S(1), *g_, -alphaCg, *Ap_, *g_);
   updateGradientSplit();
   // p = z - (z^T A p / p^T A p) p keeps the new direction A-conjugate to the previous one.
@@ -221,7 +246,7 @@ bool MprgpIteration<S, MV, OP>::tryOptimalExpansion() {
   const S fHalf = energy();
   MVT::Assign(*qp_.x, *xHalf_);
   MVT::MvAddMv(S(1), *qp_.x, -phiPhi[0] / phiAphi[0], *phi_, *qp_.x);
-  BT::project(*qp_.x, *qp_.lower);
+  BT::project(*qp_.x, *qp_.lower, upper_);
   applyA(*qp_.x, *g_);
   MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
   if (energy() <= fHalf) {
@@ -240,14 +265,14 @@ bool MprgpIteration<S, MV, OP>::tryProjectedCgExpansion(S alphaFeasible, S alpha
   using BT = BoundTraits<S, MV>;
   // The feasible half step and its energy, kept for the fall-back (no multiplication).
   MVT::MvAddMv(S(1), *qp_.x, -alphaFeasible, *p_, *xHalf_);
-  BT::project(*xHalf_, *qp_.lower);
+  BT::project(*xHalf_, *qp_.lower, upper_);
   MVT::MvAddMv(S(1), *g_, -alphaFeasible, *Ap_, *gHalf_);
   std::vector<S> xg(1), xb(1);
   MVT::MvDot(*xHalf_, *gHalf_, xg);
   MVT::MvDot(*xHalf_, *qp_.b, xb);
   const S fHalf = S(0.5) * (xg[0] - xb[0]);
   MVT::MvAddMv(S(1), *qp_.x, -alphaCg, *p_, *qp_.x);
-  BT::project(*qp_.x, *qp_.lower);
+  BT::project(*qp_.x, *qp_.lower, upper_);
   applyA(*qp_.x, *g_);
   MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
   if (BT::allFinite(*g_) && energy() <= fHalf) {
@@ -272,15 +297,15 @@ const char* MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible, S alphaCg)
     alphaFeasible = 0;
   }
   MVT::MvAddMv(S(1), *qp_.x, -alphaFeasible, *p_, *qp_.x);
-  BT::project(*qp_.x, *qp_.lower);
+  BT::project(*qp_.x, *qp_.lower, upper_);
   MVT::MvAddMv(S(1), *g_, -alphaFeasible, *Ap_, *g_);
-  BT::freeGradient(*qp_.x, *qp_.lower, *g_, *phi_);
+  BT::freeGradient(*qp_.x, *qp_.lower, upper_, *g_, *phi_);
   if (opts_.optimalExpansion && tryOptimalExpansion()) {
     ++counters_.expansionSteps;
     return "expansion (opt)";
   }
   MVT::MvAddMv(S(1), *qp_.x, -opts_.alphaBar, *phi_, *qp_.x);
-  BT::project(*qp_.x, *qp_.lower);
+  BT::project(*qp_.x, *qp_.lower, upper_);
   // The projection changed x non-linearly: recompute the gradient, which also stops the
   // recursive update from drifting.
   applyA(*qp_.x, *g_);
@@ -293,8 +318,9 @@ const char* MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible, S alphaCg)
 
 template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::proportioningStep() {
-  // d = beta <= 0 lives on the active set, so x - alpha d (alpha > 0) only moves components
-  // up from their bounds: always feasible. g^T d = ||beta||^2 > 0.
+  // d = beta lives on the active set, beta <= 0 at lower and >= 0 at upper bounds, so
+  // x - alpha d (alpha > 0) only moves components off their bounds into the box; with lower
+  // bounds only that is always feasible. g^T d = ||beta||^2 > 0.
   applyA(*beta_, *Ap_);
   std::vector<S> dAd(1);
   MVT::MvDot(*beta_, *Ap_, dAd);
@@ -307,8 +333,18 @@ void MprgpIteration<S, MV, OP>::proportioningStep() {
          << " along the chopped gradient at step " << iter_ << ")";
     throw std::runtime_error(os.str());
   }
-  const S alpha = betaNorm2_ / dAd[0];
-  MVT::MvAddMv(S(1), *qp_.x, -alpha, *beta_, *qp_.x);
+  S alpha = betaNorm2_ / dAd[0];
+  if (upper_ != nullptr) {
+    // With two bounds the step may carry a component from one bound past the other: stop at
+    // the first one reached (f still decreases, alpha <= the minimizing length), and project
+    // away the rounding, as in a CG step.
+    using BT = BoundTraits<S, MV>;
+    alpha = std::min(alpha, BT::maxFeasibleStep(*qp_.x, *qp_.lower, upper_, *beta_));
+    MVT::MvAddMv(S(1), *qp_.x, -alpha, *beta_, *qp_.x);
+    BT::project(*qp_.x, *qp_.lower, upper_);
+  } else {
+    MVT::MvAddMv(S(1), *qp_.x, -alpha, *beta_, *qp_.x);
+  }
   MVT::MvAddMv(S(1), *g_, -alpha, *Ap_, *g_);
   updateGradientSplit();
   precondition(*p_);

@@ -1,5 +1,5 @@
 #pragma once
-// MprgpSolMgr: the MPRGP solver for  min 1/2 x^T A x - b^T x  subject to  x >= l  (see
+// MprgpSolMgr: the MPRGP solver for  min 1/2 x^T A x - b^T x  subject to  l <= x <= u  (see
 // tfeti_MprgpIteration_decl.hpp for the algorithm), set up like Belos' solver managers: a
 // validated parameter list, status tests (Belos::StatusTestMaxIters OR the projected-gradient
 // test), an iteration object, and solve() returning Belos::Converged or Belos::Unconverged.
@@ -42,7 +42,8 @@ class MprgpSolMgr {
   using magnitude_type = typename Teuchos::ScalarTraits<S>::magnitudeType;
 
   // qp.x holds the initial guess (projected onto the bounds if infeasible) and receives the
-  // solution. The preconditioner is used only with "Preconditioning in face" = true.
+  // solution; qp.upper (optional) adds upper bounds. The preconditioner is used only with
+  // "Preconditioning in face" = true.
   MprgpSolMgr(const BoundConstrainedQp<S, MV, OP>& qp, const Teuchos::ParameterList& params,
               Teuchos::RCP<const OP> preconditioner = Teuchos::null);
 

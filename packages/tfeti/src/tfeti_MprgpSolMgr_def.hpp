@@ -144,7 +144,7 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
     auto y = MVT::Clone(*qp_.x, 1);
     auto Ay = MVT::Clone(*qp_.x, 1);
     MVT::MvInit(*y, S(0));
-    BT::project(*y, *qp_.lower);
+    BT::project(*y, *qp_.lower, qp_.upper.get());
     Belos::OperatorTraits<S, MV, OP>::Apply(*qp_.A, *y, *Ay);
     ++counters_.hessianMultiplications;
     MVT::MvNorm(*Ay, n);
@@ -179,7 +179,8 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
   const Teuchos::RCP<const OP> M =
       params_.get<bool>("Preconditioning in face") ? M_ : Teuchos::RCP<const OP>();
   MprgpIteration<S, MV, OP> iteration(qp_, M, combo, opts);
-  if (!g0_.is_null() && BT::isFeasible(*qp_.x, *qp_.lower)) iteration.setInitialGradient(g0_);
+  if (!g0_.is_null() && BT::isFeasible(*qp_.x, *qp_.lower, qp_.upper.get()))
+    iteration.setInitialGradient(g0_);
   iteration.initialize();
   iteration.iterate();
 
@@ -194,7 +195,7 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solve() {
   numIters_ = iteration.getNumIters();
   g_ = iteration.getGradient();
   // Every step ends with a projection or only moves up from the bounds: this cannot fail.
-  TEUCHOS_TEST_FOR_EXCEPTION(!BT::isFeasible(*qp_.x, *qp_.lower), std::logic_error,
+  TEUCHOS_TEST_FOR_EXCEPTION(!BT::isFeasible(*qp_.x, *qp_.lower, qp_.upper.get()), std::logic_error,
                              "MPRGP: internal error, the solution violates the bounds");
 
   const bool converged =

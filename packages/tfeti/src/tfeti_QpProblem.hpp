@@ -1,8 +1,10 @@
 #pragma once
 // The bound-constrained quadratic program of the MPRGP and SMALBE solvers,
-//   min 1/2 x^T A x - b^T x  subject to  x >= lower,
+//   min 1/2 x^T A x - b^T x  subject to  lower <= x <= upper,
 // (SMALBE adds Q x = 0 with Q an orthogonal projector, given to its solver manager), and the
-// work counters both solvers report.
+// work counters both solvers report. The upper bound is optional: a null `upper` (the default)
+// or +infinity entries mean no upper bound, and then both solvers take exactly the steps of the
+// lower-bound-only algorithm. A box component with lower == upper is fixed.
 #include <Teuchos_RCP.hpp>
 
 #include <string>
@@ -16,6 +18,9 @@ struct BoundConstrainedQp {
   Teuchos::RCP<const MV> b;      // linear term
   Teuchos::RCP<const MV> lower;  // lower bounds; -infinity: unconstrained component
   Teuchos::RCP<MV> x;            // initial guess in (projected onto the bounds), solution out
+  // Upper bounds; null: none; +infinity: no upper bound on that component. Last, so that the
+  // aggregate initializations {A, b, lower, x} of lower-bound problems stay valid.
+  Teuchos::RCP<const MV> upper = Teuchos::null;
 };
 
 struct QpCounters {

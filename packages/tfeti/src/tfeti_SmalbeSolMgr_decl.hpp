@@ -2,11 +2,11 @@
 // SmalbeSolMgr: SMALBE-M (Dostál, "Optimal Quadratic Programming Algorithms", 2009: the
 // semi-monotonic augmented Lagrangian method for bound and equality constraints with a fixed
 // penalty rho and an adaptive precision control M) for
-//   min 1/2 x^T A x - b^T x  subject to  x >= l  and  Q x = 0,
+//   min 1/2 x^T A x - b^T x  subject to  l <= x <= u  and  Q x = 0   (u optional),
 // Q an orthogonal projector (Q = Q^T = Q^2) onto the range of the equality-constraint rows, so
 // ||Q x|| is the equality residual. With the multiplier mu in range(Q), the augmented Lagrangian
 //   L(x, mu, rho) = 1/2 x^T (A + rho Q) x - b^T x + mu^T x
-// is minimized subject to x >= l by MPRGP (Hessian H = A + rho Q applied as an OperatorSum),
+// is minimized subject to l <= x <= u by MPRGP (Hessian H = A + rho Q applied as an OperatorSum),
 // warm-started from the previous x, to the precision
 //   ||g^P(x, mu_k)|| <= min(M_k ||Q x||, eta)
 // (or until SMALBE's final test holds, see below); then mu_{k+1} = mu_k + rho Q x_k, and M is

@@ -116,7 +116,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
     auto y = MVT::Clone(*qp_.x, 1);
     auto Ay = MVT::Clone(*qp_.x, 1);
     MVT::MvInit(*y, S(0));
-    BT::project(*y, *qp_.lower);
+    BT::project(*y, *qp_.lower, qp_.upper.get());
     OPT::Apply(*qp_.A, *y, *Ay);
     ++counters_.hessianMultiplications;
     MVT::MvNorm(*Ay, n);
@@ -135,7 +135,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solve() {
   auto Qx = MVT::Clone(*qp_.x, 1);
   const Teuchos::RCP<const OP> H =
       augmented_.is_null() ? OperatorSum<S, MV, OP>::build(qp_.A, S(1), Q_, S(rho_)) : augmented_;
-  BoundConstrainedQp<S, MV, OP> inner{H, bInner, qp_.lower, qp_.x};
+  BoundConstrainedQp<S, MV, OP> inner{H, bInner, qp_.lower, qp_.x, qp_.upper};
   Teuchos::ParameterList innerParams = params_.sublist("MPRGP");
   auto innerTest = Teuchos::rcp(new StatusTestSmalbeInner<S, MV, OP>(Q_, M_, eta, gTol, eTol));
   const int maxOuter = params_.get<int>("Maximum outer iterations");

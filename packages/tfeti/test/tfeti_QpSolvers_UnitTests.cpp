@@ -24,82 +24,20 @@
 #include "tfeti_MprgpIteration_decl.hpp"
 #include "tfeti_MprgpSolMgr_decl.hpp"
 #include "tfeti_OperatorSum.hpp"
+#include "tfeti_QpChecks.hpp"
 #include "tfeti_QpProblem.hpp"
 #include "tfeti_QpStatusTests.hpp"
+#include "tfeti_QpTestHelpers.hpp"
 #include "tfeti_SmalbeSolMgr_decl.hpp"
 #include "tfeti_TestHelpers.hpp"
 #include "tfeti_Types.hpp"
 
 namespace {
 
-using Teuchos::RCP;
-using Teuchos::rcp;
-using tfeti::CrsMatrix;
-using tfeti::GO;
-using tfeti::LO;
-using tfeti::Map;
-using tfeti::MultiVector;
-using tfeti::Operator;
-using tfeti::Vector;
-using Qp = tfeti::BoundConstrainedQp<double, MultiVector, Operator>;
-using Mprgp = tfeti::MprgpSolMgr<double, MultiVector, Operator>;
-using Smalbe = tfeti::SmalbeSolMgr<double, MultiVector, Operator>;
-
-const double kInf = std::numeric_limits<double>::infinity();
+using namespace qp_test;
 
 // Note: TEST_EQUALITY and TEST_COMPARE evaluate their arguments twice, so solve() is always
 // called on its own line (a second solve would restart from the solution).
-
-RCP<const tfeti::Comm> world() {
-  return Tpetra::getDefaultComm();
-}
-
-RCP<const Map> uniformMap(GO n, const RCP<const tfeti::Comm>& comm) {
-  return rcp(new Map(static_cast<Tpetra::global_size_t>(n), 0, comm));
-}
-
-// A vector with entries f(global index).
-RCP<Vector> vectorOf(const RCP<const Map>& map, const std::function<double(GO)>& f) {
-  auto v = rcp(new Vector(map));
-  auto d = v->getDataNonConst();
-  for (LO i = 0; i < static_cast<LO>(map->getNodeNumElements()); ++i)
-    d[i] = f(map->getGlobalElement(i));
-  return v;
-}
-
-// All entries of v on every rank, in global index order.
-std::vector<double> gatherAll(const Vector& v) {
-  const auto map = v.getMap();
-  auto all = Tpetra::createLocalMapWithNode<LO, GO, tfeti::Node>(map->getGlobalNumElements(),
-                                                                 map->getComm());
-  Tpetra::Import<LO, GO, tfeti::Node> import(map, all);
-  Vector r(all);
-  r.doImport(v, import, Tpetra::INSERT);
-  auto d = r.getData();
-  return std::vector<double>(d.begin(), d.end());
-}
-
-// 1D diffusion, Dirichlet ends: rows c_{i-1/2} + c_{i+1/2} on the diagonal, -c off it, with
-// c_{i+1/2} = coef(i) for the edge between unknowns i and i + 1 (coef(-1), coef(n-1): the ends).
-RCP<CrsMatrix> diffusion1D(const RCP<const Map>& map, const std::function<double(GO)>& coef) {
-  const GO n = static_cast<GO>(map->getGlobalNumElements());
-  auto A = rcp(new CrsMatrix(map, 3));
-  for (LO l = 0; l < static_cast<LO>(map->getNodeNumElements()); ++l) {
-    const GO i = map->getGlobalElement(l);
-    std::vector<GO> cols{i};
-    std::vector<double> vals{coef(i - 1) + coef(i)};
-    if (i > 0) cols.push_back(i - 1), vals.push_back(-coef(i - 1));
-    if (i + 1 < n) cols.push_back(i + 1), vals.push_back(-coef(i));
-    A->insertGlobalValues(i, Teuchos::arrayViewFromVector(cols),
-                          Teuchos::arrayViewFromVector(vals));
-  }
-  A->fillComplete();
-  return A;
-}
-
-RCP<CrsMatrix> laplacian1D(const RCP<const Map>& map) {
-  return diffusion1D(map, [](GO) { return 1.0; });
-}
 
 // -Laplace on the m x m interior grid of the unit square (h = 1 / (m + 1)), 5-point stencil
 // scaled by 1 / h^2, unknown i + m j at ((i + 1) h, (j + 1) h).
@@ -122,134 +60,16 @@ RCP<CrsMatrix> laplacian2D(const RCP<const Map>& map, int m) {
   return A;
 }
 
-// Orthogonal projector onto the span of the columns of V (orthonormalized here by modified
-// Gram-Schmidt, twice for accuracy): Q x = U (U^T x).
-class SpanProjector : public Operator {
- public:
-  explicit SpanProjector(const MultiVector& V) : U_(rcp(new MultiVector(V, Teuchos::Copy))) {
-    for (int pass = 0; pass < 2; ++pass)
-      for (std::size_t k = 0; k < U_->getNumVectors(); ++k) {
-        auto uk = U_->getVectorNonConst(k);
-        for (std::size_t j = 0; j < k; ++j) {
-          auto uj = U_->getVector(j);
-          uk->update(-uj->dot(*uk), *uj, 1.0);
-        }
-        uk->scale(1.0 / uk->norm2());
-      }
-  }
-  RCP<const Map> getDomainMap() const override { return U_->getMap(); }
-  RCP<const Map> getRangeMap() const override { return U_->getMap(); }
-  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS,
-             double alpha = 1.0, double beta = 0.0) const override {
-    for (std::size_t c = 0; c < X.getNumVectors(); ++c) {
-      auto x = X.getVector(c);
-      auto y = Y.getVectorNonConst(c);
-      std::vector<double> coef(U_->getNumVectors());
-      for (std::size_t k = 0; k < coef.size(); ++k) coef[k] = U_->getVector(k)->dot(*x);
-      if (beta == 0.0)
-        y->putScalar(0.0);
-      else
-        y->scale(beta);
-      for (std::size_t k = 0; k < coef.size(); ++k)
-        y->update(alpha * coef[k], *U_->getVector(k), 1.0);
-    }
-  }
-  const MultiVector& basis() const { return *U_; }
-
- private:
-  RCP<MultiVector> U_;
-};
-
-// Jacobi: x ./ diag(A), for preconditioning in face.
-class DiagonalInverse : public Operator {
- public:
-  explicit DiagonalInverse(const CrsMatrix& A) : d_(rcp(new Vector(A.getRowMap()))) {
-    A.getLocalDiagCopy(*d_);
-    d_->reciprocal(*d_);
-  }
-  RCP<const Map> getDomainMap() const override { return d_->getMap(); }
-  RCP<const Map> getRangeMap() const override { return d_->getMap(); }
-  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS,
-             double alpha = 1.0, double beta = 0.0) const override {
-    Y.elementWiseMultiply(alpha, *d_, X, beta);
-  }
-
- private:
-  RCP<Vector> d_;
-};
-
-// The KKT conditions of min 1/2 x^T A x - b^T x, x >= l (and Q x = 0 with multiplier mu, the
-// gradient then being g = A x - b + mu), all as maxima over components:
-struct Kkt {
-  double infeasibility = 0;       // max(l_i - x_i, 0)
-  double freeGradient = 0;        // |g_i| where x_i > l_i (stationarity)
-  double negativeMultiplier = 0;  // max(-g_i, 0) where x_i = l_i (sign of the multipliers)
-  double complementarity = 0;     // |(x_i - l_i) g_i| over finite bounds
-  double equalityResidual = 0;    // ||Q x||
-  double gapRange = 0;            // max |x_i - l_i| over finite bounds (scale of the above)
-};
-
+// The KKT conditions (tfeti_QpChecks.hpp) of a problem with lower bounds only.
 Kkt checkKkt(const Operator& A, const Vector& b, const Vector& l, const Vector& x,
              const Vector* mu = nullptr, const Operator* Q = nullptr) {
-  Vector g(x.getMap());
-  A.apply(x, g);
-  g.update(-1.0, b, 1.0);
-  if (mu != nullptr) g.update(1.0, *mu, 1.0);
-  Kkt k;
-  auto xv = x.getData();
-  auto lv = l.getData();
-  auto gv = g.getData();
-  for (std::size_t i = 0; i < x.getLocalLength(); ++i) {
-    k.infeasibility = std::max(k.infeasibility, lv[i] - xv[i]);
-    if (xv[i] > lv[i])
-      k.freeGradient = std::max(k.freeGradient, std::abs(gv[i]));
-    else
-      k.negativeMultiplier = std::max(k.negativeMultiplier, -gv[i]);
-    if (std::isfinite(lv[i])) {
-      k.complementarity = std::max(k.complementarity, std::abs((xv[i] - lv[i]) * gv[i]));
-      k.gapRange = std::max(k.gapRange, std::abs(xv[i] - lv[i]));
-    }
-  }
-  const auto& comm = *x.getMap()->getComm();
-  k.infeasibility = tfeti_test::globalMax(comm, k.infeasibility);
-  k.freeGradient = tfeti_test::globalMax(comm, k.freeGradient);
-  k.negativeMultiplier = tfeti_test::globalMax(comm, k.negativeMultiplier);
-  k.complementarity = tfeti_test::globalMax(comm, k.complementarity);
-  k.gapRange = tfeti_test::globalMax(comm, k.gapRange);
-  if (Q != nullptr) {
-    Vector qx(x.getMap());
-    Q->apply(x, qx);
-    k.equalityResidual = qx.norm2();
-  }
-  return k;
-}
-
-// Asserts the bound KKT conditions: x >= l exactly, |g_i| <= gTol on free components,
-// g_i >= -gTol on active ones, |(x_i - l_i) g_i| <= gTol * max|x - l|.
-void expectKkt(const Kkt& k, double gTol, Teuchos::FancyOStream& out, bool& success) {
-  TEST_COMPARE(k.infeasibility, <=, 0.0);
-  TEST_COMPARE(k.freeGradient, <=, gTol);
-  TEST_COMPARE(k.negativeMultiplier, <=, gTol);
-  TEST_COMPARE(k.complementarity, <=, gTol * std::max(1.0, k.gapRange));
-}
-
-double maxAbsDiff(const Vector& a, const Vector& b) {
-  Vector d(a, Teuchos::Copy);
-  d.update(-1.0, b, 1.0);
-  return d.normInf();
+  return tfeti::qpKkt(A, b, l, nullptr, x, mu, Q);
 }
 
 // Multiplications by A of one MPRGP solve: the power iterations, one for the initial gradient,
 // one per CG and proportioning step, two per expansion step (A p and the fresh gradient).
 long long expectedMultiplications(const tfeti::QpCounters& c, int powerIterations) {
   return powerIterations + 1 + c.cgSteps + 2 * c.expansionSteps + c.proportioningSteps;
-}
-
-Teuchos::ParameterList mprgpParams(double tol, int maxIter = 10000) {
-  Teuchos::ParameterList p;
-  p.set("Relative tolerance", tol);
-  p.set("Maximum iterations", maxIter);
-  return p;
 }
 
 // A test problem with a solution known by construction on the 1D Laplacian: x* given, the
@@ -679,13 +499,6 @@ EqualityProblem equalityProblem(const RCP<const tfeti::Comm>& comm, GO n) {
   p.A->apply(*p.exact, *p.b);
   p.b->update(1.0, *p.exactMu, -1.0, *lambda, 1.0);
   p.x = rcp(new Vector(map));
-  return p;
-}
-
-Teuchos::ParameterList smalbeParams(double tol) {
-  Teuchos::ParameterList p;
-  p.set("Relative tolerance", tol);
-  p.set("Equality tolerance", tol);
   return p;
 }
 
