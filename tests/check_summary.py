@@ -680,7 +680,7 @@ def friction(d, expect, force, mu, tol):
     within their box, no slip where they stick, slip along the multiplier where it is at the
     bound), and per node in the contact CSV: expect = slide: every closed node slips and the
     tangential force is `force` (Tresca: -g times the closed length), or -mu times the normal
-    contact force (Coulomb, mu > 0), to tol; expect = stick: every closed node sticks, its slip
+    force P = sum of the normal multipliers (Coulomb, mu > 0), to tol; expect = stick: every closed node sticks, its slip
     increment zero against the largest displacement."""
     s = load(d)
     if not s["converged"]:
@@ -689,7 +689,7 @@ def friction(d, expect, force, mu, tol):
     k = c["last_solve"]
     g = s["parameters"]["Contact problem"]["Friction"]["Slip bound"]
     if mu > 0:
-        force = -mu * c["force"]
+        force = -mu * c["normal_force"]
         g = mu * c["p_max"]
     u = s["max_abs_u"]
     for key in ("tangential_force", "slip_nodes", "stick_nodes", "stick_half_width",

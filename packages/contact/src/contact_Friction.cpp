@@ -195,8 +195,10 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const Frict
                      int dim) {
   double force = 0.0, ratio = 0.0, stickLo = 0.0, stickHi = 0.0;
   long long slip = 0, stick = 0;
+  double normal = 0.0;
   for (const auto& n : nodes) {
     force += n.tangentialForce * n.tangent[0];
+    normal += n.lambda;
     if (n.frictionState == 0) continue;
     // Coulomb: against mu lambda_N of the final state (the bound in force is the last
     // fixed-point iterate's, equal to it within the fixed point's tolerance).
@@ -213,6 +215,7 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const Frict
   f["friction_law"] = friction.law == FrictionSpec::Law::Tresca ? "Tresca" : "Coulomb";
   if (friction.law == FrictionSpec::Law::Tresca) f["slip_bound"] = friction.slipBound;
   if (friction.law == FrictionSpec::Law::Coulomb) f["friction_coefficient"] = friction.coefficient;
+  f["normal_force"] = normal;
   f["tangential_force"] = force;
   f["slip_nodes"] = slip;
   f["stick_nodes"] = stick;

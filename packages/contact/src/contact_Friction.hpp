@@ -72,7 +72,8 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
                         const std::vector<double>& stepStart, const std::vector<double>& current);
 
 // The friction keys of summary.json's contact record c: friction_law, slip_bound (Tresca),
-// tangential_force (the resultant of the tangential forces along x), slip_nodes, stick_nodes,
+// normal_force (the sum of the normal multipliers, P of a flat contact), tangential_force (the
+// resultant of the tangential forces along x), slip_nodes, stick_nodes,
 // stick_half_width (2D: half the x extent of the stick nodes), max_tangential_ratio (max
 // |lambda_T| / its bound over the closed nodes: 1 at a slipping node).
 void addFrictionJson(Json& c, const std::vector<ContactNode>& nodes, const FrictionSpec& friction,
