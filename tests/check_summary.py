@@ -675,6 +675,56 @@ def arc_grows(d09, d099):
     print(f"OK: contact half-angle {t09:.2f} deg (R_pin/R_hole = 0.9) < {t099:.2f} deg (0.99)")
 
 
+def friction(d, expect, force, mu, tol):
+    """A frictional nonlinear run: the friction rows' conditions of the last solve (multipliers
+    within their box, no slip where they stick, slip along the multiplier where it is at the
+    bound), and per node in the contact CSV: expect = slide: every closed node slips and the
+    tangential force is `force` (Tresca: -g times the closed length), or -mu times the normal
+    force P = sum of the normal multipliers (Coulomb, mu > 0), to tol; expect = stick: every closed node sticks, its slip
+    increment zero against the largest displacement."""
+    s = load(d)
+    if not s["converged"]:
+        fail(f"{d}: did not converge")
+    c = s["contact"]
+    k = c["last_solve"]
+    g = s["parameters"]["Contact problem"]["Friction"]["Slip bound"]
+    if mu > 0:
+        force = -mu * c["normal_force"]
+        g = mu * c["p_max"]
+    u = s["max_abs_u"]
+    for key in ("tangential_force", "slip_nodes", "stick_nodes", "stick_half_width",
+                "max_tangential_ratio", "friction_law"):
+        if key not in c:
+            fail(f"{d}: contact lacks {key}")
+    if k["max_friction_bound_excess"] > 1e-10 * g:
+        fail(f"{d}: a tangential multiplier beyond its bound by {k['max_friction_bound_excess']}")
+    if k["max_friction_slip_residual"] > KKT_TOL * u:
+        fail(f"{d}: friction rows' slip residual {k['max_friction_slip_residual']:.2e} "
+             f"(max |u| {u:.2e})")
+    with open(s["contact_csv"]) as f:
+        rows = list(csv.DictReader(f))
+    closed = [r for r in rows if r["state"] != "open"]
+    if not closed:
+        fail(f"{d}: no closed node")
+    if expect == "slide":
+        if c["stick_nodes"] != 0 or c["slip_nodes"] != len(closed):
+            fail(f"{d}: {c['stick_nodes']} stick, {c['slip_nodes']} slip of {len(closed)} closed")
+        if abs(c["tangential_force"] - force) > tol * abs(force):
+            fail(f"{d}: tangential force {c['tangential_force']:.10e}, expected {force:.10e}")
+        if abs(c["max_tangential_ratio"] - 1.0) > 1e-8:
+            fail(f"{d}: max |lambda_T| / bound {c['max_tangential_ratio']} at full sliding")
+    else:
+        if c["slip_nodes"] != 0 or c["stick_nodes"] != len(closed):
+            fail(f"{d}: {c['stick_nodes']} stick, {c['slip_nodes']} slip of {len(closed)} closed")
+        slip = max(abs(float(r["slip_increment"])) for r in closed)
+        if slip > KKT_TOL * u:
+            fail(f"{d}: a sticking node slipped by {slip:.2e} (max |u| {u:.2e})")
+        if not c["max_tangential_ratio"] < 1.0:
+            fail(f"{d}: max |lambda_T| / bound {c['max_tangential_ratio']} while sticking")
+    print(f"OK: {expect}: tangential force {c['tangential_force']:.8e}, {c['slip_nodes']} slip, "
+          f"{c['stick_nodes']} stick, max ratio {c['max_tangential_ratio']:.6f}")
+
+
 def option(args, name, default):
     return float(args[args.index(name) + 1]) if name in args else default
 
@@ -729,6 +779,9 @@ if __name__ == "__main__":
         plastic(args[0])
     elif mode == "plastic_vs_elastic":
         plastic_vs_elastic(args[0], args[1])
+    elif mode == "friction":
+        friction(args[0], args[1], option(args, "--force", 0.0), option(args, "--mu", 0.0),
+                 option(args, "--tol", 1e-6))
     elif mode == "arc_grows":
         arc_grows(args[0], args[1])
     else:

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "contact_Friction.hpp"
+
 namespace contact {
 
 std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
@@ -68,6 +70,7 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                      radius,
                      {row.normal[0], row.normal[1], row.normal[2]},
                      gap});
+    nodes.back().slaveNode = row.slaveNode;
   }
   std::sort(nodes.begin(), nodes.end(), [&](const ContactNode& a, const ContactNode& b) {
     if (dim == 3) return a.radius < b.radius;
@@ -150,12 +153,19 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
   if (comm.getRank() != 0) return;
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write " + path);
-  csv << (dim == 3 ? "x,y,z,lambda,pressure,radius\n" : "x,y,lambda,pressure,angle\n")
+  // Friction adds its columns; a frictionless run's file is unchanged.
+  const bool friction = !nodes.empty() && nodes.front().frictionState >= 0;
+  csv << (dim == 3 ? "x,y,z,lambda,pressure,radius" : "x,y,lambda,pressure,angle")
+      << (friction ? ",tangential_force,tangential_traction,slip_increment,state\n" : "\n")
       << std::setprecision(12);
   for (const auto& n : nodes) {
     csv << n.x << "," << n.y << ",";
     if (dim == 3) csv << n.z << ",";
-    csv << n.lambda << "," << n.pressure << "," << (dim == 3 ? n.radius : n.angle) << "\n";
+    csv << n.lambda << "," << n.pressure << "," << (dim == 3 ? n.radius : n.angle);
+    if (friction)
+      csv << "," << n.tangentialForce << "," << n.tangentialTraction << "," << n.slip << ","
+          << frictionStateName(n.frictionState);
+    csv << "\n";
   }
 }
 

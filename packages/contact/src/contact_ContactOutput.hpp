@@ -26,6 +26,13 @@ struct ContactNode {
                      // on the slave node
   double gap;        // the row's gap left by the solve, c_I - B_I u (>= 0; 0 in contact); the
                      // row's gap before it when contactNodes is given no solution
+  int slaveNode = -1;  // its global node id
+  // Friction (addFrictionResults; state -1 without friction): the tangential multiplier (force
+  // along the tangent t = (-n_y, n_x) in 2D), it over the node's share (traction), the slave's
+  // slip relative to the master along t in the load step, state 0 open, 1 stick, 2 slip.
+  int frictionState = -1;
+  double tangentialForce = 0.0, tangentialTraction = 0.0, slip = 0.0, tangent[3] = {0, 0, 0};
+  double slipBound = 0.0;  // the bound of |tangentialForce| in the last solve
 };
 
 // How the contact zone's extent is measured. 2D: the half-width along x (a contact centred at

@@ -123,6 +123,18 @@ Json nonlinearSummary(const ContactResult& r) {
   nl["total_mprgp_iterations"] = totals.mprgpIterations;
   nl["total_hessian_multiplications"] = totals.hessianMultiplications;
   if (r.exitCode == 3) nl["message"] = r.message;
+  if (!r.fixedPoint.empty()) {
+    Json fp = Json::array();
+    for (const FixedPointStep& f : r.fixedPoint) {
+      Json e = Json::object();
+      e["step"] = f.step;
+      e["iterations"] = f.iterations;
+      e["relative_change"] = f.change;
+      fp.push(std::move(e));
+    }
+    nl["fixed_point"] = std::move(fp);
+    nl["fixed_point_tolerance"] = r.friction.fixedPointTolerance;
+  }
   s["nonlinear"] = std::move(nl);
   s["steps"] = stepsJson(r.history);
   if (r.haveContact) {
@@ -146,6 +158,7 @@ Json contactJson(const ContactResult& r) {
   if (nonlinearRun(r)) {
     Json c = Json::object();
     addNonlinearContact(c, r.contact);
+    if (r.friction.active()) addFrictionJson(c, r.contactNodes, r.friction, r.dimension);
     return c;
   }
   Json c = constraintJson(r.contact.constraints);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "contact_ContactOutput.hpp"
+#include "contact_Friction.hpp"
 #include "contact_Json.hpp"
 #include "contact_NonlinearHistory.hpp"
 #include "tfeti_FetiSolver.hpp"
@@ -63,6 +64,13 @@ struct NonlinearOutcome {
   double youngsModulus = 0.0, poissonsRatio = 0.0, yieldStress = 0.0, hardeningModulus = 0.0;
 };
 
+// A converged load step's Coulomb fixed point: its iterations and the last relative change of the
+// slip bounds.
+struct FixedPointStep {
+  int step = 0, iterations = 0;
+  double change = 0.0;
+};
+
 struct ContactResult {
   std::string problem;  // elastic_contact | nonlinear_contact
   int ranks = 0, subdomains = 0, dimension = 0;
@@ -96,6 +104,10 @@ struct ContactResult {
   // load steps (and every iteration, rejected ones too) for nonlinear_contact.
   NonlinearHistory history;
   NonlinearOutcome nonlinear;
+  // Friction on the contact pair (nonlinear_contact): the law, and Coulomb's fixed point per
+  // converged step; the per-node friction results are in contactNodes.
+  FrictionSpec friction;
+  std::vector<FixedPointStep> fixedPoint;
 
   tfeti::FetiTimings timings;
   double wallTime = 0.0, peakRssMb = 0.0;

@@ -19,6 +19,7 @@
 #include "contact_NonlinearIteration.hpp"
 #include "contact_NonlinearModel.hpp"
 #include "contact_NonlinearOptions.hpp"
+#include "contact_FrictionStep.hpp"
 #include "contact_NonlinearStepOutput.hpp"
 #include "contact_PrescribedDisplacement.hpp"
 
@@ -256,6 +257,8 @@ ContactResult ContactSolver::solve() {
 
   LoadStepIteration iteration(comm_, model, solver, opt, r.spec.slave, r.spec.master,
                               r.spec.obstacle ? &*r.spec.obstacle : nullptr, r.loadNorm);
+  // Friction (nonlinear_contact only): tangential rows beside the contact rows of every iteration.
+  iteration.friction = frictionSpec(params_, r.spec.slave, r.spec.master);
   if (root && r.verbosity > 1 && !r.linear)
     iteration.onIteration = [&](const IterationRecord& rec) {
       std::cout << "  step " << rec.step << " (t = " << rec.loadFactor << ") iteration "
@@ -265,6 +268,8 @@ ContactResult ContactSolver::solve() {
                 << "]\n";
     };
   NonlinearStepOutput output(comm_, model, solver, opt, dir_);
+  output.friction = iteration.friction;
+  std::vector<FixedPointStep> fixedPointSteps;  // Coulomb, per converged step
   const std::string restartDir = dir_ + "/restart";
   const auto writeTables = [&]() {
     if (!root || !files || r.linear) return;
@@ -309,7 +314,9 @@ ContactResult ContactSolver::solve() {
     }
     const double t = control.nextLoadFactor();
     const int step = control.nextStep();
-    StepOutcome out = iteration.attempt(step, t);
+    FixedPointRecord fixedPoint;
+    StepOutcome out =
+        attemptFrictionalStep(iteration, solver, problem, opt.rule, step, t, fixedPoint);
     lastQp = out.qp;
     // The one-step case keeps the state of a QP that did not converge (reported, not retried).
     if (r.linear && !out.converged) {
@@ -354,6 +361,8 @@ ContactResult ContactSolver::solve() {
       evaluateLinear(rec);
     else
       output.fill(rec, r.loadDirection);
+    if (iteration.friction.law == FrictionSpec::Law::Coulomb)
+      fixedPointSteps.push_back({step, fixedPoint.iterations, fixedPoint.change});
     history.steps.push_back(rec);
     control.accept();
     if (r.linear) break;
@@ -371,7 +380,12 @@ ContactResult ContactSolver::solve() {
                 << " Hessian multiplications); p_max " << rec.pMax << ", contact extent "
                 << rec.contactExtent << ", max von Mises " << rec.maxVonMises
                 << ", max plastic strain " << rec.maxPlasticStrain << ", contact force "
-                << rec.contactForce << " [" << r.elapsed() << "]\n";
+                << rec.contactForce
+                << (fixedPointSteps.empty() || fixedPointSteps.back().step != step
+                        ? std::string()
+                        : ", " + std::to_string(fixedPointSteps.back().iterations) +
+                              " Coulomb fixed-point iterations")
+                << " [" << r.elapsed() << "]\n";
   }
 
   const bool haveStep = !history.steps.empty();
@@ -420,6 +434,8 @@ ContactResult ContactSolver::solve() {
                            r.yield,
                            r.hardening};
   res.nonlinear = o;
+  res.friction = iteration.friction;
+  res.fixedPoint = fixedPointSteps;
 
   // The contact zone of the final state.
   ContactMeasures& c = res.contact;

@@ -175,6 +175,12 @@ Json constraintJson(const tfeti::ConstraintReport& c) {
   j["max_penetration"] = c.maxPenetration;
   j["max_complementarity"] = c.maxComplementarity;
   j["equality_residual"] = c.equalityResidual;
+  if (c.frictionRows > 0) {  // friction rows: their own conditions (ConstraintReport)
+    j["friction_rows"] = c.frictionRows;
+    j["stick_rows"] = c.stickRows;
+    j["max_friction_bound_excess"] = c.maxFrictionBoundExcess;
+    j["max_friction_slip_residual"] = c.maxFrictionSlipResidual;
+  }
   return j;
 }
 

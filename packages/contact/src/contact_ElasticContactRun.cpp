@@ -17,6 +17,8 @@
 #include "contact_DryRun.hpp"
 #include "contact_ElasticContactProblem.hpp"
 #include "contact_ElasticContactRun.hpp"
+
+#include "contact_Friction.hpp"
 #include "contact_NonlinearContactRun.hpp"
 #include "contact_PrescribedDisplacement.hpp"
 #include "plasticity_MaterialLaw.hpp"
@@ -134,6 +136,7 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     throw std::invalid_argument(
         "Contact problem: \"Contact zone\" is for Problem = elastic_contact; a "
         "nonlinear_contact run measures its contact zone by Nonlinear/Contact extent");
+  frictionSpec(params, spec.slave, spec.master);  // validated here, used by the nonlinear run
   return spec;
 }
 
@@ -204,6 +207,7 @@ void addElasticContactParameters(ParameterList& pl) {
          "blocks of subdomain ids",
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
              Teuchos::tuple<std::string>("graph", "block"), "Subdomain distribution")));
+  addFrictionParameters(cp);
   auto& h = cp.sublist("Hertz", false,
                        "compare with Hertz: line contact of two cylinders (Contact zone line) or "
                        "point contact of two spheres (point)");

@@ -51,8 +51,14 @@ void LoadStepIteration::updateContact(const Field& u, double t) const {
     search.searchRadius = problem.searchRadius;
     problem.master = makeObstacleMaster(at, search);
   }
-  contact::updateContact(problem, model_.surfaceDisplacement(*comm_, u), comm_->getRank(), slave_,
-                         master_);
+  const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
+  contact::updateContact(problem, current, comm_->getRank(), slave_, master_);
+  if (friction.active()) {
+    const std::vector<tfeti::InequalityRow> rows =
+        frictionRows(problem, friction, frictionBounds,
+                     model_.surfaceDisplacement(*comm_, model_.u), current, comm_->getRank());
+    problem.inequalities.insert(problem.inequalities.end(), rows.begin(), rows.end());
+  }
 }
 
 Field LoadStepIteration::incrementLoads(const Field& fint, double t) const {

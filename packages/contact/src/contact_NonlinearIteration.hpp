@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "contact_Friction.hpp"
 #include "contact_NonlinearHistory.hpp"
 #include "contact_NonlinearModel.hpp"
 #include "contact_NonlinearOptions.hpp"
@@ -53,6 +54,11 @@ class LoadStepIteration {
   // Iterations at load factor t from the converged state model.u (the model's laws keep the
   // trial history of the last iteration: commit or revert it).
   StepOutcome attempt(int step, double t) const;
+
+  // Friction on the contact pair: the tangential rows join the contact rows of every
+  // iteration (contact_Friction.hpp), their slip measured from the step's start model.u.
+  FrictionSpec friction;
+  SlipBounds frictionBounds;  // Coulomb: the slip bound per slave node (contact_FrictionStep)
 
   // Progress lines per iteration (Verbosity 2): called with the record of each iteration.
   std::function<void(const IterationRecord&)> onIteration;

@@ -39,8 +39,12 @@ void NonlinearStepOutput::evaluate(const Field& u) {
   // The gaps each row keeps after the last increment du (the solver's solution).
   Field du;
   for (std::size_t i = 0; i < u.size(); ++i) du.push_back(solver_.solution(i));
-  nodes_ = contactNodes(problem, solver_, options_.rule, model_.surfaceDisplacement(*comm_, u),
+  const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
+  nodes_ = contactNodes(problem, solver_, options_.rule, current,
                         model_.surfaceDisplacement(*comm_, du));
+  if (friction.active())
+    addFrictionResults(nodes_, problem, solver_, friction,
+                       model_.surfaceDisplacement(*comm_, model_.u), current);
 }
 
 std::string NonlinearStepOutput::writeVtu(const std::string& base, const Field& u) const {

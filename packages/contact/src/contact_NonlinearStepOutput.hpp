@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "contact_ContactOutput.hpp"
+#include "contact_Friction.hpp"
 #include "contact_NonlinearHistory.hpp"
 #include "contact_NonlinearModel.hpp"
 #include "contact_NonlinearOptions.hpp"
@@ -28,6 +29,10 @@ class NonlinearStepOutput {
   const std::vector<ContactNode>& nodes() const { return nodes_; }
   double maxVonMises() const { return maxVonMises_; }
   double maxPlasticStrain() const { return maxPlasticStrain_; }
+
+  // Friction on the contact pair: evaluate adds each contact node's friction results (the
+  // step's slip from model.u, the step's start).
+  FrictionSpec friction;
 
   // DIR/base.pvtu of u with the evaluated fields; returns its path.
   std::string writeVtu(const std::string& base, const Field& u) const;

@@ -453,10 +453,17 @@ DualResult FetiSolver::solve() {
         auto m = mask.getDataNonConst();
         auto l = lambda_->getData();
         const auto& map = *tearing_.multiplierMap;
-        for (std::size_t i = 0; i < map.getNodeNumElements(); ++i)
-          m[i] = !tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i))) || l[i] > 0.0
-                     ? 1.0
-                     : 0.0;
+        // Likewise a friction row whose multiplier is at a bound (slip): only the rows with
+        // the multiplier strictly inside its bounds hold with equality.
+        for (std::size_t i = 0; i < map.getNodeNumElements(); ++i) {
+          const GO row = map.getGlobalElement(static_cast<LO>(i));
+          bool holds = true;
+          if (tearing_.isInequality(row)) {
+            const InequalityRow& r = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
+            holds = r.boundActive(l[i]) == 0;
+          }
+          m[i] = holds ? 1.0 : 0.0;
+        }
         coarse_->leastSquaresOnRows(g, mask, alpha, params_.get<std::string>("Local solver"));
       }
       coarse_->addKernelCombination(alpha, u);
@@ -480,21 +487,35 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   result.method = method;
   PhaseTimer t(*comm_, timings_.solve);
   const auto map = tearing_.multiplierMap;
-  // lambda = lambda~ + mu: b = P (d - F lambda~), bounds mu_I >= -lambda~_I.
+  // lambda = lambda~ + mu: b = P (d - F lambda~), bounds l_I - lambda~_I <= mu_I <= u_I -
+  // lambda~_I (l = 0, u = +inf for the non-penetration rows; a box for friction rows).
   auto b = Teuchos::rcp(new Vector(map));
   F_->apply(*lambda0_, *b);
   b->update(1.0, *d_, -1.0);
   coarse_->project(*b, *b);
   auto lower = Teuchos::rcp(new Vector(map));
+  auto upper = Teuchos::rcp(new Vector(map));
+  int anyUpperLocal = 0, anyUpper = 0;
   {
+    const double inf = std::numeric_limits<double>::infinity();
     auto lo = lower->getDataNonConst();
+    auto up = upper->getDataNonConst();
     auto l0 = lambda0_->getData();
     const bool tied = inequalitiesTied(params_);
-    for (std::size_t i = 0; i < map->getNodeNumElements(); ++i)
-      lo[i] = !tied && tearing_.isInequality(map->getGlobalElement(static_cast<LO>(i)))
-                  ? -l0[i]
-                  : -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) {
+      const GO row = map->getGlobalElement(static_cast<LO>(i));
+      lo[i] = -inf;
+      up[i] = inf;
+      if (!tied && tearing_.isInequality(row)) {
+        const InequalityRow& r = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
+        lo[i] = r.lowerBound - l0[i];
+        up[i] = r.upperBound - l0[i];
+        if (r.upperBound < inf) anyUpperLocal = 1;
+      }
+    }
   }
+  // Without friction rows the QP keeps its lower bounds only (the solvers' one-sided path).
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &anyUpperLocal, &anyUpper);
   // From 0, or (warm start) from P (lambda_previous - lambda~): in the kernel of G, projected
   // onto the bounds by MPRGP. The rows of a nonlinear iteration keep their canonical order as
   // long as each slave node keeps its segment; any start is valid, a close one is cheap.
@@ -541,6 +562,7 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   qp.b = b;
   qp.lower = lower;
   qp.x = mu;
+  if (anyUpper == 1) qp.upper = upper;
   Belos::ReturnType ret;
   if (smalbe) {
     qp.A = PFP;
@@ -638,9 +660,22 @@ ConstraintReport FetiSolver::constraintReport() const {
   double mx[4] = {-std::numeric_limits<double>::infinity(), 0.0, 0.0,
                   -std::numeric_limits<double>::infinity()};  // penetration, compl, eq, -min l
   double sums[2] = {0.0, 0.0};                                // force, active rows
+  double fr[4] = {0.0, 0.0, 0.0, 0.0};  // friction: bound excess, slip residual, rows, stick rows
   const bool tied = inequalitiesTied(params_);
   for (std::size_t i = 0; i < map.getNodeNumElements(); ++i) {
-    if (tearing_.isInequality(map.getGlobalElement(static_cast<LO>(i)))) {
+    const GO row = map.getGlobalElement(static_cast<LO>(i));
+    if (tearing_.isInequality(row) &&
+        !tearing_.inequalityRows[row - tearing_.firstInequalityRow].isNonPenetration()) {
+      // A friction row: not one of the contact conditions above but its own: |lambda| within
+      // the box, B u = c where inside (stick), B u - c of lambda's sign at a bound (slip).
+      if (tied) mx[2] = std::max(mx[2], std::abs(v[i]));
+      const InequalityRow& r = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
+      const int side = r.boundActive(l[i]);
+      fr[0] = std::max({fr[0], r.lowerBound - l[i], l[i] - r.upperBound});
+      fr[1] = std::max(fr[1], side == 0 ? std::abs(v[i]) : std::max(0.0, -side * v[i]));
+      fr[2] += 1.0;
+      fr[3] += side == 0 ? 1.0 : 0.0;
+    } else if (tearing_.isInequality(row)) {
       if (tied) mx[2] = std::max(mx[2], std::abs(v[i]));
       mx[0] = std::max(mx[0], v[i]);
       mx[1] = std::max(mx[1], std::abs(l[i] * v[i]));
@@ -654,6 +689,13 @@ ConstraintReport FetiSolver::constraintReport() const {
   double gmx[4], gsums[2];
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 4, mx, gmx);
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, sums, gsums);
+  double gfr[2], gcount[2], counts[2] = {fr[2], fr[3]};
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 2, fr, gfr);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, counts, gcount);
+  r.frictionRows = static_cast<GO>(gcount[0]);
+  r.stickRows = static_cast<GO>(gcount[1]);
+  r.maxFrictionBoundExcess = gfr[0];
+  r.maxFrictionSlipResidual = gfr[1];
   if (r.inequalityRows > 0) {
     r.maxPenetration = gmx[0];
     r.maxComplementarity = gmx[1];

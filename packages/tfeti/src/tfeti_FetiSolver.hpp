@@ -65,12 +65,17 @@ struct DualResult : PcpgResult {
 
 // How well the recovered primal solution meets the constraints (after solve()).
 struct ConstraintReport {
+  // Non-penetration rows (every inequality row, friction rows included, in inequalityRows):
   GO inequalityRows = 0, activeRows = 0;  // active: lambda_i > 0
-  double force = 0.0;                     // sum of the inequality multipliers
+  double force = 0.0;                     // sum of the non-penetration multipliers
   double minMultiplier = 0.0;             // min lambda_I: >= 0
   double maxPenetration = 0.0;            // max (B_I u - c_I): <= 0 when feasible
   double maxComplementarity = 0.0;        // max |lambda_i (B_I u - c_I)_i|
   double equalityResidual = 0.0;          // max |B_E u - c_E| (and |B_I u - c_I| when tied)
+  // Friction rows (multiplier bounds other than [0, inf), InequalityRow::boundActive):
+  GO frictionRows = 0, stickRows = 0;    // stick: lambda strictly inside its bounds
+  double maxFrictionBoundExcess = 0.0;   // max (lower - lambda, lambda - upper): <= 0
+  double maxFrictionSlipResidual = 0.0;  // max |B u - c| (stick), max(0, -sign(lambda) (B u - c))
 };
 
 struct FetiTimings {

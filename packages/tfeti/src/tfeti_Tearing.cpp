@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <utility>
 
 #include "tfeti_DenseUtils.hpp"
 #include "tfeti_Gather.hpp"
@@ -36,14 +37,25 @@ struct Row {
 
 namespace {
 
-// Every rank's rows of one kind (InequalityRow: value = gap; EqualityRow: value = rhs), in a
-// canonical order (by their entries, then the value) so that the numbering does not depend on
-// which rank contributed a row.
-template <class R, class Value>
-std::vector<R> gatherRows(const Comm& comm, const std::vector<R>& mine, Value value) {
+// Every rank's rows of one kind (values(row): a tuple of references to the row's numbers:
+// InequalityRow: gap and the multiplier's bounds; EqualityRow: rhs), in a canonical order (by
+// their entries, then the values) so that the numbering does not depend on which rank
+// contributed a row.
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+template <class R, class Values>
+std::vector<R> gatherRows(const Comm& comm, const std::vector<R>& mine, Values values) {
+  constexpr std::size_t nv = std::tuple_size<decltype(values(std::declval<R&>()))>::value;
+  auto get = [&](const R& r) {
+    std::array<double, nv> a{};
+    std::size_t i = 0;
+    std::apply([&](const auto&... v) { ((a[i++] = v), ...); }, values(r));
+    return a;
+  };
   std::vector<double> packed;
   for (const auto& row : mine) {
-    packed.insert(packed.end(), {static_cast<double>(row.entries.size()), value(row)});
+    packed.push_back(static_cast<double>(row.entries.size()));
+    for (double v : get(row)) packed.push_back(v);
     for (const auto& e : row.entries)
       packed.insert(packed.end(),
                     {static_cast<double>(e.subdomain), static_cast<double>(e.dof), e.coef});
@@ -53,16 +65,17 @@ std::vector<R> gatherRows(const Comm& comm, const std::vector<R>& mine, Value va
   for (std::size_t k = 0; k < all.size();) {
     R row;
     const int n = static_cast<int>(all[k]);
-    value(row) = all[k + 1];
-    k += 2;
-    for (int i = 0; i < n; ++i, k += 3)
+    std::size_t i = k + 1;
+    std::apply([&](auto&... v) { ((v = all[i++]), ...); }, values(row));
+    k += 1 + nv;
+    for (int j = 0; j < n; ++j, k += 3)
       row.entries.push_back({static_cast<int>(all[k]), static_cast<int>(all[k + 1]), all[k + 2]});
     rows.push_back(std::move(row));
   }
   auto key = [&](const R& r) {
     std::vector<std::tuple<int, int, double>> k;
     for (const auto& e : r.entries) k.emplace_back(e.subdomain, e.dof, e.coef);
-    return std::make_pair(k, value(r));
+    return std::make_pair(k, get(r));
   };
   std::stable_sort(rows.begin(), rows.end(),
                    [&](const R& a, const R& b) { return key(a) < key(b); });
@@ -214,12 +227,21 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     first = last;
   }
   // The caller's equality rows follow the automatic ones, the inequality rows come last.
-  const std::vector<EqualityRow> user = gatherRows(
-      *comm, equalities, [](auto& r) -> auto& { return r.rhs; });
+  const std::vector<EqualityRow> user =
+      gatherRows(*comm, equalities, [](auto& r) { return std::tie(r.rhs); });
   const std::vector<InequalityRow> ineq = gatherRows(
-      *comm, inequalities, [](auto& r) -> auto& { return r.gap; });
+      *comm, inequalities, [](auto& r) { return std::tie(r.gap, r.lowerBound, r.upperBound); });
   for (const auto& row : user) checkRow(row.entries, row.rhs, "equality", "=", allSizes);
-  for (const auto& row : ineq) checkRow(row.entries, row.gap, "inequality", "<=", allSizes);
+  for (const auto& row : ineq) {
+    checkRow(row.entries, row.gap, "inequality", "<=", allSizes);
+    // NaN fails both comparisons.
+    if (!(row.lowerBound <= row.upperBound) || !(row.lowerBound < kInf) ||
+        !(row.upperBound > -kInf))
+      throw std::invalid_argument("inequality row " + describeRow(row.entries, "<=", row.gap) +
+                                  ": its multiplier's bounds [" + std::to_string(row.lowerBound) +
+                                  ", " + std::to_string(row.upperBound) +
+                                  "] are empty or not finite on the closed side");
+  }
   const GO numAuto = static_cast<GO>(rows.size());
   t.firstUserEqualityRow = numAuto;
   t.numUserEqualityRows = static_cast<GO>(user.size());

@@ -18,6 +18,8 @@
 // long chain of multi-point constraints) is split back into the automatic groups and one group
 // per caller's row: the scaling is then block-diagonal approximation of (B B^T)^+, still a valid
 // (symmetric positive) preconditioner scaling. Every inequality row is its own group.
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "tfeti_Subdomain.hpp"
@@ -53,10 +55,32 @@ struct ConstraintEntry {
   double coef;
 };
 
-// A non-penetration row  sum coef * u <= gap  (contact): its multiplier is bounded below by 0.
+// A row whose multiplier is bounded, lowerBound <= lambda <= upperBound, with the right-hand
+// side `gap` (c). The default bounds [0, +inf) make it a non-penetration row  sum coef * u <= gap
+// (contact: lambda > 0 only where it holds with equality). A box [-g, g] makes it a tangential
+// (friction) row: lambda is the friction force, the term g |B u - c| of the primal energy
+// (Tresca), so B u = c (stick) where |lambda| < g, and B u - c has the sign of lambda (slip)
+// where lambda is at a bound. One rule covers both: B u - c <= 0 where lambda = lowerBound,
+// >= 0 where lambda = upperBound, = 0 in between.
 struct InequalityRow {
   std::vector<ConstraintEntry> entries;
   double gap = 0.0;
+  double lowerBound = 0.0;
+  double upperBound = std::numeric_limits<double>::infinity();
+  bool isNonPenetration() const {
+    return lowerBound == 0.0 && upperBound == std::numeric_limits<double>::infinity();
+  }
+  // -1: lambda at the lower bound, +1: at the upper bound, 0: strictly between (the row holds
+  // with equality). A bound of 0 is met exactly by the QP solvers (lambda~ + (0 - lambda~)); a
+  // non-zero bound b only to rounding, so within 1e-10 |b|.
+  int boundActive(double lambda) const {
+    auto at = [](double l, double b) {
+      return l == b || (std::isfinite(b) && std::abs(l - b) <= 1e-10 * std::abs(b));
+    };
+    if (lambda <= lowerBound || at(lambda, lowerBound)) return -1;
+    if (lambda >= upperBound || at(lambda, upperBound)) return 1;
+    return 0;
+  }
 };
 
 // An equality row  sum coef * u = rhs  given by the caller: its multiplier is free. Entries on

@@ -9,7 +9,9 @@
 #include <Tpetra_Core.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -371,3 +373,66 @@ TEUCHOS_UNIT_TEST(Tearing, StructureWithoutGluingAtDirichletNodes) {
     if (gluing == tfeti::Gluing::NonRedundant) TEST_EQUALITY(t.numRows, GO(75 - 3));
   }
 }
+
+namespace {
+
+// Rows with multiplier bounds (friction rows: a box [-g, g]) keep their bounds through the
+// gathering, each with its own row whatever rank passed it, in an order independent of the rank
+// count; an empty box or a non-finite closed side is refused on every rank.
+TEUCHOS_UNIT_TEST(Tearing, BoundedRowsKeepTheirBounds) {
+  const auto comm = Tpetra::getDefaultComm();
+  const tfeti::StructuredRectangle rect = unitSquare(2, 2);
+  std::vector<tfeti::TearingInput> local;
+  for (int s : myIds(rect, *comm)) local.push_back(tearingInput(rect.subdomain(s), 2));
+  const double inf = std::numeric_limits<double>::infinity();
+  // Row k on subdomain k % 4, dof 2k: normal rows (default bounds) and boxes of half-width k.
+  auto rowK = [&](int k) {
+    tfeti::InequalityRow r;
+    r.entries = {{k % 4, 2 * k, 1.0}};
+    r.gap = 0.1 * k;
+    if (k % 2) {
+      r.lowerBound = -k;
+      r.upperBound = k;
+    }
+    return r;
+  };
+  std::vector<tfeti::InequalityRow> mine;
+  for (int k = 0; k < 8; ++k)
+    if (k % comm->getSize() == comm->getRank()) mine.push_back(rowK(k));
+  const tfeti::Tearing t = tfeti::buildTearing(comm, rect.numSubdomains(), local, 2, {}, mine);
+  TEST_EQUALITY(t.numInequalityRows, 8);
+  TEST_EQUALITY(t.inequalityRows.size(), 8u);
+  int boxes = 0;
+  for (const auto& r : t.inequalityRows) {
+    const int k = static_cast<int>(std::lround(r.gap * 10));
+    const tfeti::InequalityRow expected = rowK(k);
+    TEST_EQUALITY(r.entries.size(), 1u);
+    TEST_EQUALITY(r.entries[0].dof, 2 * k);
+    TEST_EQUALITY(r.lowerBound, expected.lowerBound);
+    TEST_EQUALITY(r.upperBound, expected.upperBound);
+    TEST_EQUALITY(r.isNonPenetration(), k % 2 == 0);
+    boxes += r.isNonPenetration() ? 0 : 1;
+    if (k % 2 == 0) TEST_EQUALITY(r.upperBound, inf);
+  }
+  TEST_EQUALITY(boxes, 4);
+  // boundActive: exact at 0, to 1e-10 relative at a non-zero bound.
+  const tfeti::InequalityRow box = rowK(3);
+  TEST_EQUALITY(box.boundActive(3.0 * (1 - 1e-12)), 1);
+  TEST_EQUALITY(box.boundActive(-3.0), -1);
+  TEST_EQUALITY(box.boundActive(2.9), 0);
+  TEST_EQUALITY(rowK(2).boundActive(0.0), -1);
+  TEST_EQUALITY(rowK(2).boundActive(1e-300), 0);
+  for (const auto& [lo, up] :
+       {std::pair<double, double>{1.0, -1.0}, {inf, inf}, {0.0, -inf}, {std::nan(""), 1.0}}) {
+    std::vector<tfeti::InequalityRow> bad;
+    if (comm->getRank() == 0) {
+      bad.push_back(rowK(1));
+      bad.back().lowerBound = lo;
+      bad.back().upperBound = up;
+    }
+    TEST_THROW(tfeti::buildTearing(comm, rect.numSubdomains(), local, 2, {}, bad),
+               std::invalid_argument);
+  }
+}
+
+}  // namespace

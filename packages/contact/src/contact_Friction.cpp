@@ -1,0 +1,226 @@
+#include "contact_Friction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+
+#include "contact_TangentialRows.hpp"
+#include "tfeti_StrictParameters.hpp"
+
+namespace contact {
+
+void addFrictionParameters(Teuchos::ParameterList& cp) {
+  auto& f = cp.sublist("Friction", false,
+                       "friction on the contact pair (Problem = nonlinear_contact: friction "
+                       "depends on the load path)");
+  f.set("Friction law", "none",
+        "none (frictionless), Tresca (|tangential traction| <= Slip bound), Coulomb (<= "
+        "Friction coefficient times the pressure, by a fixed point on the slip bound in each "
+        "load step)",
+        Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+            Teuchos::tuple<std::string>("none", "Tresca", "Coulomb"), "Friction law")));
+  f.set("Slip bound", 0.0,
+        "Tresca: g, the tangential traction at which the surface slips (force per unit length "
+        "of the slave boundary in 2D, per unit area in 3D)",
+        tfeti::strict::nonNegative());
+  f.set("Friction coefficient", 0.0, "Coulomb: mu", tfeti::strict::nonNegative());
+  f.set("Fixed-point tolerance", 1e-6,
+        "Coulomb: the fixed point of a load step stops when the relative change of the slip "
+        "bounds, ||g_new - g|| / ||g_new||, is below it",
+        tfeti::strict::positive());
+  f.set("Fixed-point iterations", 50,
+        "Coulomb: the most fixed-point iterations of a load step (more: the step is rejected and "
+        "cut back)",
+        tfeti::strict::intBetween(1, 100000));
+  f.set("Slave", "", "the contact pair this friction is for: its Slave (empty: the pair's)");
+  f.set("Master", "", "the contact pair this friction is for: its Master (empty: the pair's)");
+}
+
+FrictionSpec frictionSpec(const Teuchos::ParameterList& params, const std::string& slave,
+                          const std::string& master) {
+  const auto& f = params.sublist("Contact problem").sublist("Friction");
+  const std::string law = f.get<std::string>("Friction law");
+  const std::string where = "Contact problem/Friction: ";
+  const std::string fs = f.get<std::string>("Slave"), fm = f.get<std::string>("Master");
+  if ((!fs.empty() && fs != slave) || (!fm.empty() && fm != master))
+    throw std::invalid_argument(where + "the pair (Slave \"" + fs + "\", Master \"" + fm +
+                                "\") is not a contact pair of the problem (its pair: Slave \"" +
+                                slave + "\", Master \"" + master + "\")");
+  FrictionSpec spec;
+  spec.slipBound = f.get<double>("Slip bound");
+  spec.coefficient = f.get<double>("Friction coefficient");
+  if (law == "none") {
+    if (spec.slipBound != 0.0 || spec.coefficient != 0.0)
+      throw std::invalid_argument(where + "\"" +
+                                  (spec.slipBound != 0.0 ? "Slip bound" : "Friction coefficient") +
+                                  "\" is given but \"Friction law\" is none");
+    return spec;
+  }
+  if (params.get<std::string>("Problem") != "nonlinear_contact")
+    throw std::invalid_argument(where + "\"Friction law\" = " + law +
+                                " needs Problem = nonlinear_contact (friction depends on the load "
+                                "path: it is solved in load steps); got Problem = " +
+                                params.get<std::string>("Problem"));
+  if (params.sublist("Contact problem").get<std::string>("Contact type") != "frictionless")
+    throw std::invalid_argument(where + "\"Friction law\" = " + law +
+                                " with \"Contact problem/Contact type\" = " +
+                                params.sublist("Contact problem").get<std::string>("Contact type"));
+  if (law == "Tresca") {
+    spec.law = FrictionSpec::Law::Tresca;
+    if (spec.coefficient != 0.0)
+      throw std::invalid_argument(where +
+                                  "\"Friction coefficient\" is Coulomb's; Tresca takes "
+                                  "\"Slip bound\"");
+    if (!(spec.slipBound > 0.0))
+      throw std::invalid_argument(where +
+                                  "Tresca needs \"Slip bound\" > 0 (0 is frictionless: "
+                                  "\"Friction law\" = none)");
+    return spec;
+  }
+  spec.law = FrictionSpec::Law::Coulomb;
+  if (spec.slipBound != 0.0)
+    throw std::invalid_argument(where +
+                                "\"Slip bound\" is Tresca's; Coulomb takes \"Friction "
+                                "coefficient\"");
+  spec.fixedPointTolerance = f.get<double>("Fixed-point tolerance");
+  spec.maxFixedPointIterations = f.get<int>("Fixed-point iterations");
+  return spec;
+}
+
+namespace {
+
+std::pair<int, int> dofOfNode(const ElasticContactProblem& p, int node, int component) {
+  return {p.copyOf[node].first, p.dim() * p.copyOf[node].second + component};
+}
+
+std::vector<double> difference(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> d(std::max(a.size(), b.size()), 0.0);
+  for (std::size_t i = 0; i < d.size(); ++i)
+    d[i] = (i < a.size() ? a[i] : 0.0) - (i < b.size() ? b[i] : 0.0);
+  return d;
+}
+
+// Per contact row: its slave node's share of the slave boundary.
+std::vector<double> rowWeights(const ElasticContactProblem& p) {
+  std::map<int, double> weight;
+  for (std::size_t k = 0; k < p.slaveNodes.size(); ++k) weight[p.slaveNodes[k]] = p.slaveWeights[k];
+  std::vector<double> w;
+  for (const auto& row : p.contact.rows) w.push_back(weight.at(row.slaveNode));
+  return w;
+}
+
+using EntryKey = std::vector<std::tuple<int, int, double>>;
+
+EntryKey entryKey(const tfeti::InequalityRow& r) {
+  EntryKey k;
+  for (const auto& e : r.entries) k.emplace_back(e.subdomain, e.dof, e.coef);
+  return k;
+}
+
+}  // namespace
+
+std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
+                                               const FrictionSpec& friction,
+                                               const SlipBounds& bounds,
+                                               const std::vector<double>& stepStart,
+                                               const std::vector<double>& current, int rank) {
+  std::vector<tfeti::InequalityRow> out;
+  if (!friction.active() || rank != 0) return out;
+  const int dim = p.dim();
+  const std::vector<double> back = difference(stepStart, current);
+  const std::vector<double> w = rowWeights(p);
+  auto dofOf = [&](int n, int c) { return dofOfNode(p, n, c); };
+  for (std::size_t k = 0; k < p.contact.rows.size(); ++k) {
+    double bound = friction.slipBound * w[k];
+    if (friction.law == FrictionSpec::Law::Coulomb) {
+      const auto it = bounds.find(p.contact.rows[k].slaveNode);
+      bound = it == bounds.end() ? 0.0 : it->second;
+    }
+    for (const ContactRow& t : tangentialRows(p.contact.rows[k], dim)) {
+      tfeti::InequalityRow row = toInequalityRow(t, dofOf);
+      row.gap = back.empty() ? 0.0 : applyRow(t, dim, back);
+      row.lowerBound = -bound;
+      row.upperBound = bound;
+      out.push_back(std::move(row));
+    }
+  }
+  return out;
+}
+
+void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactProblem& p,
+                        const tfeti::FetiSolver& solver, const FrictionSpec& friction,
+                        const std::vector<double>& stepStart, const std::vector<double>& current) {
+  if (!friction.active()) return;
+  const int dim = p.dim();
+  // Tangential rows differ from every other row in their entries (the coefficients are the
+  // tangent's, not the normal's), whatever their right-hand side was in the last iteration.
+  const auto lambdas = solver.inequalityMultipliers();
+  const auto& rows = solver.tearing().inequalityRows;
+  std::map<EntryKey, std::size_t> byEntries;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (!rows[i].isNonPenetration()) byEntries[entryKey(rows[i])] = i;
+  std::map<int, ContactNode*> bySlave;
+  for (auto& n : nodes) bySlave[n.slaveNode] = &n;
+  const std::vector<double> step = difference(current, stepStart);
+  const std::vector<double> w = rowWeights(p);
+  auto dofOf = [&](int n, int c) { return dofOfNode(p, n, c); };
+  for (std::size_t k = 0; k < p.contact.rows.size(); ++k) {
+    const ContactRow& row = p.contact.rows[k];
+    ContactNode& node = *bySlave.at(row.slaveNode);
+    // 2D: the one tangent (3D friction is not built yet: its first tangent only).
+    const ContactRow t = tangentialRows(row, dim)[0];
+    const auto it = byEntries.find(entryKey(toInequalityRow(t, dofOf)));
+    if (it == byEntries.end())
+      throw std::logic_error("addFrictionResults: no tangential row of slave node " +
+                             std::to_string(row.slaveNode) + " in the solver's rows");
+    const tfeti::InequalityRow& r = rows[it->second];
+    node.tangentialForce = lambdas[it->second];
+    node.slipBound = r.upperBound;
+    node.tangentialTraction = w[k] > 0.0 ? node.tangentialForce / w[k] : 0.0;
+    node.slip = step.empty() ? 0.0 : -applyRow(t, dim, step);
+    for (int c = 0; c < 3; ++c) node.tangent[c] = t.normal[c];
+    node.frictionState = !(node.lambda > 0.0)                       ? 0
+                         : r.boundActive(node.tangentialForce) == 0 ? 1
+                                                                    : 2;
+  }
+}
+
+const char* frictionStateName(int state) {
+  return state == 0 ? "open" : state == 1 ? "stick" : state == 2 ? "slip" : "none";
+}
+
+void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const FrictionSpec& friction,
+                     int dim) {
+  double force = 0.0, ratio = 0.0, stickLo = 0.0, stickHi = 0.0;
+  long long slip = 0, stick = 0;
+  double normal = 0.0;
+  for (const auto& n : nodes) {
+    force += n.tangentialForce * n.tangent[0];
+    normal += n.lambda;
+    if (n.frictionState == 0) continue;
+    // Coulomb: against mu lambda_N of the final state (the bound in force is the last
+    // fixed-point iterate's, equal to it within the fixed point's tolerance).
+    const double bound =
+        friction.law == FrictionSpec::Law::Coulomb ? friction.coefficient * n.lambda : n.slipBound;
+    if (bound > 0.0) ratio = std::max(ratio, std::abs(n.tangentialForce) / bound);
+    if (n.frictionState == 2) ++slip;
+    if (n.frictionState == 1) {
+      stickLo = stick ? std::min(stickLo, n.x) : n.x;
+      stickHi = stick ? std::max(stickHi, n.x) : n.x;
+      ++stick;
+    }
+  }
+  f["friction_law"] = friction.law == FrictionSpec::Law::Tresca ? "Tresca" : "Coulomb";
+  if (friction.law == FrictionSpec::Law::Tresca) f["slip_bound"] = friction.slipBound;
+  if (friction.law == FrictionSpec::Law::Coulomb) f["friction_coefficient"] = friction.coefficient;
+  f["normal_force"] = normal;
+  f["tangential_force"] = force;
+  f["slip_nodes"] = slip;
+  f["stick_nodes"] = stick;
+  if (dim == 2) f["stick_half_width"] = stick ? 0.5 * (stickHi - stickLo) : 0.0;
+  f["max_tangential_ratio"] = ratio;
+}
+
+}  // namespace contact

@@ -1,0 +1,84 @@
+#pragma once
+// Friction on the contact pair, Tresca and Coulomb: the parameters of `Contact problem/Friction`,
+// the tangential rows B_T of a load-step iteration with their multipliers' box, and the per-node
+// friction results.
+//
+// The increment QP of a load step (contact_NonlinearIteration.hpp) gets, beside each
+// non-penetration row, dim - 1 tangential rows (contact_TangentialRows.hpp) with the bounds
+// -g_i <= lambda_T <= g_i, g_i = g w_i (w_i the slave node's share of the slave boundary, the
+// same lumping that turns the normal multiplier into the pressure, so g is a force per unit
+// length in 2D). The term g_i |s_i| of the step's dissipation is in the slip s_i = -B_T,i (u -
+// u_0) of the whole step (u_0 the converged state the step starts from): with the increment du
+// of an iteration from u, B_T,i du - c_T,i is minus that slip for c_T,i = B_T,i (u_0 - u).
+// Friction depends on the path, so it is a nonlinear_contact (load-stepped) feature.
+//
+// Coulomb, g_i = mu lambda_N,i, by a fixed point on the slip bound within each load step
+// (contact_FrictionStep.hpp): the step is solved as Tresca with the bounds of the previous
+// iterate (the previous step's at the first, zero at the first step: the frictionless solve),
+// the bounds are set to mu times the normal multipliers found, until their relative change
+// ||g_new - g|| / ||g_new|| (2-norm over the slave nodes) is below the tolerance.
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "contact_ContactOutput.hpp"
+#include "contact_ElasticContactProblem.hpp"
+
+namespace contact {
+
+struct FrictionSpec {
+  enum class Law { None, Tresca, Coulomb };
+  Law law = Law::None;
+  double slipBound = 0.0;    // Tresca: g, force per unit length (2D) of the slave boundary
+  double coefficient = 0.0;  // Coulomb: mu
+  double fixedPointTolerance = 1e-6;
+  int maxFixedPointIterations = 50;
+  bool active() const { return law != Law::None; }
+};
+
+// Per slave node (global id): its slip bound as a force, g_i (Coulomb: mu lambda_N,i).
+using SlipBounds = std::map<int, double>;
+
+// `Contact problem/Friction`: Friction law, Slip bound, Friction coefficient, Slave, Master.
+void addFrictionParameters(Teuchos::ParameterList& contactProblem);
+
+// The validated friction of `params` for the contact pair (slave, master; master empty for a
+// rigid obstacle). Throws std::invalid_argument naming the parameter: a pair other than the
+// contact pair, a parameter of a law not chosen (a Slip bound with Coulomb), Tresca without a
+// positive Slip bound, friction with Problem other than nonlinear_contact, Coulomb (its fixed
+// Negative values are refused by the parameters' validators.
+FrictionSpec frictionSpec(const Teuchos::ParameterList& params, const std::string& slave,
+                          const std::string& master);
+
+// The friction rows of the contact rows p.contact (rank 0 contributes them, as the normal rows):
+// per contact row dim - 1 rows with the box +-g_i (Tresca: slipBound times the slave node's
+// weight; Coulomb: `bounds`, 0 for a node it lacks) and c_T = B_T (stepStart - current) (surface
+// displacements, dim per mesh node).
+std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
+                                               const FrictionSpec& friction,
+                                               const SlipBounds& bounds,
+                                               const std::vector<double>& stepStart,
+                                               const std::vector<double>& current, int rank);
+
+// Per contact node: the tangential force and traction, the slip of the step and the state, from
+// the solver's last multipliers (matched to the rows by their entries). `nodes` come from
+// contactNodes on the same problem; stepStart and current as for frictionRows.
+// The bound of each row is read from the solver's rows.
+void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactProblem& p,
+                        const tfeti::FetiSolver& solver, const FrictionSpec& friction,
+                        const std::vector<double>& stepStart, const std::vector<double>& current);
+
+// The friction keys of summary.json's contact record c: friction_law, slip_bound (Tresca),
+// normal_force (the sum of the normal multipliers, P of a flat contact), tangential_force (the
+// resultant of the tangential forces along x), slip_nodes, stick_nodes,
+// stick_half_width (2D: half the x extent of the stick nodes), max_tangential_ratio (max
+// |lambda_T| / its bound over the closed nodes: 1 at a slipping node).
+void addFrictionJson(Json& c, const std::vector<ContactNode>& nodes, const FrictionSpec& friction,
+                     int dim);
+
+const char* frictionStateName(int state);  // 0 open, 1 stick, 2 slip
+
+}  // namespace contact

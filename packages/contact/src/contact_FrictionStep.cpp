@@ -1,0 +1,63 @@
+#include "contact_FrictionStep.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "contact_ContactOutput.hpp"
+
+namespace contact {
+
+StepOutcome attemptFrictionalStep(LoadStepIteration& iteration, const tfeti::FetiSolver& solver,
+                                  const ElasticContactProblem& problem,
+                                  const ContactExtentRule& rule, int step, double t,
+                                  FixedPointRecord& record) {
+  record = FixedPointRecord();
+  const FrictionSpec& f = iteration.friction;
+  if (f.law != FrictionSpec::Law::Coulomb) {
+    record.iterations = 1;
+    return iteration.attempt(step, t);
+  }
+  const SlipBounds start = iteration.frictionBounds;
+  std::vector<IterationRecord> all;  // every fixed-point iteration's Newton iterations
+  for (int k = 1; k <= f.maxFixedPointIterations; ++k) {
+    StepOutcome out = iteration.attempt(step, t);
+    all.insert(all.end(), out.iterations.begin(), out.iterations.end());
+    record.iterations = k;
+    if (!out.converged) {
+      iteration.frictionBounds = start;
+      out.iterations = all;
+      out.reason = "Coulomb fixed-point iteration " + std::to_string(k) + ": " + out.reason;
+      return out;
+    }
+    // The normal multipliers of the last solve (every rank has them all).
+    SlipBounds next;
+    double diff = 0.0, norm = 0.0;
+    for (const ContactNode& n : contactNodes(problem, solver, rule, {})) {
+      const double g = f.coefficient * std::max(n.lambda, 0.0);
+      next[n.slaveNode] = g;
+      const auto it = iteration.frictionBounds.find(n.slaveNode);
+      const double old = it == iteration.frictionBounds.end() ? 0.0 : it->second;
+      diff += (g - old) * (g - old);
+      norm += g * g;
+    }
+    for (const auto& [node, g] : iteration.frictionBounds)
+      if (!next.count(node)) diff += g * g;  // a node that lost its row
+    record.change = norm > 0.0 ? std::sqrt(diff / norm) : (diff > 0.0 ? 1.0 : 0.0);
+    iteration.frictionBounds = next;
+    if (record.change < f.fixedPointTolerance) {
+      out.iterations = all;
+      return out;
+    }
+  }
+  iteration.frictionBounds = start;
+  StepOutcome failed;
+  failed.iterations = all;
+  std::ostringstream s;
+  s << "the Coulomb fixed point did not converge in " << f.maxFixedPointIterations
+    << " iterations (relative change of the slip bounds " << record.change
+    << " > Fixed-point tolerance " << f.fixedPointTolerance << ")";
+  failed.reason = s.str();
+  return failed;
+}
+
+}  // namespace contact

@@ -1,0 +1,37 @@
+#pragma once
+// Tangential contact rows B_T beside the non-penetration rows B_N (friction). For a slave node
+// with the normal row
+//     -(n . u_s) + sum_a N_a (n . u_a) <= gap,
+// each tangent t of the master at the closest point gives the row
+//     -(t . u_s) + sum_a N_a (t . u_a),
+// minus the relative tangential displacement (slip) of the slave node along t: the same nodes,
+// the normal replaced by the tangent. Its multiplier is the tangential force on the slave node
+// along t (B^T lambda acts on the slave as t lambda_T, as the normal row's multiplier pushes it
+// along n), bounded by the friction law (Tresca: |lambda_T| <= g).
+//
+// One code path for 2D and 3D: the tangents are an orthonormal basis of the plane normal to n,
+// dim - 1 of them (2D: t = (-n_y, n_x), the direction from a to b of the master segment, whose
+// outward normal is t turned clockwise; 3D: two tangents, t1 x t2 = n). The row's coefficient of
+// a node's component c is its weight s (-1 for the slave, N_a for a master node, read back from
+// the normal row as s = sum_c coef_c n_c) times t_c, so a rigid obstacle's rows (slave entries
+// only) are handled alike.
+#include <array>
+#include <vector>
+
+#include "contact_ContactRows.hpp"
+
+namespace contact {
+
+// The dim - 1 unit tangents orthogonal to the unit normal n (z ignored in 2D).
+std::vector<std::array<double, 3>> tangentBasis(const std::array<double, 3>& n, int dim);
+
+// The tangential rows of a normal row: dim - 1 rows, each with `normal` holding its tangent t,
+// `gap` = 0 (the slip reference is the caller's: B_T u <= c_T is not a constraint but the
+// argument of the friction bound) and the same entries (nodes, components) as the normal row.
+// Throws std::invalid_argument when the row's entries are not dim components per node.
+std::vector<ContactRow> tangentialRows(const ContactRow& normalRow, int dim);
+
+// Sum of the row's coefficients times the displacement (dim per mesh node): B_T,i u.
+double applyRow(const ContactRow& row, int dim, const std::vector<double>& displacement);
+
+}  // namespace contact

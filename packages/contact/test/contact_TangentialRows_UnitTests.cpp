@@ -1,0 +1,203 @@
+// Tangential contact rows (friction) against exact kinematics: on a straight master (linear and
+// quadratic segments, rotated), a curved one (a circle of quadratic segments) and a rigid
+// obstacle, each tangential row is orthogonal to its normal row, its tangent is the unit vector
+// n turned counter-clockwise, and for any rigid motion u = c + omega x (x - x0) of slave and
+// master together B_T u = -omega gap (the relative displacement omega x (gap n) is along t),
+// while moving the slave node alone by a along t gives B_T u = -a (the slip of the slave). In
+// 3D the two tangents and n form a right-handed orthonormal basis. Rows that do not list dim
+// components per node are refused.
+#include <Teuchos_UnitTestHarness.hpp>
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "contact_NodeToSegment.hpp"
+#include "contact_RigidObstacle.hpp"
+#include "contact_TangentialRows.hpp"
+
+namespace {
+
+using contact::ContactRow;
+using contact::MasterSurface;
+using contact::tangentialRows;
+
+const double kPi = 3.14159265358979323846;
+
+struct Setup {
+  std::vector<double> coords;
+  MasterSurface master;
+  std::vector<int> slaves;
+  int add(double x, double y) {
+    coords.push_back(x);
+    coords.push_back(y);
+    return static_cast<int>(coords.size() / 2) - 1;
+  }
+};
+
+// Rigid motion u = c + omega e_z x (x - x0) of every node.
+std::vector<double> rigid(const std::vector<double>& coords, double cx, double cy, double omega) {
+  std::vector<double> u(coords.size());
+  for (std::size_t n = 0; n < coords.size() / 2; ++n) {
+    u[2 * n] = cx - omega * (coords[2 * n + 1] - 0.3);
+    u[2 * n + 1] = cy + omega * (coords[2 * n] + 0.2);
+  }
+  return u;
+}
+
+// Checks every row of a 2D master against the kinematic identities; returns the number of rows.
+int checkRows(Teuchos::FancyOStream& out, bool& success, const Setup& s,
+              const contact::ContactRowsResult& res) {
+  const std::vector<double> u = rigid(s.coords, 0.7, -0.4, 0.05);
+  for (const ContactRow& row : res.rows) {
+    const std::vector<ContactRow> t = tangentialRows(row, 2);
+    TEST_EQUALITY(t.size(), 1u);
+    const ContactRow& tr = t[0];
+    TEST_EQUALITY(tr.entries.size(), row.entries.size());
+    double dot = 0.0, norm2 = 0.0;
+    for (std::size_t k = 0; k < row.entries.size(); ++k) {
+      TEST_EQUALITY(tr.entries[k].node, row.entries[k].node);
+      TEST_EQUALITY(tr.entries[k].component, row.entries[k].component);
+      dot += tr.entries[k].coef * row.entries[k].coef;
+      norm2 += row.entries[k].coef * row.entries[k].coef;
+    }
+    // Each node contributes s^2 (t . n) = 0.
+    TEST_COMPARE(std::abs(dot), <, 1e-14 * norm2);
+    TEST_FLOATING_EQUALITY(tr.normal[0], -row.normal[1], 1e-15);
+    TEST_FLOATING_EQUALITY(tr.normal[1], row.normal[0], 1e-15);
+    TEST_EQUALITY(tr.gap, 0.0);
+    // Slip of a rigid motion of everything: omega times the gap.
+    const double slip = contact::applyRow(tr, 2, u);
+    TEST_COMPARE(std::abs(slip + 0.05 * row.gap), <, 1e-14);
+    // The slave alone moved along t by 1e-3 (and along n, which must not count).
+    std::vector<double> us(s.coords.size(), 0.0);
+    us[2 * row.slaveNode] = 1e-3 * tr.normal[0] + 2e-3 * row.normal[0];
+    us[2 * row.slaveNode + 1] = 1e-3 * tr.normal[1] + 2e-3 * row.normal[1];
+    TEST_COMPARE(std::abs(contact::applyRow(tr, 2, us) + 1e-3), <, 1e-17);
+    TEST_COMPARE(std::abs(contact::applyRow(row, 2, us) + 2e-3), <, 1e-17);
+  }
+  return static_cast<int>(res.rows.size());
+}
+
+TEUCHOS_UNIT_TEST(TangentialRows, StraightMasterLinearAndQuadratic) {
+  for (int nps : {2, 3}) {
+    for (double theta : {0.0, 0.4, 2.0}) {
+      Setup s;
+      s.master.nodesPerSegment = nps;
+      const int nseg = 8;
+      for (int i = 0; i <= nseg; ++i) s.add(static_cast<double>(i) / nseg, 0.0);
+      for (int i = nseg; i > 0; --i) {  // body below: walked from x = 1 to 0
+        s.master.segments.push_back(i);
+        s.master.segments.push_back(i - 1);
+        if (nps == 3) s.master.segments.push_back(s.add((i - 0.5) / nseg, 0.0));
+      }
+      for (int k = 0; k < 9; ++k)
+        s.slaves.push_back(s.add(0.05 + 0.11 * k, 0.01 * (k % 3) - 0.005));
+      const double c = std::cos(theta), sn = std::sin(theta);
+      for (std::size_t n = 0; n < s.coords.size() / 2; ++n) {
+        const double x = s.coords[2 * n], y = s.coords[2 * n + 1];
+        s.coords[2 * n] = c * x - sn * y;
+        s.coords[2 * n + 1] = sn * x + c * y;
+      }
+      contact::NodeToSegmentOptions o;
+      o.searchRadius = 0.1;
+      const auto res = contact::computeNodeToSegment(s.coords, s.slaves, s.master, o);
+      TEST_EQUALITY(checkRows(out, success, s, res), 9);
+      // The tangent of the rotated x axis, walked from x = 1 to 0: -(cos, sin).
+      for (const auto& row : res.rows) {
+        const auto t = tangentialRows(row, 2)[0].normal;
+        TEST_COMPARE(std::abs(t[0] + c) + std::abs(t[1] + sn), <, 1e-14);
+      }
+    }
+  }
+}
+
+TEUCHOS_UNIT_TEST(TangentialRows, CurvedMasterQuadraticCircle) {
+  Setup s;
+  s.master.nodesPerSegment = 3;
+  const int n = 24;
+  for (int i = 0; i < n; ++i) s.add(std::cos(2 * kPi * i / n), std::sin(2 * kPi * i / n));
+  for (int i = 0; i < n; ++i) {  // the disc is the body: counter-clockwise
+    s.master.segments.push_back(i);
+    s.master.segments.push_back((i + 1) % n);
+    const double a = 2 * kPi * (i + 0.5) / n;
+    s.master.segments.push_back(s.add(std::cos(a), std::sin(a)));
+  }
+  for (int k = 0; k < 40; ++k) {
+    const double a = 0.1 + 2 * kPi * k / 40, r = 1.0 + 0.01 * ((k % 5) - 2);
+    s.slaves.push_back(s.add(r * std::cos(a), r * std::sin(a)));
+  }
+  contact::NodeToSegmentOptions o;
+  o.searchRadius = 0.1;
+  const auto res = contact::computeNodeToSegment(s.coords, s.slaves, s.master, o);
+  TEST_EQUALITY(checkRows(out, success, s, res), 40);
+  // The tangent of the circle at the slave's angle, counter-clockwise (a to b), to the
+  // parabola's accuracy.
+  double worst = 0.0;
+  for (const auto& row : res.rows) {
+    const double x = s.coords[2 * row.slaveNode], y = s.coords[2 * row.slaveNode + 1];
+    const double r = std::hypot(x, y);
+    const auto t = tangentialRows(row, 2)[0].normal;
+    worst = std::max(worst, std::abs(t[0] + y / r) + std::abs(t[1] - x / r));
+  }
+  out << "largest tangent error on the circle: " << worst << "\n";
+  TEST_COMPARE(worst, <, 1e-3);
+}
+
+TEUCHOS_UNIT_TEST(TangentialRows, RigidObstacleAndThreeDimensionalBasis) {
+  contact::RigidObstacle ball;
+  ball.dim = 2;
+  ball.shape = contact::RigidObstacle::Shape::Ball;
+  ball.point = {0.0, -1.0, 0.0};
+  ball.radius = 1.0;
+  contact::ContactSearchOptions o;
+  o.searchRadius = 0.2;
+  Setup s;
+  for (int k = 0; k < 5; ++k) s.slaves.push_back(s.add(-0.2 + 0.1 * k, 0.01));
+  const auto res = contact::computeObstacleRows(ball, s.coords, s.slaves, o);
+  TEST_EQUALITY(res.rows.size(), 5u);
+  for (const auto& row : res.rows) {
+    const auto tr = tangentialRows(row, 2)[0];
+    TEST_EQUALITY(tr.entries.size(), 2u);
+    std::vector<double> us(s.coords.size(), 0.0);
+    us[2 * row.slaveNode] = 1e-3 * tr.normal[0];
+    us[2 * row.slaveNode + 1] = 1e-3 * tr.normal[1];
+    TEST_COMPARE(std::abs(contact::applyRow(tr, 2, us) + 1e-3), <, 1e-17);
+    TEST_COMPARE(std::abs(contact::applyRow(row, 2, us)), <, 1e-17);
+  }
+  for (std::array<double, 3> n : {std::array<double, 3>{0.0, 0.0, 1.0},
+                                  {1.0, 0.0, 0.0},
+                                  {0.6, 0.0, -0.8},
+                                  {0.48, 0.6, 0.64}}) {
+    const auto t = contact::tangentBasis(n, 3);
+    TEST_EQUALITY(t.size(), 2u);
+    auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+      return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    };
+    TEST_FLOATING_EQUALITY(dot(t[0], t[0]), 1.0, 1e-14);
+    TEST_FLOATING_EQUALITY(dot(t[1], t[1]), 1.0, 1e-14);
+    TEST_COMPARE(std::abs(dot(t[0], t[1])) + std::abs(dot(t[0], n)) + std::abs(dot(t[1], n)), <,
+                 1e-14);
+    // Right-handed: t1 x t2 = n.
+    const std::array<double, 3> c{t[0][1] * t[1][2] - t[0][2] * t[1][1],
+                                  t[0][2] * t[1][0] - t[0][0] * t[1][2],
+                                  t[0][0] * t[1][1] - t[0][1] * t[1][0]};
+    TEST_COMPARE(std::abs(c[0] - n[0]) + std::abs(c[1] - n[1]) + std::abs(c[2] - n[2]), <, 1e-14);
+  }
+}
+
+TEUCHOS_UNIT_TEST(TangentialRows, RowsWithoutAllComponentsRefused) {
+  ContactRow row;
+  row.slaveNode = 7;
+  row.normal = {0.0, 1.0, 0.0};
+  row.entries = {{7, 1, -1.0}};  // the x component dropped
+  TEST_THROW(tangentialRows(row, 2), std::invalid_argument);
+  row.entries = {{7, 0, 0.0}, {7, 1, -1.0}, {3, 0, 0.0}};
+  TEST_THROW(tangentialRows(row, 2), std::invalid_argument);
+  row.entries = {{7, 0, 0.0}, {7, 1, -1.0}};
+  TEST_THROW(contact::applyRow(row, 2, {0.0, 0.0}), std::invalid_argument);
+  TEST_THROW(contact::tangentBasis(row.normal, 4), std::invalid_argument);
+}
+
+}  // namespace
