@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "contact_Materials.hpp"
+
 namespace contact {
 
 std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
@@ -183,20 +185,19 @@ bool lineContact(const Teuchos::ParameterList& params, int dim) {
 }
 
 void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pMax,
-                        double halfWidth, int dim) {
+                        double halfWidth, int dim,
+                        const std::vector<plasticity::ElasticLaw>& contactLaws) {
   const auto& hz = params.sublist("Contact problem").sublist("Hertz");
   if (!hz.get<bool>("Compare")) return;
-  const auto& mat = params.sublist("Material");
-  const double E = mat.get<double>("Young's modulus"), nu = mat.get<double>("Poisson's ratio");
+  if (contactLaws.empty())
+    throw std::invalid_argument(
+        "Contact problem/Hertz: the Slave boundary lies on no body of Contact problem/Bodies; "
+        "Hertz needs the materials of the bodies in contact");
   const double R1 = hz.get<double>("Radius 1"), R2 = hz.get<double>("Radius 2");
   const double R = R2 > 0.0 ? R1 * R2 / (R1 + R2) : R1;
-  // Two bodies of one material: 1/E* = 2 (1 - nu^2) / E; against a rigid obstacle the body's
+  // Two bodies: 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2; against a rigid obstacle the body's
   // compliance alone: E* = E / (1 - nu^2).
-  const auto& cp = params.sublist("Contact problem");
-  const bool rigid = cp.isSublist("Rigid obstacle") &&
-                     cp.sublist("Rigid obstacle").isParameter("Type") &&
-                     cp.sublist("Rigid obstacle").get<std::string>("Type") != "none";
-  const double Estar = E / ((rigid ? 1.0 : 2.0) * (1.0 - nu * nu));
+  const double Estar = combinedModulus(contactLaws);
   double a = 0.0, p0 = 0.0, vm = 0.0;
   const bool line = lineContact(params, dim);
   const char* extent = line ? "half_width" : "contact_radius";
@@ -205,7 +206,8 @@ void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pM
     const double F = hz.get<double>("Force");
     a = std::cbrt(3.0 * F * R / (4.0 * Estar));
     p0 = 3.0 * F / (2.0 * M_PI * a * a);
-    vm = hertzSphereMaxVonMises(p0, nu);
+    // Each body has its own stress field under the common pressure: the larger peak.
+    for (const auto& law : contactLaws) vm = std::max(vm, hertzSphereMaxVonMises(p0, law.nu));
   } else {
     const double l = hz.get<double>("Line load");
     a = std::sqrt(4.0 * l * R / (M_PI * Estar));

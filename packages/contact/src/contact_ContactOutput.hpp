@@ -80,12 +80,14 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
 
 // When "Contact problem"/"Hertz"/"Compare" is set: for a line contact (lineContact: 2D, or a
 // 3D slab) Hertz's line contact of two cylinders (radii, line load l of the full model per unit
-// length, E and nu of "Material" for both bodies) as c["hertz"] = {p_max, half_width,
-// max_von_mises} and c["relative_error"] = {p_max, half_width}; for a 3D point contact that of
-// two spheres (radii, total force F of the full model) as c["hertz"] = {p_max, contact_radius,
-// max_von_mises}, c["relative_error"] = {p_max, contact_radius}.
+// length) as c["hertz"] = {p_max, half_width, max_von_mises} and c["relative_error"] = {p_max,
+// half_width}; for a 3D point contact that of two spheres (radii, total force F of the full
+// model) as c["hertz"] = {p_max, contact_radius, max_von_mises}, c["relative_error"] = {p_max,
+// contact_radius}. contactLaws: the materials of the bodies in contact (contactBodyLaws; one
+// against a rigid obstacle), combined as 1/E* = sum (1 - nu^2)/E.
 void addHertzComparison(Json& c, const Teuchos::ParameterList& params, double pMax,
-                        double halfWidth, int dim = 2);
+                        double halfWidth, int dim,
+                        const std::vector<plasticity::ElasticLaw>& contactLaws);
 
 // The VTK cell type of an element; vtkNodeOrder(type)[k] is the element's local node at VTK's
 // position k (the identity but for Tet10 and Hex27, whose Gmsh order differs from VTK's).

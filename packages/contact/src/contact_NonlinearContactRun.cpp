@@ -13,6 +13,7 @@
 #include "contact_DriverCommon.hpp"
 #include "contact_ElasticContactRun.hpp"
 #include "contact_LoadStepControl.hpp"
+#include "contact_Materials.hpp"
 #include "contact_NonlinearIteration.hpp"
 #include "contact_NonlinearModel.hpp"
 #include "contact_NonlinearOptions.hpp"
@@ -95,15 +96,8 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   checkNonlinearParameters(params);
   const NonlinearOptions opt = nonlinearOptionsFrom(params);
   const ElasticContactSpec spec = nonlinearContactSpec(params);
-  const auto& mat = params.sublist("Material");
-  const double yield = mat.get<double>("Yield stress"),
-               hardening = mat.get<double>("Hardening modulus");
-
   // The bodies, their laws and the state; the dimension is the mesh's.
-  std::vector<plasticity::ElasticLaw> bodyLaws;
-  for (const auto& b : spec.bodies) bodyLaws.push_back(b.law);
-  NonlinearModel model =
-      makeNonlinearModel(buildElasticContactProblem(spec, *comm), bodyLaws, yield, hardening);
+  NonlinearModel model = makeNonlinearModel(buildElasticContactProblem(spec, *comm), spec.bodies);
   ElasticContactProblem& problem = model.problem;
   const int dim = problem.dim();
   checkNonlinearOptionsFor(opt, dim, spec.obstacle.has_value());
@@ -260,14 +254,7 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
   s["contact_rows"] = static_cast<long long>(solver.inequalityRows());
   const bool converged = !failed && !stopped;
   s["converged"] = converged;
-  Json m = Json::object();
-  m["youngs_modulus"] = mat.get<double>("Young's modulus");
-  m["poissons_ratio"] = mat.get<double>("Poisson's ratio");
-  if (yield > 0.0) {
-    m["yield_stress"] = yield;
-    m["hardening_modulus"] = hardening;
-  }
-  s["material"] = std::move(m);
+  addMaterialSummary(s, spec.bodies);
   Json nl = Json::object();
   nl["geometrically_nonlinear"] = opt.kinematics == plasticity::Kinematics::TotalLagrangian;
   nl["stiffness"] = opt.stiffness;
@@ -308,7 +295,8 @@ int runNonlinearContact(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterLi
     c["support_relative_error"] =
         last.contactForce != 0.0 ? std::abs(support - last.contactForce) / last.contactForce : 0.0;
     if (history.loadFactor > 1.0 - 1e-12)
-      addHertzComparison(c, params, last.pMax, last.contactExtent, dim);
+      addHertzComparison(c, params, last.pMax, last.contactExtent, dim,
+                         contactBodyLaws(spec, problem));
     // The contact conditions of the last QP solve (rows B_I du <= g on the last geometry).
     c["last_solve"] = constraintJson(solver.constraintReport());
     c["last_solve"]["max_abs_du"] = maxAbsSolution(*comm, solver);
