@@ -4,21 +4,29 @@
   python3 examples/plot_nonlinear.py OUTPUT_DIR [--elastic ELASTIC_DIR] [--zoom Z]
 
 writes into OUTPUT_DIR
-  contact_pressure.png  the final contact pressure against x [mm] (extent_measure "half_width",
-                        two cylinders) or against the angle from the bottom [deg] ("angle",
-                        pin in a hole); with Hertz's p(x) = p_max sqrt(1 - x^2/a^2) if the summary
-                        has it, and ELASTIC_DIR's contact_pressure.csv as "elastic" if given;
-  von_mises.png         the von Mises stress in a window of half-size Z around the point of
+  contact_pressure.png  2D: the final contact pressure against x [mm] (extent_measure
+                        "half_width", two cylinders) or against the angle from the bottom [deg]
+                        ("angle", pin in a hole); with Hertz's p(x) = p_max sqrt(1 - x^2/a^2) if
+                        the summary has it, and ELASTIC_DIR's contact_pressure.csv as "elastic"
+                        if given. 3D (a point contact: the Hertz sphere, a rigid indenter): the
+                        nodal pressure of every slave node against its radius from the contact
+                        axis [mm], one colour per load step (contact_pressure_step_NNNN.csv),
+                        with Hertz's p(r) at the full load if the summary has it and ELASTIC_DIR's
+                        final pressures if given;
+  von_mises.png         (2D) the von Mises stress in a window of half-size Z around the point of
                         maximum pressure (default 0.1 m for half_width, 0.5 m for angle), with the
                         yield stress as a contour line;
-  plastic_strain.png    the equivalent plastic strain in the same window, if any is positive;
+  plastic_strain.png    (2D) the equivalent plastic strain in the same window, if any is positive
+                        (a 3D run's stresses and plastic strain are in its VTU files);
   convergence.png       the relative residual (and increment) of every accepted nonlinear
                         iteration against the cumulative iteration number, steps marked;
   solution_norm.png     the solution norm against the cumulative iteration number.
-Reads summary.json, iterations.csv, contact_pressure.csv and solution_*.vtu (ASCII).
+Reads summary.json, iterations.csv, contact_pressure.csv (and, in 3D, the per-step
+contact_pressure_step_NNNN.csv) and, in 2D, solution_*.vtu (ASCII).
 """
 import argparse
 import csv
+import glob
 import json
 import math
 import os
@@ -94,6 +102,49 @@ def pressure_plot(d, summary, elastic):
     return save(fig, d, "contact_pressure.png")
 
 
+def step_pressures(d):
+    """[(step, rows)] of the per-step contact_pressure_step_NNNN.csv files, in step order."""
+    out = []
+    for path in sorted(glob.glob(os.path.join(d, "contact_pressure_step_*.csv"))):
+        step = int(os.path.basename(path)[len("contact_pressure_step_"):-len(".csv")])
+        out.append((step, read_csv(path)))
+    return out
+
+
+def pressure_plot_3d(d, summary, elastic):
+    """A point contact in 3D: pressure against the radius from the contact axis, per step."""
+    c = summary["contact"]
+    factors = {st["step"]: st["load_factor"] for st in summary.get("steps", [])}
+    steps = step_pressures(d) or [(max(factors, default=0), read_csv(
+        os.path.join(d, "contact_pressure.csv")))]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    colours = plt.cm.viridis([i / max(1, len(steps) - 1) for i in range(len(steps))])
+    radius_max = 0.0
+    for (step, rows), colour in zip(steps, colours):
+        r = [q["radius"] * 1e3 for q in rows]
+        label = f"step {step}" + (f" (load factor {factors[step]:.3g})" if step in factors else "")
+        ax.plot(r, [q["pressure"] / 1e6 for q in rows], "o", ms=2.5, color=colour, label=label)
+        radius_max = max([radius_max] + [v for v, q in zip(r, rows) if q["pressure"] > 0])
+    if elastic:
+        rows = read_csv(os.path.join(elastic, "contact_pressure.csv"))
+        ax.plot([q["radius"] * 1e3 for q in rows], [q["pressure"] / 1e6 for q in rows], "s",
+                ms=2.5, mfc="none", color="gray", label="elastic")
+    if "hertz" in c:
+        a, p0 = c["hertz"]["contact_radius"], c["hertz"]["p_max"]
+        xs = [a * i / 200 for i in range(201)]
+        ax.plot([v * 1e3 for v in xs], [p0 * math.sqrt(max(0.0, 1 - (v / a) ** 2)) / 1e6
+                                       for v in xs], "k--", label="Hertz (elastic, full load)")
+        radius_max = max(radius_max, a * 1e3)
+    if radius_max > 0:
+        ax.set_xlim(0, 1.6 * radius_max)
+    ax.set_xlabel("radius r from the contact axis [mm]")
+    ax.set_ylabel("contact pressure [MPa]")
+    ax.set_title(f"p_max {c['p_max'] / 1e6:.0f} MPa, contact radius "
+                 f"{c.get('contact_extent', 0) * 1e3:.2f} mm", fontsize=10)
+    ax.legend(fontsize=8)
+    return save(fig, d, "contact_pressure.png")
+
+
 def field_plot(d, tri, values, centre, zoom, label, name, cmap, level=None):
     fig, ax = plt.subplots(figsize=(6, 5))
     tpc = ax.tripcolor(tri, values, shading="gouraud", cmap=cmap)
@@ -116,7 +167,11 @@ def stress_plots(d, summary, zoom):
     tri, f = read_vtu(d, ["von_mises", "plastic_strain"])
     if f["von_mises"] is None:
         raise SystemExit(f"no von_mises field in {d}/solution_*.vtu")
-    yield_stress = summary.get("material", {}).get("yield_stress")
+    # One yield stress for all bodies, or the bodies' own ("materials"): the lowest as the line.
+    yields = [m.get("yield_stress") for m in summary.get("materials", {}).values()] or \
+        [summary.get("material", {}).get("yield_stress")]
+    yields = [y for y in yields if y]
+    yield_stress = min(yields) if yields else None
     out = [field_plot(d, tri, [v / 1e6 for v in f["von_mises"]], centre, zoom,
                       "von Mises [MPa]", "von_mises.png", "viridis",
                       yield_stress / 1e6 if yield_stress else None)]
@@ -166,6 +221,10 @@ if __name__ == "__main__":
         summary = json.load(f)
     angle_mode = summary["contact"].get("extent_measure") == "angle"
     zoom = o.zoom if o.zoom else (0.5 if angle_mode else 0.1)
-    for out in ([pressure_plot(o.dir, summary, o.elastic)] + stress_plots(o.dir, summary, zoom)
-                + history_plots(o.dir)):
+    if summary.get("dimension", 2) == 3:
+        # A 3D run: the pressure against the radius; its stress fields are in the VTU files.
+        outputs = [pressure_plot_3d(o.dir, summary, o.elastic)]
+    else:
+        outputs = [pressure_plot(o.dir, summary, o.elastic)] + stress_plots(o.dir, summary, zoom)
+    for out in outputs + history_plots(o.dir):
         print("wrote", out)

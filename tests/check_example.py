@@ -2,6 +2,7 @@
 """Checks what scripts/run-example.sh produced (tests/CMakeLists.txt):
 
   check_example.py OUTPUT_DIR REPORT_FILE
+  check_example.py --pngs OUTPUT_DIR NAME [NAME ...]   (each OUTPUT_DIR/NAME a readable PNG)
 
 - REPORT_FILE (the script's standard output) names the output directory and the pictures, and
   gives p_max and the half-width (the contact radius of a 3D run) against Hertz with the values
@@ -116,4 +117,9 @@ def main(d, report_path):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:3])
+    if sys.argv[1] == "--pngs":
+        for name in sys.argv[3:]:
+            w, h = check_png(os.path.join(sys.argv[2], name))
+            print(f"{name}: PNG {w} x {h}")
+    else:
+        main(*sys.argv[1:3])

@@ -25,12 +25,14 @@
                                           the same outer iterations and Hessian multiplications
                                           to 10 % (unless --solution-only) and the same solution
                                           along the contact side (contact.csv)
-  check_summary.py hertz DIR [DIR2 ...] [--p-tol T] [--extent-tol T]
+  check_summary.py hertz DIR [DIR2 ...] [--p-tol T] [--extent-tol T] [--estar E]
                                           elastic contact against Hertz: p_max within 3 % (T),
                                           the half-width (2D) or contact radius (3D) within 5 %
                                           (T), the force balances the load to 1e-6, the contact
                                           conditions hold; further DIRs (other rank counts) give
-                                          the same p_max and extent
+                                          the same p_max and extent; with --estar, the
+                                          summary's Hertz line contact is the closed form with
+                                          that combined modulus E* (1e-9 relative)
   check_summary.py plane_strain DIR_2D DIR_3D [DIR_3D ...] [--tol T] [--u-tol U]
                                           a 3D slab (the 2D mesh extruded, symmetry planes on
                                           its end faces, Contact zone line) against the 2D run:
@@ -77,6 +79,7 @@
 """
 import csv
 import json
+import math
 import sys
 
 # The reference paper, "Numerical experiments: Scalability": (1/H, 1/h) -> primal, FETI, TFETI.
@@ -365,11 +368,27 @@ def membranes_scaling(dirs):
 HERTZ_TOL = {"p_max": 0.03, "extent": 0.05}
 
 
-def hertz(dirs, p_tol=HERTZ_TOL["p_max"], extent_tol=HERTZ_TOL["extent"]):
+def hertz_line_reference(s, estar):
+    """Hertz's line contact of the run's radii and line load with the combined modulus E*,
+    computed here from the echoed parameters: (p_max, half_width)."""
+    hz = s["parameters"]["Contact problem"]["Hertz"]
+    r1, r2, load_ = hz["Radius 1"], hz["Radius 2"], hz["Line load"]
+    r = r1 * r2 / (r1 + r2) if r2 > 0 else r1
+    a = math.sqrt(4 * load_ * r / (math.pi * estar))
+    return 2 * load_ / (math.pi * a), a
+
+
+def hertz(dirs, p_tol=HERTZ_TOL["p_max"], extent_tol=HERTZ_TOL["extent"], estar=0.0):
     s = load(dirs[0])
     if not s["converged"]:
         fail("did not converge: " + s["qp"].get("message", ""))
     c = s["contact"]
+    if estar > 0:
+        p0, a = hertz_line_reference(s, estar)
+        for key, want in (("p_max", p0), ("half_width", a)):
+            if abs(c["hertz"][key] - want) > 1e-9 * want:
+                fail(f"Hertz {key} {c['hertz'][key]:.9e} in summary.json is not the line "
+                     f"contact's {want:.9e} with E* = {estar:.6e}")
     # The zone's extent: the half-width of a 2D (line) contact, the radius of a 3D (point) one.
     extent = "contact_radius" if "contact_radius" in c else "half_width"
     for key, tol in (("p_max", p_tol), (extent, extent_tol)):
@@ -751,11 +770,11 @@ if __name__ == "__main__":
         only = "--solution-only" in args
         same_contact([a for a in args if a != "--solution-only"], only)
     elif mode == "hertz":
-        tols = {"--p-tol", "--extent-tol"}
+        tols = {"--p-tol", "--extent-tol", "--estar"}
         dirs = [a for i, a in enumerate(args) if a not in tols and
                 (i == 0 or args[i - 1] not in tols)]
         hertz(dirs, option(args, "--p-tol", HERTZ_TOL["p_max"]),
-              option(args, "--extent-tol", HERTZ_TOL["extent"]))
+              option(args, "--extent-tol", HERTZ_TOL["extent"]), option(args, "--estar", 0.0))
     elif mode == "plane_strain":
         tols = {"--tol", "--u-tol"}
         dirs = [a for i, a in enumerate(args) if a not in tols and

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "contact_Friction.hpp"
+#include "contact_Materials.hpp"
 
 namespace contact {
 
@@ -198,21 +199,20 @@ bool lineContact(const Teuchos::ParameterList& params, int dim) {
   return zone == "line" || (zone == "auto" && dim == 2);
 }
 
-std::optional<HertzReference> hertzReference(const Teuchos::ParameterList& params, double pMax,
-                                             double extent, int dim) {
+std::optional<HertzReference> hertzReference(
+    const Teuchos::ParameterList& params, double pMax, double extent, int dim,
+    const std::vector<plasticity::ElasticLaw>& contactLaws) {
   const auto& hz = params.sublist("Contact problem").sublist("Hertz");
   if (!hz.get<bool>("Compare")) return std::nullopt;
-  const auto& mat = params.sublist("Material");
-  const double E = mat.get<double>("Young's modulus"), nu = mat.get<double>("Poisson's ratio");
+  if (contactLaws.empty())
+    throw std::invalid_argument(
+        "Contact problem/Hertz: the Slave boundary lies on no body of Contact problem/Bodies; "
+        "Hertz needs the materials of the bodies in contact");
   const double R1 = hz.get<double>("Radius 1"), R2 = hz.get<double>("Radius 2");
   const double R = R2 > 0.0 ? R1 * R2 / (R1 + R2) : R1;
-  // Two bodies of one material: 1/E* = 2 (1 - nu^2) / E; against a rigid obstacle the body's
+  // Two bodies: 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2; against a rigid obstacle the body's
   // compliance alone: E* = E / (1 - nu^2).
-  const auto& cp = params.sublist("Contact problem");
-  const bool rigid = cp.isSublist("Rigid obstacle") &&
-                     cp.sublist("Rigid obstacle").isParameter("Type") &&
-                     cp.sublist("Rigid obstacle").get<std::string>("Type") != "none";
-  const double Estar = E / ((rigid ? 1.0 : 2.0) * (1.0 - nu * nu));
+  const double Estar = combinedModulus(contactLaws);
   HertzReference h;
   h.line = lineContact(params, dim);
   if (!h.line) {
@@ -220,7 +220,9 @@ std::optional<HertzReference> hertzReference(const Teuchos::ParameterList& param
     const double F = hz.get<double>("Force");
     h.extent = std::cbrt(3.0 * F * R / (4.0 * Estar));
     h.pMax = 3.0 * F / (2.0 * M_PI * h.extent * h.extent);
-    h.maxVonMises = hertzSphereMaxVonMises(h.pMax, nu);
+    // Each body has its own stress field under the common pressure: the larger peak.
+    for (const auto& law : contactLaws)
+      h.maxVonMises = std::max(h.maxVonMises, hertzSphereMaxVonMises(h.pMax, law.nu));
   } else {
     const double l = hz.get<double>("Line load");
     h.extent = std::sqrt(4.0 * l * R / (M_PI * Estar));

@@ -92,9 +92,9 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
 
 // Hertz's closed form for the run's contact, when "Contact problem"/"Hertz"/"Compare" is set:
 // for a line contact (lineContact: 2D, or a 3D slab) the line contact of two cylinders (radii,
-// line load l of the full model per unit length, E and nu of "Material" for both bodies), for a
-// 3D point contact that of two spheres (radii, total force F of the full model); against a
-// rigid obstacle the body's compliance alone.
+// line load l of the full model per unit length), for a 3D point contact that of two spheres
+// (radii, total force F of the full model). contactLaws: the materials of the bodies in contact
+// (contactBodyLaws; one against a rigid obstacle), combined as 1/E* = sum (1 - nu^2)/E.
 struct HertzReference {
   bool line = true;          // extent is a half-width (line) or a contact radius (point)
   double pMax = 0.0;         // p0
@@ -104,8 +104,9 @@ struct HertzReference {
   double extentError = 0.0;  // |extent - a| / a of the run's extent
 };
 // Empty when Hertz/Compare is not set.
-std::optional<HertzReference> hertzReference(const Teuchos::ParameterList& params, double pMax,
-                                             double extent, int dim = 2);
+std::optional<HertzReference> hertzReference(
+    const Teuchos::ParameterList& params, double pMax, double extent, int dim,
+    const std::vector<plasticity::ElasticLaw>& contactLaws);
 // c["hertz"] = {p_max, half_width | contact_radius, max_von_mises} and c["relative_error"] =
 // {p_max, half_width | contact_radius}.
 void addHertzComparison(Json& c, const HertzReference& hertz);

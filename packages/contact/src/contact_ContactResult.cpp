@@ -1,4 +1,5 @@
 #include "contact_ContactResult.hpp"
+#include "contact_Materials.hpp"
 
 #include "contact_DriverCommon.hpp"
 
@@ -71,6 +72,7 @@ Json elasticSummary(const ContactResult& r) {
   s["dual_operator_applies"] = r.feti.dualOperatorApplies;
   s["factor_bytes"] = r.feti.factorBytes;
   s["contact_type"] = r.contactType;
+  addMaterialSummary(s, r.materials);
   s["qp"] = qpJson(r.qp);
   s["contact"] = contactJson(r);
   s["max_von_mises"] = r.maxVonMises;
@@ -99,14 +101,7 @@ Json nonlinearSummary(const ContactResult& r) {
   s["contact_rows"] = r.feti.contactRows;
   s["converged"] = r.converged;
   const NonlinearOutcome& o = r.nonlinear;
-  Json m = Json::object();
-  m["youngs_modulus"] = o.youngsModulus;
-  m["poissons_ratio"] = o.poissonsRatio;
-  if (o.yieldStress > 0.0) {
-    m["yield_stress"] = o.yieldStress;
-    m["hardening_modulus"] = o.hardeningModulus;
-  }
-  s["material"] = std::move(m);
+  addMaterialSummary(s, r.materials);
   const IterationTotals totals = iterationTotals(r.history);
   s["iterations"] = totals.iterations;
   Json nl = Json::object();

@@ -61,7 +61,6 @@ struct NonlinearOutcome {
   std::string stiffness;
   double eta1 = 0.0, eta2 = 0.0;
   bool stopped = false, restarted = false;
-  double youngsModulus = 0.0, poissonsRatio = 0.0, yieldStress = 0.0, hardeningModulus = 0.0;
 };
 
 // A converged load step's Coulomb fixed point: its iterations and the last relative change of the
@@ -86,6 +85,9 @@ struct ContactResult {
   FetiDimensions feti;
   tfeti::DualResult qp;  // the (last) QP solve: counters, residual history, method, rho
   std::string contactType = "frictionless";  // elastic_contact: frictionless | tied
+  // The bodies and their materials (summary.json: "materials" per body, and "material" when
+  // every body has the same).
+  std::vector<ElasticContactSpec::Body> materials;
 
   bool haveContact = false;  // the contact object is filled (nonlinear: a step converged)
   ContactMeasures contact;

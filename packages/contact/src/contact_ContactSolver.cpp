@@ -88,7 +88,6 @@ struct ContactSolver::Run {
   ElasticContactSpec spec;
   ParameterList feti;
   NonlinearOptions options;
-  double yield = 0.0, hardening = 0.0;
   std::unique_ptr<NonlinearModel> model;
   std::unique_ptr<tfeti::FetiSolver> solver;
   double loadNorm = 0.0, appliedForce = 0.0;
@@ -150,17 +149,11 @@ void ContactSolver::setup() {
   if (!r.linear) r.options = nonlinearOptionsFrom(params);
   r.spec = r.linear ? elasticContactSpec(params) : nonlinearContactSpec(params);
   r.feti = fetiParameters(params, r.spec);
-  if (!r.linear) {
-    r.yield = params.sublist("Material").get<double>("Yield stress");
-    r.hardening = params.sublist("Material").get<double>("Hardening modulus");
-  }
   if (!dir_.empty() && comm_->getRank() == 0) std::filesystem::create_directories(dir_);
 
   // The bodies, their laws and the state; the dimension is the mesh's.
-  std::vector<plasticity::ElasticLaw> bodyLaws;
-  for (const auto& b : r.spec.bodies) bodyLaws.push_back(b.law);
-  r.model = std::make_unique<NonlinearModel>(makeNonlinearModel(
-      buildElasticContactProblem(r.spec, *comm_), bodyLaws, r.yield, r.hardening));
+  r.model = std::make_unique<NonlinearModel>(
+      makeNonlinearModel(buildElasticContactProblem(r.spec, *comm_), r.spec.bodies));
   NonlinearModel& model = *r.model;
   ElasticContactProblem& problem = model.problem;
   const int dim = problem.dim();
@@ -428,12 +421,9 @@ ContactResult ContactSolver::solve() {
                            opt.eta1,
                            opt.eta2,
                            stopped,
-                           opt.restart,
-                           params_.sublist("Material").get<double>("Young's modulus"),
-                           params_.sublist("Material").get<double>("Poisson's ratio"),
-                           r.yield,
-                           r.hardening};
+                           opt.restart};
   res.nonlinear = o;
+  res.materials = r.spec.bodies;
   res.friction = iteration.friction;
   res.fixedPoint = fixedPointSteps;
 
@@ -457,7 +447,8 @@ ContactResult ContactSolver::solve() {
         c.appliedForce > 0.0 ? std::abs(c.force - c.appliedForce) / c.appliedForce : 0.0;
     if (r.linear && dim == 3 && opt.rule.line) c.slab = slabContact(nodes, c.force);
     if (r.linear || history.loadFactor > 1.0 - 1e-12)
-      c.hertz = hertzReference(params_, c.pMax, c.extent, dim);
+      c.hertz =
+          hertzReference(params_, c.pMax, c.extent, dim, contactBodyLaws(r.spec, problem));
     if (!r.linear) {
       // The reaction of the fixed boundaries balances the contact force (and the load).
       c.supportForce = supportForce(*comm_, solver, problem, r.loadDirection);

@@ -18,6 +18,7 @@
 #include "contact_DryRun.hpp"
 #include "contact_ElasticContactRun.hpp"
 #include "contact_Json.hpp"
+#include "contact_Materials.hpp"
 #include "contact_NonlinearContactRun.hpp"
 #include "contact_PrescribedDisplacement.hpp"
 #include "contact_StructuredProblem.hpp"
@@ -418,9 +419,7 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
   bc.set("Symmetry components", Array<int>(), "the zero component (0: x, 1: y, 2: z) of each",
          componentsValidator());
   addPrescribedDisplacementParameters(bc);
-  auto& mat = pl->sublist("Material", false, "isotropic linear elasticity (plane strain in 2D)");
-  mat.set("Young's modulus", 1.0, "E", tfeti::strict::positive());
-  mat.set("Poisson's ratio", 0.3, "nu", tfeti::strict::between(-1.0, 0.5, true, true));
+  addMaterialParameters(*pl);
   auto& load = pl->sublist("Load");
   load.set("Source", 1.0, "right-hand side of -Δu = source (poisson)");
   load.set("Body force", arr<double>({0.0, -1.0}),
@@ -458,7 +457,10 @@ void validateDriverParameters(ParameterList& params, const std::string& source) 
   try {
     if (params.isSublist("FETI"))
       tfeti::FetiSolver::rejectMisplacedParameters(params.sublist("FETI"));
+    // "Materials" is named by the user's bodies: checked on its own against them.
+    const GivenMaterials materials = takeBodyMaterials(params);
     params.validateParametersAndSetDefaults(*validDriverParameters());
+    restoreBodyMaterials(params, materials);
     const auto& sc = params.sublist("Scalability");
     const auto problems = sc.get<Array<std::string>>("Problems");
     for (const auto& p : problems)

@@ -102,6 +102,32 @@ void requireEveryBodyHeld(const GmshMesh& mesh, const ElasticContactSpec& spec,
 
 }  // namespace
 
+namespace {
+
+// The body (index into spec.bodies) that most of a boundary's edges (faces) lie on, or -1.
+int bodyOfBoundary(const GmshMesh& mesh, const ElasticContactSpec& spec, const GmshBoundary& b) {
+  std::map<int, int> count;
+  for (int e = 0; e < b.numEdges(); ++e)
+    if (b.edgeBody[e] >= 0) ++count[b.edgeBody[e]];
+  int best = -1, most = 0;
+  for (const auto& [meshBody, n] : count)
+    if (n > most) best = meshBody, most = n;
+  if (best < 0) return -1;
+  for (std::size_t k = 0; k < spec.bodies.size(); ++k)
+    if (spec.bodies[k].name == mesh.bodies[best].name) return static_cast<int>(k);
+  return -1;
+}
+
+}  // namespace
+
+std::vector<plasticity::ElasticLaw> contactBodyLaws(const ElasticContactSpec& spec,
+                                                    const ElasticContactProblem& p) {
+  std::vector<plasticity::ElasticLaw> laws;
+  for (int b : {p.slaveBody, p.masterBody})
+    if (b >= 0) laws.push_back(spec.bodies[b].law);
+  return laws;
+}
+
 std::vector<int> boundaryNodeIds(const GmshMesh& mesh, const std::string& name) {
   const auto nodes = nodesOf(boundaryNamed(mesh, name, "boundary"));
   return std::vector<int>(nodes.begin(), nodes.end());
@@ -290,6 +316,7 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   const GmshBoundary& slave = boundaryNamed(mesh, spec.slave, "Slave");
   const std::set<int> slaveSet = nodesOf(slave);
   p.slaveNodes.assign(slaveSet.begin(), slaveSet.end());
+  p.slaveBody = bodyOfBoundary(mesh, spec, slave);
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (int n = 0; n < mesh.numNodes(); ++n)
     for (int c = 0; c < dim; ++c) {
@@ -328,6 +355,7 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     if (!onBody)
       throw std::invalid_argument("Master: boundary \"" + spec.master + "\" is on no body");
     p.master = makeMeshContactMaster(mesh, spec.master, options);
+    p.masterBody = bodyOfBoundary(mesh, spec, master);
     // A node on both surfaces joins the bodies there: it is glued, not in contact (a .geo that
     // extrudes touching bodies merges their coincident points unless told otherwise).
     for (int n : p.master->masterNodes())

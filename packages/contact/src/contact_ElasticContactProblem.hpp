@@ -29,6 +29,8 @@ struct ElasticContactSpec {
     std::string name;  // a physical group of the mesh's dimension (surface in 2D, volume in 3D)
     int subdomains = 1;
     plasticity::ElasticLaw law;
+    double yieldStress = 0.0;  // J2 (nonlinear_contact); 0: elastic
+    double hardening = 0.0;    // linear isotropic hardening modulus
   };
   std::vector<Body> bodies;
   std::vector<std::string> fixed;                     // every component zero
@@ -78,6 +80,9 @@ struct ElasticContactProblem {
   std::vector<int> slaveNodes;              // global node ids of the slave boundary, as in contact
   // Per slave node: its share of the slave boundary's length (2D) or area (3D).
   std::vector<double> slaveWeights;
+  // The bodies (indices into spec.bodies) of the contact pair's Slave and Master boundaries
+  // (-1 for a rigid obstacle as the master): whose materials Hertz's combined modulus takes.
+  int slaveBody = -1, masterBody = -1;
   double appliedForce[3] = {0.0, 0.0, 0.0};  // resultant of the tractions and body loads
 };
 
@@ -91,6 +96,11 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
 void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank,
                    const std::string& slaveName = "slave",
                    const std::string& masterName = "master");
+
+// The elastic laws of the contact pair's bodies (slave, then master; one with a rigid
+// obstacle), for Hertz's combined modulus.
+std::vector<plasticity::ElasticLaw> contactBodyLaws(const ElasticContactSpec& spec,
+                                                    const ElasticContactProblem& p);
 
 plasticity::ElementType toPlasticityType(ElementType type);
 

@@ -17,8 +17,8 @@
 #include "contact_DryRun.hpp"
 #include "contact_ElasticContactProblem.hpp"
 #include "contact_ElasticContactRun.hpp"
-
 #include "contact_Friction.hpp"
+#include "contact_Materials.hpp"
 #include "contact_NonlinearContactRun.hpp"
 #include "contact_PrescribedDisplacement.hpp"
 #include "plasticity_MaterialLaw.hpp"
@@ -60,7 +60,6 @@ std::vector<std::pair<std::string, std::vector<double>>> componentsPerName(
 
 ElasticContactSpec elasticContactSpec(const ParameterList& params) {
   const auto& cp = params.sublist("Contact problem");
-  const auto& mat = params.sublist("Material");
   ElasticContactSpec spec;
   spec.meshFile = cp.get<std::string>("Mesh file");
   if (spec.meshFile.empty())
@@ -74,10 +73,10 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     throw std::invalid_argument(
         "Contact problem: \"Bodies\" and \"Subdomains per body\" need one entry per body (got " +
         std::to_string(bodies.size()) + " and " + std::to_string(counts.size()) + ")");
-  const plasticity::ElasticLaw law(mat.get<double>("Young's modulus"),
-                                   mat.get<double>("Poisson's ratio"));
+  const std::vector<BodyMaterial> materials = bodyMaterials(params);
   for (std::size_t b = 0; b < bodies.size(); ++b)
-    spec.bodies.push_back({bodies[b], counts[b], law});
+    spec.bodies.push_back({bodies[b], counts[b], materials[b].elastic, materials[b].yieldStress,
+                           materials[b].hardening});
   spec.fixed = vec(cp.get<Array<std::string>>("Fixed boundaries"));
   const auto sym = vec(cp.get<Array<std::string>>("Symmetry boundaries"));
   const auto comps = vec(cp.get<Array<int>>("Symmetry components"));
@@ -261,7 +260,8 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   s << "problem: " << kind;
   if (nonlinear) {
     const auto& nl = params.sublist("Nonlinear");
-    const double yield = params.sublist("Material").get<double>("Yield stress");
+    double yield = 0.0;
+    for (const auto& b : spec.bodies) yield = std::max(yield, b.yieldStress);
     s << " (" << nl.get<int>("Load steps") << " load steps, "
       << (nl.get<bool>("Geometrically nonlinear") ? "total Lagrangian" : "small strain") << ", "
       << (yield > 0.0 ? "J2 plastic" : "elastic") << ", stiffness "
@@ -282,6 +282,8 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
       << std::count(problem.bodyOfSubdomain.begin(), problem.bodyOfSubdomain.end(),
                     static_cast<int>(b))
       << " subdomains; E = " << spec.bodies[b].law.E << ", nu = " << spec.bodies[b].law.nu;
+    if (nonlinear && spec.bodies[b].yieldStress > 0.0)
+      s << ", yield stress " << spec.bodies[b].yieldStress << ", H = " << spec.bodies[b].hardening;
     lines.push_back(s.str());
   }
   const auto boundary = [&](const std::string& role, const std::string& name) {

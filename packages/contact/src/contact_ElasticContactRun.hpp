@@ -15,7 +15,8 @@ namespace contact {
 // Adds the "Contact problem" sublist to the driver's valid parameters.
 void addElasticContactParameters(Teuchos::ParameterList& valid);
 
-// The problem description from the "Contact problem" and "Material" sublists (validated).
+// The problem description from the "Contact problem" and "Material" (or per body "Materials")
+// sublists (validated).
 ElasticContactSpec elasticContactSpec(const Teuchos::ParameterList& params);
 
 // The FETI list of a run: "Inequality rows" = equalities when the pair is tied (an error when

@@ -4,8 +4,9 @@
 // non-linearities"), in load steps.
 //
 // The bodies, loads and contact pair are those of elastic_contact ("Contact problem"); the
-// material may yield (J2, "Material"/"Yield stress") and the kinematics may be total
-// Lagrangian ("Nonlinear"/"Geometrically nonlinear"). Per load step, with load factor t:
+// material may yield (J2, "Yield stress" of "Material" or of a body in "Materials") and the
+// kinematics may be total Lagrangian ("Nonlinear"/"Geometrically nonlinear"). Per load step, with
+// load factor t:
 //   K and B_E are assembled (and K factorized) once;
 //   iterate: B_I and the gaps on the current geometry x = X + u;
 //            the contact QP for the increment: K du + B^T lambda = t f - f_int(u),
@@ -31,7 +32,7 @@
 
 namespace contact {
 
-// Adds "Nonlinear" and the plastic parameters of "Material" to the driver's valid parameters.
+// Adds "Nonlinear" to the driver's valid parameters (the materials: contact_Materials.hpp).
 void addNonlinearContactParameters(Teuchos::ParameterList& valid);
 
 // The checks of the "Nonlinear", "Material" and "Contact problem" parameters a run makes before

@@ -84,23 +84,24 @@ void NonlinearModel::revert() {
 }
 
 NonlinearModel makeNonlinearModel(ElasticContactProblem problem,
-                                  const std::vector<plasticity::ElasticLaw>& bodyLaws,
-                                  double yieldStress, double hardening) {
+                                  const std::vector<ElasticContactSpec::Body>& bodies) {
   NonlinearModel model;
   model.problem = std::move(problem);
   const ElasticContactProblem& p = model.problem;
+  // A subdomain is part of one body (each body is partitioned on its own), so one law object
+  // per subdomain carries that body's material.
   for (std::size_t i = 0; i < p.local.size(); ++i) {
-    const auto& law = bodyLaws.at(p.localBody[i]);
+    const ElasticContactSpec::Body& body = bodies.at(p.localBody[i]);
     const auto& em = p.localElements[i];
-    if (yieldStress > 0.0) {
+    if (body.yieldStress > 0.0) {
       auto j2 = std::make_unique<plasticity::J2PlasticMaterial>(
-          law.E, law.nu, yieldStress, hardening, em.numElements(),
+          body.law.E, body.law.nu, body.yieldStress, body.hardening, em.numElements(),
           plasticity::numGaussPoints(em.type));
       model.plastic.push_back(j2.get());
       model.laws.push_back(std::move(j2));
     } else {
       model.plastic.push_back(nullptr);
-      model.laws.push_back(std::make_unique<plasticity::LinearElasticMaterial>(law));
+      model.laws.push_back(std::make_unique<plasticity::LinearElasticMaterial>(body.law));
     }
     model.externalLoad.push_back(p.local[i].f);
     model.u.emplace_back(p.local[i].f.size(), 0.0);

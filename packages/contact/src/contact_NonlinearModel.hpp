@@ -43,11 +43,10 @@ struct NonlinearModel {
   void revert();  // committed -> trial (a rejected attempt)
 };
 
-// The model of `problem`: J2 laws when yieldStress > 0 (hardening modulus H), else the bodies'
-// linear elastic laws; the load at load factor 1 is the problem's; u = 0.
+// The model of `problem`: per subdomain its body's law, J2 when the body's yield stress is > 0
+// (hardening modulus H), else linear elastic; the load at load factor 1 is the problem's; u = 0.
 NonlinearModel makeNonlinearModel(ElasticContactProblem problem,
-                                  const std::vector<plasticity::ElasticLaw>& bodyLaws,
-                                  double yieldStress, double hardening);
+                                  const std::vector<ElasticContactSpec::Body>& bodies);
 
 // Equivalent plastic strain: the largest at any Gauss point of the law's trial state, and a
 // nodal field (the mean over the elements at a node of each element's Gauss point mean).

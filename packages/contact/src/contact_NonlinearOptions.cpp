@@ -78,13 +78,6 @@ void checkNonlinearOptionsFor(const NonlinearOptions& o, int dim, bool rigidObst
 }
 
 void addNonlinearContactParameters(ParameterList& pl) {
-  auto& mat = pl.sublist("Material");
-  mat.set("Yield stress", 0.0,
-          "nonlinear_contact: initial uniaxial yield stress of J2 plasticity; 0: elastic",
-          tfeti::strict::nonNegative());
-  mat.set("Hardening modulus", 0.0,
-          "nonlinear_contact: linear isotropic hardening modulus H (0: perfect plasticity)",
-          tfeti::strict::nonNegative());
   auto& nl = pl.sublist("Nonlinear", false, "Problem = nonlinear_contact: load steps, iterations");
   nl.set("Geometrically nonlinear", true,
          "total Lagrangian kinematics (Green-Lagrange strain); false: small strain");
@@ -135,10 +128,6 @@ void addNonlinearContactParameters(ParameterList& pl) {
 void checkNonlinearParameters(const ParameterList& params) {
   nonlinearOptionsFrom(params);
   elasticContactSpec(params);
-  const auto& mat = params.sublist("Material");
-  if (mat.get<double>("Yield stress") < 0.0 || mat.get<double>("Hardening modulus") < 0.0)
-    throw std::invalid_argument(
-        "Material: \"Yield stress\" and \"Hardening modulus\" must be >= 0");
 }
 
 }  // namespace contact
