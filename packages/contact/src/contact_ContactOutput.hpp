@@ -17,15 +17,15 @@
 namespace contact {
 
 struct ContactNode {
-  double x, y, z;    // position (reference, or current when a displacement is given); z = 0 in 2D
-  double lambda;     // the row's multiplier: force (per unit thickness in 2D) at the node
-  double pressure;   // lambda over the node's share of the slave boundary length (area in 3D)
-  double angle;      // 2D: degrees, seen from ContactExtentRule::centre, from its direction
-  double radius;     // 3D: distance from the contact axis (ContactExtentRule::centre, axis)
-  double normal[3];  // the master's outward normal of the row: lambda * normal is the force
-                     // on the slave node
-  double gap;        // the row's gap left by the solve, c_I - B_I u (>= 0; 0 in contact); the
-                     // row's gap before it when contactNodes is given no solution
+  double x, y, z;      // position (reference, or current when a displacement is given); z = 0 in 2D
+  double lambda;       // the row's multiplier: force (per unit thickness in 2D) at the node
+  double pressure;     // lambda over the node's share of the slave boundary length (area in 3D)
+  double angle;        // 2D: degrees, seen from ContactExtentRule::centre, from its direction
+  double radius;       // 3D: distance from the contact axis (ContactExtentRule::centre, axis)
+  double normal[3];    // the master's outward normal of the row: lambda * normal is the force
+                       // on the slave node
+  double gap;          // the row's gap left by the solve, c_I - B_I u (>= 0; 0 in contact); the
+                       // row's gap before it when contactNodes is given no solution
   int slaveNode = -1;  // its global node id
   // Friction (addFrictionResults; state -1 without friction): the tangential multiplier (force
   // along the tangent t = (-n_y, n_x) in 2D), it over the node's share (traction), the slave's

@@ -14,12 +14,12 @@
 #include "contact_Driver.hpp"
 #include "contact_DriverCommon.hpp"
 #include "contact_ElasticContactRun.hpp"
+#include "contact_FrictionStep.hpp"
 #include "contact_LoadStepControl.hpp"
 #include "contact_NonlinearContactRun.hpp"
 #include "contact_NonlinearIteration.hpp"
 #include "contact_NonlinearModel.hpp"
 #include "contact_NonlinearOptions.hpp"
-#include "contact_FrictionStep.hpp"
 #include "contact_NonlinearStepOutput.hpp"
 #include "contact_PrescribedDisplacement.hpp"
 
@@ -447,8 +447,7 @@ ContactResult ContactSolver::solve() {
         c.appliedForce > 0.0 ? std::abs(c.force - c.appliedForce) / c.appliedForce : 0.0;
     if (r.linear && dim == 3 && opt.rule.line) c.slab = slabContact(nodes, c.force);
     if (r.linear || history.loadFactor > 1.0 - 1e-12)
-      c.hertz =
-          hertzReference(params_, c.pMax, c.extent, dim, contactBodyLaws(r.spec, problem));
+      c.hertz = hertzReference(params_, c.pMax, c.extent, dim, contactBodyLaws(r.spec, problem));
     if (!r.linear) {
       // The reaction of the fixed boundaries balances the contact force (and the load).
       c.supportForce = supportForce(*comm_, solver, problem, r.loadDirection);

@@ -93,7 +93,14 @@ GivenMaterials takeBodyMaterials(ParameterList& params) {
 void restoreBodyMaterials(ParameterList& params, const GivenMaterials& givenMaterials) {
   const ParameterList& perBody = givenMaterials.perBody;
   const auto given = sublistNames(perBody);
-  if (given.empty()) return;  // one Material for all bodies (it may be the default)
+  if (given.empty()) {
+    // One Material for all bodies (it may be the default). The validation filled in an empty
+    // "Materials" (the documented sublist): drop it, so that validating a validated list again
+    // (tfeti_contact, then ContactSolver::setParameters) gives the same list.
+    if (params.isSublist("Materials") && params.sublist("Materials").numParams() == 0)
+      params.remove("Materials");
+    return;
+  }
   const std::string problem = params.get<std::string>("Problem");
   if (params.get<std::string>("Study") != "single" ||
       (problem != "elastic_contact" && problem != "nonlinear_contact"))

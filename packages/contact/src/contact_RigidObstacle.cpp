@@ -31,8 +31,8 @@ void RigidObstacle::validate() const {
         std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
     if (!(len > 0.0)) throw std::invalid_argument("rigid obstacle: the normal is zero");
   } else if (!(radius > 0.0) || !std::isfinite(radius)) {
-    throw std::invalid_argument("rigid obstacle: radius = " + std::to_string(radius) +
-                                " must be positive and finite");
+    throw std::invalid_argument("rigid obstacle: the radius (\"Radius\") = " +
+                                std::to_string(radius) + " must be positive and finite");
   }
 }
 

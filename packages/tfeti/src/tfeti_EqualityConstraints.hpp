@@ -34,7 +34,8 @@ class EqualityConstraints {
   // The number of independent rows.
   int rank() const { return rank_; }
 
-  // The problem in y = x - x0 (new b, lower, upper if any, and x; qp.x's initial guess shifted; A shared).
+  // The problem in y = x - x0 (new b, lower, upper if any, and x; the initial guess shifted; A
+  // shared).
   Qp shift(const Qp& qp) const;
   // x = y + x0.
   void recover(const MultiVector& y, MultiVector& x) const;
