@@ -24,9 +24,11 @@ export OMPI_MCA_mca_base_component_disable_dlclose=1 PMIX_MCA_mca_base_component
 export LSAN_OPTIONS=suppressions=$root/scripts/sanitizer-suppressions.txt:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# Each fuzz mutant gets the same 5x time limit as the tests (TFETI_TEST_TIMEOUT_SCALE).
+export FUZZ_TIMEOUT=${FUZZ_TIMEOUT:-600}
 cd "$build"
 status=0
-# Sanitized runs are 2-5x slower: longer time limits.
+# Sanitized runs are 2-5x slower: the build multiplies every test's TIMEOUT by 5.
 ctest -L 'unit|integration|fuzz' -j"$jobs" --timeout 1800 --output-on-failure \
   | tee sanitizer-ctest.log || status=$?
 end=$(date +%s)

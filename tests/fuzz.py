@@ -32,7 +32,8 @@ import sys
 import xml.etree.ElementTree as ET
 
 NUMERIC = {"double", "int", "float"}
-TIMEOUT = 120
+# Per mutant; FUZZ_TIMEOUT raises it for slower builds (scripts/check-sanitizers.sh).
+TIMEOUT = int(os.environ.get("FUZZ_TIMEOUT", "120"))
 
 
 def parameters(root, path=()):
