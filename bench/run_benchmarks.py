@@ -18,6 +18,9 @@ cylinders:  the two-cylinder problem refined to about 100k, 1M and 4M unknowns
 cylinders_tied: the two-cylinder problem at about 100k, 500k, 1M and 4M unknowns (up to
             --contact-max-dofs) solved with the frictionless pair (SMALBE) and with the same
             pair tied (Contact type = tied, PCPG): Hessian multiplications, solve times, ratios
+hertz_sphere: the elastic Hertz sphere (examples/hertz_sphere_elastic.xml, Hex8) refined to about
+            0.1M and 1M unknowns (up to --max-dofs): Hessian multiplications, setup and solve
+            times, memory, errors against Hertz
 sweep3d:    3D elasticity on the unit cube (clamped on x = 0, trilinear hexahedra), about 0.1M,
             0.5M, 1M and 2M unknowns, subdomains of 4^3, 6^3 and 8^3 elements, against Belos
             CG + MueLu (six rigid modes as nullspace) and, up to --direct3d-max-dofs, KLU2
@@ -459,6 +462,56 @@ def baseline3d(o, n, solver):
     return None
 
 
+# The Hertz sphere's refinements: the .geo's zone divisions n (across) and m (deep), the k layers
+# around it, and subdomains per body. Zone elements stay cubes (t = m s / n) over the same zone
+# s = 1.5 a; torn unknowns are about 8.2 per hexahedron of n^2 (m + k) + 2 k n m per body.
+HERTZ_SIZES = [(18, 8, 15, 16), (40, 17, 33, 128)]
+
+
+def hertz_sphere(o):
+    print("\n## Hertz sphere (Hex8, SMALBE, relative tolerance 1e-7)\n")
+    print("| mesh n, m, k | unknowns | subdomains | contact rows | outer it. / Hessian mult. | "
+          "setup s | solve s | ms/Hessian mult. | peak MiB/rank | p_max error | radius error | "
+          "max von Mises error |\n|---|---|---|---|---|---|---|---|---|---|---|---|")
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
+    for n, m, k, parts in HERTZ_SIZES:
+        if 8.2 * 2 * (n * n * (m + k) + 2 * k * n * m) > o.max_dofs:
+            continue
+        name = f"hertz_sphere_{n}_{m}_{k}_{parts}"
+        d = os.path.join(o.out, name)
+        os.makedirs(d, exist_ok=True)
+        s_zone = 0.0225
+        with open(os.path.join(d, "mesh.geo"), "w") as f:
+            f.write(f"n = {n};\nm = {m};\nk = {k};\ns = {s_zone};\nt = {m * s_zone / n};\n"
+                    f'Include "{os.path.join(root, "hertz_sphere_elastic.geo")}";\n')
+        with open(os.path.join(root, "hertz_sphere_elastic.xml")) as f:
+            xml = f.read()
+        xml = xml.replace('value="hertz_sphere_elastic.geo"',
+                          'value="%s"' % os.path.join(d, "mesh.geo"))
+        xml = xml.replace('value="{4, 4}"', f'value="{{{parts}, {parts}}}"')
+        xml = xml.replace('<ParameterList name="FETI">', '<ParameterList name="Output">\n'
+                          '    <Parameter name="VTU" type="bool" value="false"/>\n'
+                          '  </ParameterList>\n  <ParameterList name="FETI">')
+        path = os.path.join(d, "input.xml")
+        with open(path, "w") as f:
+            f.write(xml)
+        mpirun([o.build + "/bin/tfeti_contact", "--input=" + path, "--output=" + d], o.ranks)
+        try:
+            with open(d + "/summary.json") as f:
+                r = json.load(f)
+        except OSError:
+            print(f"| {n}, {m}, {k} | failed | | | | | | | | | | |", flush=True)
+            continue
+        t, q, c = r["timings"], r["qp"], r["contact"]
+        vm = r["max_von_mises"] / c["hertz"]["max_von_mises"] - 1
+        print(f"| {n}, {m}, {k} | {r['primal_dim']:,} | {r['subdomains']} | {c['rows']} | "
+              f"{q['outer_iterations']} / {q['hessian_multiplications']} | {t['setup_s']:.1f} | "
+              f"{t['solve_s']:.1f} | {1e3 * t['solve_s'] / max(q['hessian_multiplications'], 1):.0f} | "
+              f"{r['peak_rss_mb']:.0f} | {100 * c['relative_error']['p_max']:.2f} % | "
+              f"{100 * c['relative_error']['contact_radius']:.2f} % | {100 * vm:.1f} % |",
+              flush=True)
+
+
 def solvers(o):
     print("\n## Local solver choice (Poisson 1000x500, 20x10 subdomains of 50x50 elements)\n")
     print(HEADER)
@@ -477,8 +530,9 @@ if __name__ == "__main__":
     p.add_argument("--max-dofs", type=float, default=4.3e6)
     p.add_argument("--out", default="bench-out")
     p.add_argument("--preconditioners3d", default="lumped,dirichlet")
-    p.add_argument("--direct3d-max-dofs", type=float, default=1.2e5,
-                   help="largest 3D case solved by KLU2 (its fill grows fast in 3D)")
+    p.add_argument("--direct3d-max-dofs", type=float, default=5e4,
+                   help="largest 3D case solved by KLU2 (its fill grows fast in 3D: at 32^3 "
+                   "cells, 107,811 unknowns, it did not finish in 9 minutes on a quiet machine)")
     p.add_argument("--contact-max-dofs", type=float, default=1.5e6,
                    help="largest two-cylinder case; the 4M one takes over an hour (docs)")
     p.add_argument("--set", action="append", default=[], metavar="LIST/NAME=VALUE",
@@ -489,4 +543,5 @@ if __name__ == "__main__":
     for name in o.sets.split(","):
         {"sweep": sweep, "reference": reference, "solvers": solvers, "membranes": membranes,
          "cylinders_convergence": cylinders_convergence, "cylinders": cylinders,
-         "sweep3d": sweep3d, "cylinders_tied": cylinders_tied}[name](o)
+         "sweep3d": sweep3d, "cylinders_tied": cylinders_tied,
+         "hertz_sphere": hertz_sphere}[name](o)
