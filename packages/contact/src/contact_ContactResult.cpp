@@ -45,7 +45,8 @@ void addNonlinearContact(Json& c, const ContactMeasures& m) {
   c["last_solve"] = std::move(last);
 }
 
-Json elasticSummary(const ContactResult& r) {
+// The keys that open every contact summary, elastic or nonlinear, in the order readers expect.
+Json runHeader(const ContactResult& r) {
   Json s = Json::object();
   s["study"] = "single";
   s["problem"] = r.problem;
@@ -53,6 +54,11 @@ Json elasticSummary(const ContactResult& r) {
   s["subdomains"] = r.subdomains;
   s["nodes"] = r.nodes;
   s["dimension"] = r.dimension;
+  return s;
+}
+
+Json elasticSummary(const ContactResult& r) {
+  Json s = runHeader(r);
   s["formulation"] = r.feti.formulation;
   s["preconditioner"] = r.feti.preconditioner;
   s["local_solver"] = r.feti.localSolver;
@@ -89,13 +95,7 @@ Json elasticSummary(const ContactResult& r) {
 }
 
 Json nonlinearSummary(const ContactResult& r) {
-  Json s = Json::object();
-  s["study"] = "single";
-  s["problem"] = r.problem;
-  s["ranks"] = r.ranks;
-  s["subdomains"] = r.subdomains;
-  s["nodes"] = r.nodes;
-  s["dimension"] = r.dimension;
+  Json s = runHeader(r);
   s["primal_dim"] = r.feti.primal;
   s["dual_dim"] = r.feti.dual;
   s["contact_rows"] = r.feti.contactRows;
