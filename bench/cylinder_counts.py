@@ -37,9 +37,21 @@ def main():
         orig = rb.set_parameter
 
         def set_parameter(xml, key, value):
-            name = key.rsplit("/", 1)[-1]
-            xml = re.sub(r'\s*<Parameter name="%s" type="[a-z]+" value="[^"]*"/>' %
-                         re.escape(name), "", xml, count=1) if name in given else xml
+            # Only within the list the key names (its last sublist, or FETI), nested lists
+            # skipped over to the list's own closing tag.
+            path, name = key.rsplit("/", 1) if "/" in key else ("FETI", key)
+            tag = '<ParameterList name="%s">' % path.rsplit("/", 1)[-1]
+            if name in given and tag in xml:
+                at = xml.index(tag)
+                depth, end = 0, at
+                for m in re.finditer(r"<ParameterList[^>]*[^/]>|</ParameterList>", xml[at:]):
+                    depth += -1 if m.group(0).startswith("</") else 1
+                    if depth == 0:
+                        end = at + m.start()
+                        break
+                body = re.sub(r'\s*<Parameter name="%s" type="[a-z]+" value="[^"]*"/>' %
+                              re.escape(name), "", xml[at:end], count=1)
+                xml = xml[:at] + body + xml[end:]
             return orig(xml, key, value)
         rb.set_parameter = set_parameter
         try:
@@ -64,8 +76,9 @@ def main():
                           "proportioning": q.get("proportioning_steps"),
                           "converged": s["converged"],
                           "p_max_err": err.get("p_max"), "half_width_err": err.get("half_width"),
-                          "force": c.get("force"), "equality_residual":
-                          s.get("equality_residual")}), flush=True)
+                          "force": c.get("force"),
+                          "force_error": c.get("force_relative_error"),
+                          "equality_residual": c.get("equality_residual")}), flush=True)
 
 
 if __name__ == "__main__":
