@@ -17,15 +17,17 @@ function(run step)
   endif()
   set(out "${out}" PARENT_SCOPE)
 endfunction()
+# LAUNCHER: the compiler launcher of the package's build (e.g. ccache), used for every build made
+# here, so that a rerun recompiles nothing that did not change.
+set(launcher)
+if(LAUNCHER)
+  set(launcher "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
+endif()
 # SHARED_FROM (a source tree): build the packages there first as shared libraries (tests off,
-# the compiler launcher LAUNCHER, e.g. ccache, when given), and install that build; then the
-# installed tfeti_contact must run through its relative RPATH with the build tree gone.
+# with LAUNCHER), and install that build; then the installed tfeti_contact must run through its
+# relative RPATH with the build tree gone.
 if(SHARED_FROM)
   set(BUILD ${WORK}/package)
-  set(launcher)
-  if(LAUNCHER)
-    set(launcher "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
-  endif()
   run("${CMAKE_COMMAND};-S;${SHARED_FROM};-B;${BUILD};-DCMAKE_BUILD_TYPE=Release;-DBUILD_SHARED_LIBS=ON;-DTFETI_ENABLE_TESTS=OFF;${launcher}")
   run("${CMAKE_COMMAND};--build;${BUILD};-j2")
 endif()
@@ -49,7 +51,7 @@ if(GUIDE_SOURCE)
 endif()
 foreach(project ${projects})
   set(bin ${WORK}/${project})
-  run("${CMAKE_COMMAND};-S;${${project}_src};-B;${bin};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release")
+  run("${CMAKE_COMMAND};-S;${${project}_src};-B;${bin};-DCMAKE_PREFIX_PATH=${prefix};-DCMAKE_BUILD_TYPE=Release;${launcher}")
   run("${CMAKE_COMMAND};--build;${bin};--verbose")
   foreach(flag ${FLAGS})
     string(FIND "${out}" "${flag}" at)
