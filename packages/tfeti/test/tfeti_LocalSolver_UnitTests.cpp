@@ -127,8 +127,8 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodSmall) {
 TEUCHOS_UNIT_TEST(LocalSolver, CholmodLarge) {
   checkSolver("cholmod", 55, out, success);
 }
-// The forced kinds: the 55 x 55 grid is past CHOLMOD's own switch to supernodal, the 20 x 20
-// one below it, so each kind is checked on a matrix where CHOLMOD would have chosen the other.
+// The forced kinds, each on the size where CHOLMOD's own flops / nnz(L) rule is the more likely
+// to choose the other kind (simplicial on the large grid, supernodal on the small one).
 TEUCHOS_UNIT_TEST(LocalSolver, CholmodSimplicialLarge) {
   checkSolver("cholmod-simplicial", 55, out, success);
 }
