@@ -29,8 +29,15 @@ cholmod_common* common() {
   return &instance.c;
 }
 
+// CHOLMOD's factorization kind: its own choice (supernodal when flops / nnz(L) >= 40), or forced.
+// The supernodal kernels call the BLAS per supernode; the simplicial ones call none. For the
+// thousands of small 3D subdomain matrices of a TFETI setup the simplicial kernels took less CPU
+// time with this machine's reference BLAS (docs/benchmarks.md, "3D setup profile").
+enum class CholmodKind { Auto, Simplicial, Supernodal };
+
 class CholmodSolver final : public LocalSolver {
  public:
+  explicit CholmodSolver(CholmodKind kind) : kind_(kind) {}
   ~CholmodSolver() override { release(); }
 
   void factorize(const CsrMatrix& A) override {
@@ -51,7 +58,12 @@ class CholmodSolver final : public LocalSolver {
     S.sorted = 1;
     S.packed = 1;
     cholmod_common* c = common();
+    // The workspace is shared by every factor: set the kind for this analysis only.
+    const int defaultKind = c->supernodal;
+    if (kind_ == CholmodKind::Simplicial) c->supernodal = CHOLMOD_SIMPLICIAL;
+    if (kind_ == CholmodKind::Supernodal) c->supernodal = CHOLMOD_SUPERNODAL;
     L_ = cholmod_analyze(&S, c);
+    c->supernodal = defaultKind;
     if (!L_) throw std::runtime_error("cholmod: symbolic analysis failed");
     if (!cholmod_factorize(&S, L_, c) || c->status != CHOLMOD_OK)
       throw std::runtime_error("cholmod: the subdomain matrix is not positive definite (column " +
@@ -81,7 +93,11 @@ class CholmodSolver final : public LocalSolver {
     return L_->nzmax * (sizeof(double) + sizeof(int)) + 2 * (L_->n + 1) * sizeof(int);
   }
 
-  std::string name() const override { return "cholmod"; }
+  std::string name() const override {
+    return kind_ == CholmodKind::Auto         ? "cholmod"
+           : kind_ == CholmodKind::Simplicial ? "cholmod-simplicial"
+                                              : "cholmod-supernodal";
+  }
 
  private:
   void release() {
@@ -91,6 +107,7 @@ class CholmodSolver final : public LocalSolver {
     if (Y_) cholmod_free_dense(&Y_, c);
     if (E_) cholmod_free_dense(&E_, c);
   }
+  CholmodKind kind_;
   int n_ = 0;
   cholmod_factor* L_ = nullptr;
   cholmod_dense* X_ = nullptr;
@@ -100,8 +117,11 @@ class CholmodSolver final : public LocalSolver {
 
 }  // namespace
 
-std::unique_ptr<LocalSolver> createCholmodSolver() {
-  return std::make_unique<CholmodSolver>();
+std::unique_ptr<LocalSolver> createCholmodSolver(const std::string& kind) {
+  const CholmodKind k = kind == "simplicial"   ? CholmodKind::Simplicial
+                        : kind == "supernodal" ? CholmodKind::Supernodal
+                                               : CholmodKind::Auto;
+  return std::make_unique<CholmodSolver>(k);
 }
 
 }  // namespace tfeti

@@ -108,7 +108,16 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
     pl->set("Preconditioner", "dirichlet", "dual preconditioner",
             choice({"dirichlet", "lumped", "none"}));
     std::vector<std::string> solvers = localSolverTypes();
+    // "cholmod-simplicial" took 23-28 % less CPU time than "cholmod" (CHOLMOD's own choice,
+    // supernodal) on the 3D subdomain matrices with this machine's reference BLAS; with OpenBLAS
+    // the supernodal choice was faster still (docs/benchmarks.md, "3D setup profile"), so the
+    // better default depends on the BLAS installed and stays until measured on every case. G G^T is
+    // one larger matrix with large dense fronts: its own parameter, so that forcing the subdomains'
+    // kind does not force the coarse one.
     pl->set("Local solver", "cholmod", "sparse direct solver of the subdomain problems",
+            choice(solvers));
+    pl->set("Coarse solver", "cholmod",
+            "sparse direct solver of the coarse problem G G^T (replicated on every rank)",
             choice(solvers));
     pl->set("Dual solver", "auto",
             "auto: PCPG without inequality rows, SMALBE with them; PCPG: projected CG "
@@ -266,7 +275,8 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
   }
   {
     PhaseTimer t(*comm_, timings_.coarse);
-    coarse_ = std::make_unique<CoarseSpace>(tearing_, subdomains_, solver);
+    coarse_ = std::make_unique<CoarseSpace>(tearing_, subdomains_,
+                                            params_.get<std::string>("Coarse solver"));
   }
   {
     PhaseTimer t(*comm_, timings_.preconditioner);
@@ -464,7 +474,7 @@ DualResult FetiSolver::solve() {
           }
           m[i] = holds ? 1.0 : 0.0;
         }
-        coarse_->leastSquaresOnRows(g, mask, alpha, params_.get<std::string>("Local solver"));
+        coarse_->leastSquaresOnRows(g, mask, alpha, params_.get<std::string>("Coarse solver"));
       }
       coarse_->addKernelCombination(alpha, u);
     }

@@ -4,16 +4,19 @@
 
 namespace tfeti {
 
-std::unique_ptr<LocalSolver> createCholmodSolver();
+std::unique_ptr<LocalSolver> createCholmodSolver(const std::string& kind);
 std::unique_ptr<LocalSolver> createAmesos2Solver(const std::string& type);
 
 const std::vector<std::string>& localSolverTypes() {
-  static const std::vector<std::string> types{"cholmod", "klu2", "tacho"};
+  static const std::vector<std::string> types{"cholmod", "cholmod-simplicial", "cholmod-supernodal",
+                                              "klu2", "tacho"};
   return types;
 }
 
 std::unique_ptr<LocalSolver> createLocalSolver(const std::string& type) {
-  if (type == "cholmod") return createCholmodSolver();
+  if (type == "cholmod") return createCholmodSolver("auto");
+  if (type == "cholmod-simplicial") return createCholmodSolver("simplicial");
+  if (type == "cholmod-supernodal") return createCholmodSolver("supernodal");
   if (type == "klu2" || type == "tacho") return createAmesos2Solver(type);
   std::string valid;
   for (const auto& t : localSolverTypes()) valid += (valid.empty() ? "" : ", ") + t;

@@ -24,7 +24,8 @@ class LocalSolver {
   virtual std::string name() const = 0;
 };
 
-// Local solver types this build offers: "cholmod", "klu2", "tacho".
+// Local solver types this build offers: "cholmod" (CHOLMOD choosing simplicial or supernodal
+// per matrix), "cholmod-simplicial", "cholmod-supernodal" (the kind forced), "klu2", "tacho".
 const std::vector<std::string>& localSolverTypes();
 
 // Creates a local solver by type name; an unknown name is an error listing the valid ones.

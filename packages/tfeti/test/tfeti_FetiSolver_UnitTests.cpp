@@ -24,6 +24,7 @@ struct Options {
   std::string formulation = "TFETI";
   std::string preconditioner = "dirichlet";
   std::string localSolver = "cholmod";
+  std::string coarseSolver = "cholmod";
   std::string gluing = "nonredundant";
   bool gluingAtDirichlet = true;
   void (*constrain)(tfeti::SubdomainMesh&) = nullptr;  // other Dirichlet conditions
@@ -31,7 +32,8 @@ struct Options {
 
 std::string describe(const Physics& ph, const Options& o) {
   return std::string(ph.name()) + ", " + o.formulation + ", " + o.preconditioner + ", " +
-         o.localSolver + ", " + o.gluing + (o.gluingAtDirichlet ? "" : ", no gluing at Dirichlet");
+         o.localSolver + ", coarse " + o.coarseSolver + ", " + o.gluing +
+         (o.gluingAtDirichlet ? "" : ", no gluing at Dirichlet");
 }
 
 struct Outcome {
@@ -55,6 +57,7 @@ Teuchos::ParameterList solverParameters(const Options& o) {
   params.set("Formulation", o.formulation);
   params.set("Preconditioner", o.preconditioner);
   params.set("Local solver", o.localSolver);
+  params.set("Coarse solver", o.coarseSolver);
   params.set("Gluing", o.gluing);
   params.set("Gluing at Dirichlet nodes", o.gluingAtDirichlet);
   auto& pcpg = params.sublist("PCPG");
@@ -228,6 +231,7 @@ TEUCHOS_UNIT_TEST(FetiSolver, EveryLocalSolver) {
         Options o;
         o.formulation = form;
         o.localSolver = solver;
+        o.coarseSolver = solver;  // G G^T by the same solver (its own parameter)
         check(rect, ph, o, reference, out, success);
       }
   }

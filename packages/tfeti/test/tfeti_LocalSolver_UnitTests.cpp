@@ -116,7 +116,8 @@ void checkSolver(const std::string& type, int g, Teuchos::FancyOStream& out, boo
 }  // namespace
 
 TEUCHOS_UNIT_TEST(LocalSolver, TypesAreCholmodKlu2Tacho) {
-  const std::vector<std::string> expected{"cholmod", "klu2", "tacho"};
+  const std::vector<std::string> expected{"cholmod", "cholmod-simplicial", "cholmod-supernodal",
+                                          "klu2", "tacho"};
   TEST_COMPARE_ARRAYS(tfeti::localSolverTypes(), expected);
 }
 
@@ -125,6 +126,14 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodSmall) {
 }
 TEUCHOS_UNIT_TEST(LocalSolver, CholmodLarge) {
   checkSolver("cholmod", 55, out, success);
+}
+// The forced kinds, each on the size where CHOLMOD's own flops / nnz(L) rule is the more likely
+// to choose the other kind (simplicial on the large grid, supernodal on the small one).
+TEUCHOS_UNIT_TEST(LocalSolver, CholmodSimplicialLarge) {
+  checkSolver("cholmod-simplicial", 55, out, success);
+}
+TEUCHOS_UNIT_TEST(LocalSolver, CholmodSupernodalSmall) {
+  checkSolver("cholmod-supernodal", 20, out, success);
 }
 TEUCHOS_UNIT_TEST(LocalSolver, Klu2Small) {
   checkSolver("klu2", 20, out, success);
@@ -206,7 +215,7 @@ TEUCHOS_UNIT_TEST(LocalSolver, FactorBytesAtLeastTheLowerTriangle) {
   // Any factor of A holds at least the values of its lower triangle (for the 2D Laplacian with
   // nested dissection, several times more).
   // Amesos2's Tacho adapter does not report its factor size, so Tacho is left out.
-  for (const std::string type : {"cholmod", "klu2"}) {
+  for (const std::string type : {"cholmod", "cholmod-simplicial", "cholmod-supernodal", "klu2"}) {
     const tfeti::CsrMatrix A = laplacian2d(20, 1.0);
     auto s = tfeti::createLocalSolver(type);
     TEST_EQUALITY(s->factorBytes(), std::size_t(0));  // nothing factorized yet
@@ -217,20 +226,23 @@ TEUCHOS_UNIT_TEST(LocalSolver, FactorBytesAtLeastTheLowerTriangle) {
 }
 
 TEUCHOS_UNIT_TEST(LocalSolver, CholmodRejectsIndefiniteMatrixNamingItself) {
-  // Symmetric but indefinite: the Laplacian minus 10 I.
+  // Symmetric but indefinite: the Laplacian minus 10 I. Every kind keeps L L^T (an L D L^T
+  // factorization would accept it).
   const tfeti::CsrMatrix A = laplacian2d(5, -10.0);
-  auto s = tfeti::createLocalSolver("cholmod");
-  bool threw = false;
-  try {
-    s->factorize(A);
-  } catch (const std::runtime_error& e) {
-    threw = true;
-    out << "message: " << e.what() << "\n";
-    TEST_INEQUALITY(std::string(e.what()).find("cholmod"), std::string::npos);
+  for (const std::string type : {"cholmod", "cholmod-simplicial", "cholmod-supernodal"}) {
+    auto s = tfeti::createLocalSolver(type);
+    bool threw = false;
+    try {
+      s->factorize(A);
+    } catch (const std::runtime_error& e) {
+      threw = true;
+      out << type << " message: " << e.what() << "\n";
+      TEST_INEQUALITY(std::string(e.what()).find("cholmod"), std::string::npos);
+    }
+    TEST_ASSERT(threw);
+    // The same object is usable again after the failure.
+    const tfeti::CsrMatrix B = laplacian2d(5, 1.0);
+    s->factorize(B);
+    TEST_COMPARE(solveAndMeasure(*s, B, 2, 9).residual, <, 1e-12);
   }
-  TEST_ASSERT(threw);
-  // The same object is usable again after the failure.
-  const tfeti::CsrMatrix B = laplacian2d(5, 1.0);
-  s->factorize(B);
-  TEST_COMPARE(solveAndMeasure(*s, B, 2, 9).residual, <, 1e-12);
 }
