@@ -694,13 +694,14 @@ def arc_grows(d09, d099):
     print(f"OK: contact half-angle {t09:.2f} deg (R_pin/R_hole = 0.9) < {t099:.2f} deg (0.99)")
 
 
-def friction(d, expect, force, mu, tol):
+def friction(d, expect, force, mu, tol, resultant_tol=None):
     """A frictional nonlinear run: the friction rows' conditions of the last solve (multipliers
     within their box, no slip where they stick, slip along the multiplier where it is at the
     bound), and per node in the contact CSV: expect = slide: every closed node slips and the
     tangential force is `force` (Tresca: -g times the closed length), or -mu times the normal
     force P = sum of the normal multipliers (Coulomb, mu > 0), to tol; expect = stick: every closed node sticks, its slip
     increment zero against the largest displacement."""
+    resultant_tol = tol if resultant_tol is None else resultant_tol
     s = load(d)
     if not s["converged"]:
         fail(f"{d}: did not converge")
@@ -728,8 +729,16 @@ def friction(d, expect, force, mu, tol):
     if expect == "slide":
         if c["stick_nodes"] != 0 or c["slip_nodes"] != len(closed):
             fail(f"{d}: {c['stick_nodes']} stick, {c['slip_nodes']} slip of {len(closed)} closed")
-        if abs(c["tangential_force"] - force) > tol * abs(force):
+        if abs(c["tangential_force"] - force) > resultant_tol * abs(force):
             fail(f"{d}: tangential force {c['tangential_force']:.10e}, expected {force:.10e}")
+        if mu > 0:
+            # In the contact's own frame: the tangential multipliers sum to mu times the normal
+            # ones (the x resultant differs from it where the rows' normals tilt on a curved or
+            # deformed master: --resultant-tol).
+            lt = sum(abs(float(r["tangential_force"])) for r in closed)
+            ln = sum(float(r["lambda"]) for r in closed)
+            if abs(lt - mu * ln) > tol * mu * ln:
+                fail(f"{d}: sum |lambda_T| {lt:.10e} against mu sum lambda_N {mu * ln:.10e}")
         if abs(c["max_tangential_ratio"] - 1.0) > 1e-8:
             fail(f"{d}: max |lambda_T| / bound {c['max_tangential_ratio']} at full sliding")
     else:
@@ -772,11 +781,15 @@ def cattaneo(d, tol):
         fail(f"{d}: c/a = {cm['stick_ratio']:.4f} against sqrt(1 - Q/(mu P)) = "
              f"{cm['stick_ratio_closed_form']:.4f}: {100 * cm['stick_ratio_error']:.2f} % > "
              f"{100 * tol:.0f} %")
-    if c["force_relative_error"] > 1e-6:
+    # The contact force along the load balances the applied load to the QP's tolerance.
+    if c["force_relative_error"] > 1e-4:
         fail(f"{d}: contact force {c['force']} against the applied {c['applied_force']}")
+    # The plate's reaction balances the x resultant of the contact forces; Q sums the tangential
+    # multipliers only, and the rows on the deformed geometry tilt the normals by the surface's
+    # slope (~1e-4 rad at P ~ 100 Q): they agree to 1 %.
     reaction = [e["reaction"] for e in s["prescribed"] if e["component"] == 0]
     Q = cm["tangential_force"]
-    if len(reaction) != 1 or abs(abs(reaction[0]) - Q) > 1e-6 * Q:
+    if len(reaction) != 1 or abs(abs(reaction[0]) - Q) > 1e-2 * Q:
         fail(f"{d}: the plate's reaction {reaction} does not balance Q = {Q}")
     for e in s["couplings"]:
         if e["spread"] > 1e-8 * s["max_abs_u"]:
@@ -864,7 +877,7 @@ if __name__ == "__main__":
         same_final(args)
     elif mode == "friction":
         friction(args[0], args[1], option(args, "--force", 0.0), option(args, "--mu", 0.0),
-                 option(args, "--tol", 1e-6))
+                 option(args, "--tol", 1e-6), option(args, "--resultant-tol", None))
     elif mode == "arc_grows":
         arc_grows(args[0], args[1])
     else:

@@ -11,7 +11,9 @@
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <functional>
 #include <map>
 #include <string>
@@ -194,12 +196,13 @@ TEUCHOS_UNIT_TEST(KinematicCoupling, BadInput) {
       "\"corner\" has 1 node(s)", out));
   Teuchos::ParameterList list;
   contact::addKinematicCouplingParameters(list);
-  list.set("Coupled boundaries", Teuchos::Array<std::string>{"top", "top"});
-  list.set("Coupled components", Teuchos::Array<int>{1});
+  list.set("Coupled boundaries",
+           Teuchos::Array<std::string>(std::vector<std::string>{"top", "top"}));
+  list.set("Coupled components", Teuchos::Array<int>(std::vector<int>{1}));
   TEST_ASSERT(throwsNaming([&] { contact::kinematicCouplings(list, "Contact problem"); },
                            "Contact problem: \"Coupled boundaries\" and \"Coupled components\"",
                            out));
-  list.set("Coupled components", Teuchos::Array<int>{1, 1});
+  list.set("Coupled components", Teuchos::Array<int>(std::vector<int>{1, 1}));
   TEST_ASSERT(throwsNaming([&] { contact::kinematicCouplings(list, "Contact problem"); },
                            "\"top\" couples u_y twice", out));
 }

@@ -54,7 +54,7 @@ TEUCHOS_UNIT_TEST(LoadRamp, Parameters) {
   auto ramps = contact::loadRamps(list, "Prescribed ramps", 3, "Contact problem");
   TEST_EQUALITY(ramps.size(), 3u);
   for (const auto& r : ramps) TEST_ASSERT(r.isDefault());
-  list.set("Prescribed ramps", Teuchos::Array<double>{0.0, 0.5, 0.5, 1.0});
+  list.set("Prescribed ramps", Teuchos::Array<double>(std::vector<double>{0.0, 0.5, 0.5, 1.0}));
   ramps = contact::loadRamps(list, "Prescribed ramps", 2, "Contact problem");
   TEST_EQUALITY(ramps[0].end, 0.5);
   TEST_EQUALITY(ramps[1].start, 0.5);
@@ -64,8 +64,10 @@ TEUCHOS_UNIT_TEST(LoadRamp, Parameters) {
                    "Contact problem/Prescribed ramps: 4 values; it needs {start, end} for "
                    "each of the 3 entries",
                    out));
-  for (const auto& bad : {Teuchos::Array<double>{0.5, 0.5}, Teuchos::Array<double>{0.8, 0.2},
-                          Teuchos::Array<double>{-0.1, 0.5}, Teuchos::Array<double>{0.0, 1.5}}) {
+  for (const auto& bad : {Teuchos::Array<double>(std::vector<double>{0.5, 0.5}),
+                          Teuchos::Array<double>(std::vector<double>{0.8, 0.2}),
+                          Teuchos::Array<double>(std::vector<double>{-0.1, 0.5}),
+                          Teuchos::Array<double>(std::vector<double>{0.0, 1.5})}) {
     list.set("Traction ramps", bad);
     TEST_ASSERT(
         throwsNaming([&] { contact::loadRamps(list, "Traction ramps", 1, "Contact problem"); },
@@ -80,7 +82,8 @@ TEUCHOS_UNIT_TEST(LoadRamp, PrescribedRows) {
   p.field = "elasticity";
   p.subdomains = {2, 2};
   p.elements = {2, 2};
-  p.fixed = {"x0"};
+  p.fixed.clear();
+  p.symmetry = {{"x0", 0}, {"y0", 1}};
   p.prescribed = {{"x1", 0, 1e-3, {0.5, 1.0}}, {"y1", 1, -2e-3, {0.0, 0.5}}};
   const contact::PrescribedValues values = p.prescribedValues();
   const auto comm = Tpetra::getDefaultComm();
