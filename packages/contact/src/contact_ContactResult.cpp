@@ -45,6 +45,18 @@ void addNonlinearContact(Json& c, const ContactMeasures& m) {
   c["last_solve"] = std::move(last);
 }
 
+// The prescribed entries (with their reactions) and the kinematic couplings.
+void addConstraintRecords(Json& s, const ContactResult& r) {
+  if (r.prescribed) {
+    s["prescribed_rows"] = r.prescribedRows;
+    s["prescribed"] = *r.prescribed;
+  }
+  if (r.couplings) {
+    s["coupling_rows"] = r.couplingRows;
+    s["couplings"] = *r.couplings;
+  }
+}
+
 // The keys that open every contact summary, elastic or nonlinear, in the order readers expect.
 Json runHeader(const ContactResult& r) {
   Json s = Json::object();
@@ -83,10 +95,7 @@ Json elasticSummary(const ContactResult& r) {
   s["contact"] = contactJson(r);
   s["max_von_mises"] = r.maxVonMises;
   s["max_abs_u"] = r.maxAbsU;
-  if (r.prescribed) {
-    s["prescribed_rows"] = r.prescribedRows;
-    s["prescribed"] = *r.prescribed;
-  }
+  addConstraintRecords(s, r);
   s["timings"] = timingsJson(r.timings, r.qp.iterations);
   s["peak_rss_mb"] = r.peakRssMb;
   if (!r.contactCsv.empty()) s["contact_csv"] = r.contactCsv;
@@ -138,6 +147,7 @@ Json nonlinearSummary(const ContactResult& r) {
     s["max_plastic_strain"] = r.maxPlasticStrain;
   }
   s["max_abs_u"] = r.maxAbsU;
+  addConstraintRecords(s, r);
   if (!r.contactCsv.empty()) s["contact_csv"] = r.contactCsv;
   if (!r.iterationsCsv.empty()) s["iterations_csv"] = r.iterationsCsv;
   if (!r.stepsCsv.empty()) s["steps_csv"] = r.stepsCsv;

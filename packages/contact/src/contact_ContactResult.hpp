@@ -101,6 +101,10 @@ struct ContactResult {
   // reaction) as prescribedSummary writes it.
   long long prescribedRows = 0;
   std::optional<Json> prescribed;
+  // Kinematic couplings: their rows and the record per coupling (boundary, component, nodes,
+  // displacement, spread) as couplingSummary writes it.
+  long long couplingRows = 0;
+  std::optional<Json> couplings;
 
   // The per-step history: one step for elastic_contact (its single increment), the converged
   // load steps (and every iteration, rejected ones too) for nonlinear_contact.

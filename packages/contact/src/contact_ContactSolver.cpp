@@ -212,9 +212,7 @@ void ContactSolver::setup() {
   // start.
   r.solver = std::make_unique<tfeti::FetiSolver>(
       comm_, problem.numSubdomains(), problem.local, r.feti, problem.inequalities,
-      r.linear ? problem.equalities
-               : prescribedDisplacementRows(problem.local, problem.prescribed, r.history.loadFactor,
-                                            model.u));
+      r.linear ? problem.equalities : equalityRowsAt(problem, r.history.loadFactor, model.u));
   for (auto& sd : problem.local) sd.K = tfeti::CsrMatrix();  // the solver holds its own copy
   run_ = std::move(run);
 }
@@ -442,7 +440,14 @@ ContactResult ContactSolver::solve() {
     c.force = last.contactForce;
     c.appliedForce = r.linear ? std::hypot(problem.appliedForce[0], problem.appliedForce[1],
                                            problem.appliedForce[2])
-                              : history.loadFactor * r.appliedForce;
+                     : problem.rampedLoads.empty()
+                         ? history.loadFactor * r.appliedForce
+                         : [&]() {  // ramped tractions: the resultant at the load factor
+                             const auto F = appliedForceAt(problem, history.loadFactor);
+                             double n = 0.0;
+                             for (double v : F) n += v * v;
+                             return std::sqrt(n);
+                           }();
     c.forceRelativeError =
         c.appliedForce > 0.0 ? std::abs(c.force - c.appliedForce) / c.appliedForce : 0.0;
     if (r.linear && dim == 3 && opt.rule.line) c.slab = slabContact(nodes, c.force);
@@ -474,12 +479,21 @@ ContactResult ContactSolver::solve() {
       for (double v : x) mx = std::max(mx, std::abs(v));
     res.maxAbsU = globalMax(*comm_, mx);
   }
-  if (r.linear && !r.spec.prescribed.empty()) {
-    res.prescribedRows = static_cast<long long>(solver.userEqualityRows());
-    res.prescribed = prescribedSummary(solver, r.spec.prescribed, [&](const std::string& name) {
-      const auto ids = boundaryNodeIds(problem.mesh, name);
-      return std::vector<long long>(ids.begin(), ids.end());
-    });
+  const auto nodesOfBoundary = [&](const std::string& name) {
+    const auto ids = boundaryNodeIds(problem.mesh, name);
+    return std::vector<long long>(ids.begin(), ids.end());
+  };
+  // The reactions of the prescribed entries (the multipliers of the last solve are the total
+  // constraint forces, also in the nonlinear loop) and the coupled boundaries' common values.
+  if (!r.spec.prescribed.empty() && (r.linear || output.evaluated())) {
+    res.prescribedRows =
+        static_cast<long long>(solver.userEqualityRows()) - problem.couplingRowCount;
+    res.prescribed = prescribedSummary(solver, r.spec.prescribed, nodesOfBoundary);
+  }
+  if (!r.spec.couplings.empty() && haveStep) {
+    res.couplingRows = problem.couplingRowCount;
+    res.couplings =
+        couplingSummary(*comm_, r.spec.couplings, problem.local, model.u, nodesOfBoundary);
   }
   res.timings = solver.timings();
 

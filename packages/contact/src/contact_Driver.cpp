@@ -353,7 +353,7 @@ void checkStructured(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList&
   };
   for (const auto& name : sp.fixed) face("fixed", name);
   for (const auto& [name, c] : sp.symmetry)
-    face(describePrescribed({name, c, 0.0}, sp.dofsPerNode()) + ", symmetry", name);
+    face(describePrescribed({name, c, 0.0, {}}, sp.dofsPerNode()) + ", symmetry", name);
   for (const auto& p : sp.prescribed)
     face("prescribed " + describePrescribed(p, sp.dofsPerNode()) + " m", p.boundary);
   const auto local = buildLocalSubdomains(sp, *comm);

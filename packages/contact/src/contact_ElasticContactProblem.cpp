@@ -214,6 +214,25 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
       },
       spec.fixed, spec.symmetry);
   requireEveryBodyHeld(mesh, spec, fixedNodes, fixedComponents, p.prescribed);
+  {
+    CouplingContext context;
+    context.dim = dim;
+    context.nodesOf = [&](const std::string& name) {
+      const auto nodes = nodesOf(boundaryNamed(mesh, name, "Coupled boundaries"));
+      return std::vector<long long>(nodes.begin(), nodes.end());
+    };
+    context.firstCopy = [&](long long n) { return copyOf[n]; };
+    context.heldBy = [&](long long n, int c) -> std::string {
+      const int node = static_cast<int>(n);
+      if (fixedNodes.count(node)) return "fixed boundaries (Fixed boundaries)";
+      if (fixedComponents.count({node, c})) return "symmetry boundaries (Symmetry boundaries)";
+      if (p.prescribed.count({n, c})) return "prescribed displacements (Prescribed boundaries)";
+      return "";
+    };
+    p.couplingRows = kinematicCouplingRows(spec.couplings, context);
+    p.couplingRowCount = static_cast<long long>(p.couplingRows.size());
+    if (comm.getRank() != 0) p.couplingRows.clear();  // each row is passed by one rank
+  }
 
   // Subdomains to ranks: balance the dofs and keep neighbours together (Zoltan2 on the graph
   // whose edges join subdomains sharing interface nodes, weighted by their number).
@@ -251,10 +270,20 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     bodyArea[name] = area;
   }
 
+  // Tractions with a ramp other than {0, 1}: their loads apart (one part per such traction).
+  std::vector<ElasticContactProblem::RampedLoad> ramped;
+  std::vector<int> rampOf(spec.tractions.size(), -1);
+  for (std::size_t k = 0; k < spec.tractionRamps.size(); ++k)
+    if (!spec.tractionRamps[k].isDefault()) {
+      rampOf[k] = static_cast<int>(ramped.size());
+      ramped.push_back({spec.tractionRamps[k], {}, {0.0, 0.0, 0.0}});
+    }
+
   // This rank's subdomains: meshes for the tearing, stiffness and traction loads.
   double force[3] = {0.0, 0.0, 0.0};
   for (int sid : tfeti::subdomainsOfRank(p.ownerOfSubdomain, comm.getRank())) {
     const UnstructuredSubdomain& s = p.subdomains[sid];
+    for (auto& r : ramped) r.f.emplace_back(static_cast<std::size_t>(dim) * s.numNodes(), 0.0);
     const int b = p.bodyOfSubdomain[sid];
     plasticity::ElementMesh em{toPlasticityType(s.type), s.coords, s.connectivity};
     tfeti::SubdomainData sd;
@@ -277,7 +306,9 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     sd.K = plasticity::assembleStiffness(em, spec.bodies[b].law);
     sd.f.assign(static_cast<std::size_t>(dim) * s.numNodes(), 0.0);
     const int bodyIndex = mesh.bodyIndex(spec.bodies[b].name);
-    for (const auto& [name, t] : spec.tractions) {
+    std::vector<double> proportional(sd.f.size(), 0.0);
+    for (std::size_t k = 0; k < spec.tractions.size(); ++k) {
+      const auto& [name, t] = spec.tractions[k];
       const GmshBoundary& gb = boundaryNamed(mesh, name, "Traction boundaries");
       std::vector<int> edges;
       for (int e = 0; e < gb.numEdges(); ++e) {
@@ -293,6 +324,11 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
         sd.f[i] += fe[i];
         force[i % dim] += fe[i];
       }
+      auto& part =
+          ramped.empty() || rampOf[k] < 0 ? proportional : ramped[rampOf[k]].f[p.local.size()];
+      for (std::size_t i = 0; i < fe.size(); ++i) part[i] += fe[i];
+      if (!ramped.empty() && rampOf[k] >= 0)
+        for (std::size_t i = 0; i < fe.size(); ++i) ramped[rampOf[k]].force[i % dim] += fe[i];
     }
     for (const auto& [name, total] : spec.bodyLoads) {
       if (name != spec.bodies[b].name) continue;
@@ -302,14 +338,22 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
         const double density = total[i % dim] / bodyArea.at(name);
         sd.f[i] += density * fe[i];
         force[i % dim] += density * fe[i];
+        proportional[i] += density * fe[i];
       }
     }
+    if (!ramped.empty()) p.proportionalLoad.push_back(std::move(proportional));
     p.local.push_back(std::move(sd));
     p.localElements.push_back(std::move(em));
     p.localBody.push_back(b);
   }
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 3, force, p.appliedForce);
-  p.equalities = prescribedDisplacementRows(p.local, p.prescribed, 1.0);
+  for (auto& r : ramped) {
+    double total[3] = {0.0, 0.0, 0.0};
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 3, r.force, total);
+    std::copy(total, total + 3, r.force);
+  }
+  p.rampedLoads = std::move(ramped);
+  p.equalities = equalityRowsAt(p, 1.0, {});
 
   // Contact: the slave boundary's nodes against the master boundary's segments, oriented by
   // the master body's elements so that the normals point out of it, or a rigid obstacle.
@@ -379,6 +423,49 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   std::map<int, double> weight = boundaryNodeWeights(mesh, slave);
   for (int n : p.slaveNodes) p.slaveWeights.push_back(weight[n]);
   return p;
+}
+
+std::vector<std::vector<double>> loadAt(const ElasticContactProblem& p, double t) {
+  std::vector<std::vector<double>> f(p.local.size());
+  for (std::size_t i = 0; i < p.local.size(); ++i) {
+    f[i].resize(p.local[i].f.size());
+    if (p.rampedLoads.empty()) {  // proportional loading: exactly t f, as it has always been
+      for (std::size_t k = 0; k < f[i].size(); ++k) f[i][k] = t * p.local[i].f[k];
+      continue;
+    }
+    for (std::size_t k = 0; k < f[i].size(); ++k) f[i][k] = t * p.proportionalLoad[i][k];
+    for (const auto& r : p.rampedLoads) {
+      const double s = r.ramp.factor(t);
+      for (std::size_t k = 0; k < f[i].size(); ++k) f[i][k] += s * r.f[i][k];
+    }
+  }
+  return f;
+}
+
+std::vector<double> appliedForceAt(const ElasticContactProblem& p, double t) {
+  std::vector<double> F(p.appliedForce, p.appliedForce + p.dim());
+  if (p.rampedLoads.empty()) {
+    for (double& v : F) v *= t;
+    return F;
+  }
+  for (int c = 0; c < p.dim(); ++c) {
+    double rampedPart = 0.0, now = 0.0;
+    for (const auto& r : p.rampedLoads) {
+      rampedPart += r.force[c];
+      now += r.ramp.factor(t) * r.force[c];
+    }
+    F[c] = t * (p.appliedForce[c] - rampedPart) + now;
+  }
+  return F;
+}
+
+std::vector<tfeti::EqualityRow> equalityRowsAt(const ElasticContactProblem& p, double t,
+                                               const std::vector<std::vector<double>>& current) {
+  std::vector<tfeti::EqualityRow> rows =
+      prescribedDisplacementRows(p.local, p.prescribed, t, current);
+  // The couplings hold from the start: an increment keeps the coupled values equal.
+  rows.insert(rows.end(), p.couplingRows.begin(), p.couplingRows.end());
+  return rows;
 }
 
 void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank,

@@ -13,6 +13,8 @@
 
 #include "contact_ContactMaster.hpp"
 #include "contact_GmshMesh.hpp"
+#include "contact_KinematicCoupling.hpp"
+#include "contact_LoadRamp.hpp"
 #include "contact_NodeToSegment.hpp"
 #include "contact_Partition.hpp"
 #include "contact_PrescribedDisplacement.hpp"
@@ -39,6 +41,9 @@ struct ElasticContactSpec {
   // Constant tractions: dim components per boundary (force per length in 2D, per area in 3D);
   // a different count is an error naming the boundary once the mesh's dimension is known.
   std::vector<std::pair<std::string, std::vector<double>>> tractions;
+  std::vector<LoadRamp> tractionRamps;  // per traction (empty: all {0, 1}, proportional)
+  // Kinematic couplings: a component of a boundary's nodes tied to one common value.
+  std::vector<KinematicCoupling> couplings;
   // Body loads: the total force (per unit thickness in 2D) of a body, dim components, spread
   // uniformly over its area (volume in 3D).
   std::vector<std::pair<std::string, std::vector<double>>> bodyLoads;
@@ -71,6 +76,18 @@ struct ElasticContactProblem {
   // their full value (prescribedDisplacementRows at load factor 1).
   PrescribedValues prescribed;
   std::vector<tfeti::EqualityRow> equalities;
+  // The kinematic couplings' rows (rank 0 holds them; included in `equalities`).
+  std::vector<tfeti::EqualityRow> couplingRows;
+  long long couplingRowCount = 0;  // of all ranks
+  // The parts of the local loads (`local[i].f`, every load at its full value) that follow a
+  // ramp other than {0, 1}, one per such traction, and the rest (which grows with t itself).
+  struct RampedLoad {
+    LoadRamp ramp;
+    std::vector<std::vector<double>> f;  // per local subdomain
+    double force[3] = {0.0, 0.0, 0.0};   // its resultant
+  };
+  std::vector<RampedLoad> rampedLoads;
+  std::vector<std::vector<double>> proportionalLoad;  // per local subdomain (when rampedLoads)
   // What re-evaluating the contact on another configuration needs (updateContact).
   // The Master boundary's segments (oriented by the master body's elements) or the obstacle.
   std::shared_ptr<const ContactMaster> master;
@@ -85,6 +102,16 @@ struct ElasticContactProblem {
   int slaveBody = -1, masterBody = -1;
   double appliedForce[3] = {0.0, 0.0, 0.0};  // resultant of the tractions and body loads
 };
+
+// The external load at load factor t, per local subdomain: t f, or with ramped tractions
+// t f_proportional + sum_k ramp_k(t) f_k. And its resultant (dim components, all ranks').
+std::vector<std::vector<double>> loadAt(const ElasticContactProblem& p, double t);
+std::vector<double> appliedForceAt(const ElasticContactProblem& p, double t);
+
+// The equality rows of an increment from `current` (per local subdomain; empty: zero) at load
+// factor t: the prescribed values' rows and the kinematic couplings' rows.
+std::vector<tfeti::EqualityRow> equalityRowsAt(const ElasticContactProblem& p, double t,
+                                               const std::vector<std::vector<double>>& current);
 
 // Throws std::invalid_argument naming the group or parameter that is wrong.
 ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,

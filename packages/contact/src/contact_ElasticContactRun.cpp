@@ -18,6 +18,8 @@
 #include "contact_ElasticContactProblem.hpp"
 #include "contact_ElasticContactRun.hpp"
 #include "contact_Friction.hpp"
+#include "contact_KinematicCoupling.hpp"
+#include "contact_LoadRamp.hpp"
 #include "contact_Materials.hpp"
 #include "contact_NonlinearContactRun.hpp"
 #include "contact_PrescribedDisplacement.hpp"
@@ -87,6 +89,22 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
   for (std::size_t k = 0; k < sym.size(); ++k) spec.symmetry.push_back({sym[k], comps[k]});
   spec.prescribed = prescribedDisplacements(cp, "Contact problem");
   spec.tractions = componentsPerName(cp, "Traction boundaries", "Tractions");
+  {
+    const auto prescribedRamps =
+        loadRamps(cp, "Prescribed ramps", spec.prescribed.size(), "Contact problem");
+    for (std::size_t k = 0; k < spec.prescribed.size(); ++k)
+      spec.prescribed[k].ramp = prescribedRamps[k];
+    spec.tractionRamps = loadRamps(cp, "Traction ramps", spec.tractions.size(), "Contact problem");
+    spec.couplings = kinematicCouplings(cp, "Contact problem");
+    // One solve at load factor 1 applies every entry in full: a window there would be ignored.
+    if (params.get<std::string>("Problem") == "elastic_contact")
+      for (const char* name : {"Prescribed ramps", "Traction ramps"})
+        if (!cp.get<Array<double>>(name).empty())
+          throw std::invalid_argument(std::string("Contact problem/") + name +
+                                      ": load-factor windows need load steps (Problem = "
+                                      "nonlinear_contact); elastic_contact solves once at the "
+                                      "full load");
+  }
   spec.bodyLoads = componentsPerName(cp, "Body load bodies", "Body loads");
   spec.slave = cp.get<std::string>("Slave");
   spec.master = cp.get<std::string>("Master");
@@ -158,6 +176,8 @@ void addElasticContactParameters(ParameterList& pl) {
   cp.set("Symmetry components", Array<int>(), "the zero component (0: x, 1: y, 2: z) of each",
          componentsValidator());
   addPrescribedDisplacementParameters(cp);
+  addLoadRampParameters(cp);
+  addKinematicCouplingParameters(cp);
   cp.set("Traction boundaries", Array<std::string>(), "boundary groups under a constant traction");
   cp.set("Tractions", Array<double>(),
          "{tx, ty} (2D, force per unit length) or {tx, ty, tz} (3D, force per unit area) per "
@@ -298,11 +318,18 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   for (const auto& p : spec.prescribed)
     boundary("prescribed " + describePrescribed(p, problem.mesh.dim) + " m", p.boundary);
   if (!spec.prescribed.empty()) {
-    long long mine = static_cast<long long>(problem.equalities.size()), all = 0;
+    long long mine =
+                  static_cast<long long>(problem.equalities.size() - problem.couplingRows.size()),
+              all = 0;
     Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine, &all);
     lines.push_back("prescribed rows: " + std::to_string(all) +
                     " (one per subdomain copy of a prescribed node and component)");
   }
+  for (const auto& k : spec.couplings)
+    boundary(std::string("coupled u_") + "xyz"[k.component % 3] + ": one common value", k.boundary);
+  if (!spec.couplings.empty())
+    lines.push_back("coupling rows: " + std::to_string(problem.couplingRowCount) +
+                    " (one per coupled node and component but the first of its boundary)");
   const auto braced = [](const auto& v, std::size_t n) {
     std::ostringstream b;
     b << "{";

@@ -193,13 +193,16 @@ const char* frictionStateName(int state) {
 
 void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const FrictionSpec& friction,
                      int dim) {
-  double force = 0.0, ratio = 0.0, stickLo = 0.0, stickHi = 0.0;
-  long long slip = 0, stick = 0;
+  double force = 0.0, ratio = 0.0, stickLo = 0.0, stickHi = 0.0, closedLo = 0.0, closedHi = 0.0;
+  long long slip = 0, stick = 0, closed = 0;
   double normal = 0.0;
   for (const auto& n : nodes) {
     force += n.tangentialForce * n.tangent[0];
     normal += n.lambda;
     if (n.frictionState == 0) continue;
+    closedLo = closed ? std::min(closedLo, n.x) : n.x;
+    closedHi = closed ? std::max(closedHi, n.x) : n.x;
+    ++closed;
     // Coulomb: against mu lambda_N of the final state (the bound in force is the last
     // fixed-point iterate's, equal to it within the fixed point's tolerance).
     const double bound =
@@ -221,6 +224,33 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const Frict
   f["stick_nodes"] = stick;
   if (dim == 2) f["stick_half_width"] = stick ? 0.5 * (stickHi - stickLo) : 0.0;
   f["max_tangential_ratio"] = ratio;
+  if (dim == 2) {
+    // Half the x extent of the closed nodes: the contact half-width a that goes with the stick
+    // half-width c (both measured on the nodes, so that their ratio shares the mesh's bias).
+    const double a = closed ? 0.5 * (closedHi - closedLo) : 0.0;
+    f["contact_half_width"] = a;
+    if (friction.law == FrictionSpec::Law::Coulomb && a > 0.0 && normal > 0.0 &&
+        friction.coefficient > 0.0) {
+      // Cattaneo-Mindlin (cylinders of one material, a tangential force Q below mu P at a
+      // constant normal force P): a centred stick zone of half-width c = a sqrt(1 - Q/(mu P)).
+      const double c = stick ? 0.5 * (stickHi - stickLo) : 0.0;
+      const double q = std::abs(force) / (friction.coefficient * normal);
+      Json cm = Json::object();
+      cm["normal_force"] = normal;
+      cm["tangential_force"] = std::abs(force);
+      cm["contact_half_width"] = a;
+      cm["stick_half_width"] = c;
+      cm["q_over_mu_p"] = q;
+      cm["stick_ratio"] = c / a;
+      if (q <= 1.0) {
+        cm["stick_ratio_closed_form"] = std::sqrt(1.0 - q);
+        cm["stick_ratio_error"] = std::sqrt(1.0 - q) > 0.0
+                                      ? std::abs(c / a - std::sqrt(1.0 - q)) / std::sqrt(1.0 - q)
+                                      : std::abs(c / a);
+      }
+      f["cattaneo_mindlin"] = std::move(cm);
+    }
+  }
 }
 
 }  // namespace contact

@@ -7,21 +7,21 @@
 
 namespace contact {
 
-ResidualCheck checkResidual(const tfeti::Comm& comm, double t, const Field& externalLoad,
+ResidualCheck checkResidual(const tfeti::Comm& comm, const Field& load,
                             const Field& multiplierForces, const Field& fint, const Field& u,
                             const Field& du, double loadNorm, const NonlinearOptions& options) {
   Field res(u.size());
   for (std::size_t i = 0; i < u.size(); ++i) {
     res[i].resize(u[i].size());
     for (std::size_t k = 0; k < u[i].size(); ++k)
-      res[i][k] = t * externalLoad[i][k] - multiplierForces[i][k] - fint[i][k];
+      res[i][k] = load[i][k] - multiplierForces[i][k] - fint[i][k];
   }
   ResidualCheck c;
   c.solutionNorm = globalNorm(comm, u);
   c.relativeIncrement = c.solutionNorm > 0.0 ? globalNorm(comm, du) / c.solutionNorm : 0.0;
   // Without an applied load (an obstacle's prescribed motion) the internal forces, which then
   // balance the reactions, are the scale.
-  const double scale = loadNorm > 0.0 ? t * loadNorm : globalNorm(comm, fint);
+  const double scale = loadNorm > 0.0 ? loadNorm : globalNorm(comm, fint);
   c.relativeResidual = scale > 0.0 ? globalNorm(comm, res) / scale : 0.0;
   c.converged = c.relativeIncrement < options.eta1 && c.relativeResidual < options.eta2;
   return c;
@@ -62,12 +62,9 @@ void LoadStepIteration::updateContact(const Field& u, double t) const {
 }
 
 Field LoadStepIteration::incrementLoads(const Field& fint, double t) const {
-  Field rhs(fint.size());
-  for (std::size_t i = 0; i < fint.size(); ++i) {
-    rhs[i].resize(fint[i].size());
-    for (std::size_t k = 0; k < rhs[i].size(); ++k)
-      rhs[i][k] = t * model_.externalLoad[i][k] - fint[i][k];
-  }
+  Field rhs = loadAt(model_.problem, t);
+  for (std::size_t i = 0; i < fint.size(); ++i)
+    for (std::size_t k = 0; k < rhs[i].size(); ++k) rhs[i][k] -= fint[i][k];
   return rhs;
 }
 
@@ -75,7 +72,7 @@ std::vector<tfeti::EqualityRow> LoadStepIteration::prescribedIncrementRows(const
                                                                            double t) const {
   // The increment du must take every prescribed component from where u has it to t times its
   // value: the rows du = t value - u (zero rows after the first iteration of a step).
-  return prescribedDisplacementRows(model_.problem.local, model_.problem.prescribed, t, u);
+  return equalityRowsAt(model_.problem, t, u);
 }
 
 tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field& fint, double t,
@@ -126,9 +123,14 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
         for (std::size_t k = 0; k < u[i].size(); ++k) u[i][k] += du[i][k];
       }
       fint = model_.internalForce(u, options_.kinematics);
+      // With ramped loads the load's norm at t is the scale; proportional loading keeps
+      // t ||f|| (the same number, computed as it always was).
+      const Field load = loadAt(model_.problem, t);
+      const double loadNorm = model_.problem.rampedLoads.empty() ? t * loadNorm_
+                              : loadNorm_ > 0.0                  ? globalNorm(*comm_, load)
+                                                                 : 0.0;
       const ResidualCheck check =
-          checkResidual(*comm_, t, model_.externalLoad, solver_.multiplierForces(), fint, u, du,
-                        loadNorm_, options_);
+          checkResidual(*comm_, load, solver_.multiplierForces(), fint, u, du, loadNorm, options_);
       rec.solutionNorm = check.solutionNorm;
       rec.relativeIncrement = check.relativeIncrement;
       rec.relativeResidual = check.relativeResidual;

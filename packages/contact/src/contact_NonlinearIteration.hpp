@@ -37,9 +37,10 @@ struct ResidualCheck {
   bool converged = false;
 };
 
-// res = t f - B^T lambda - f_int and the stopping test against eta1, eta2 (collective).
-// loadNorm = ||t f||; when it is zero the residual is relative to ||f_int||.
-ResidualCheck checkResidual(const tfeti::Comm& comm, double t, const Field& externalLoad,
+// res = f(t) - B^T lambda - f_int and the stopping test against eta1, eta2 (collective).
+// load = f(t), the external load at the step's load factor; loadNorm = ||f(t)||; when it is zero
+// the residual is relative to ||f_int||.
+ResidualCheck checkResidual(const tfeti::Comm& comm, const Field& load,
                             const Field& multiplierForces, const Field& fint, const Field& u,
                             const Field& du, double loadNorm, const NonlinearOptions& options);
 
@@ -72,7 +73,8 @@ class LoadStepIteration {
   // The right-hand sides of the increment's QP: t f - f_int(u) per subdomain. The gluing and
   // zero Dirichlet rows B_E du = 0 are FetiSolver's own.
   Field incrementLoads(const Field& fint, double t) const;
-  // The prescribed displacements' rows of the increment: c_E(t) - B_E u.
+  // The prescribed displacements' rows of the increment, c_E(t) - B_E u, and the kinematic
+  // couplings' rows.
   std::vector<tfeti::EqualityRow> prescribedIncrementRows(const Field& u, double t) const;
 
   Teuchos::RCP<const tfeti::Comm> comm_;

@@ -47,7 +47,7 @@ std::vector<PrescribedDisplacement> prescribedDisplacements(const Teuchos::Param
         std::to_string(values.size()) + ")");
   std::vector<PrescribedDisplacement> out;
   for (int k = 0; k < static_cast<int>(names.size()); ++k)
-    out.push_back({names[k], components[k], values[k]});
+    out.push_back({names[k], components[k], values[k], {}});
   return out;
 }
 
@@ -91,8 +91,14 @@ PrescribedValues prescribedValues(const std::vector<PrescribedDisplacement>& pre
                                       z->second + ", which holds that component at 0");
         continue;  // already held at zero
       }
-      const auto [it, added] = values.insert({key, p.value});
-      if (!added && it->second != p.value)
+      const auto [it, added] = values.insert({key, {p.value, p.ramp}});
+      const LoadRamp& r = it->second.ramp;
+      if (!added && it->second.value == p.value && (r.start != p.ramp.start || r.end != p.ramp.end))
+        throw std::invalid_argument("Prescribed ramps: \"" + p.boundary + "\" (" +
+                                    describePrescribed(p, dofsPerNode) + ") and \"" +
+                                    prescribed[from[key]].boundary +
+                                    "\" meet at a node with different ramps of the same component");
+      if (!added && it->second.value != p.value)
         throw std::invalid_argument("Prescribed boundaries: \"" + p.boundary + "\" (" +
                                     describePrescribed(p, dofsPerNode) + ") and \"" +
                                     prescribed[from[key]].boundary + "\" (" +
@@ -122,7 +128,7 @@ std::vector<tfeti::EqualityRow> prescribedDisplacementRows(
         if (it == values.end()) continue;
         const int dof = dpn * n + c;
         const double u0 = current.empty() ? 0.0 : current[i].at(dof);
-        rows.push_back({{{sd.mesh.id, dof, 1.0}}, loadFactor * it->second - u0});
+        rows.push_back({{{sd.mesh.id, dof, 1.0}}, it->second.at(loadFactor) - u0});
       }
   }
   return rows;
@@ -159,6 +165,12 @@ Json prescribedSummary(const tfeti::FetiSolver& solver,
     r["boundary"] = prescribed[k].boundary;
     r["component"] = prescribed[k].component;
     r["value"] = prescribed[k].value;
+    if (!prescribed[k].ramp.isDefault()) {
+      Json ramp = Json::array();
+      ramp.push(prescribed[k].ramp.start);
+      ramp.push(prescribed[k].ramp.end);
+      r["ramp"] = std::move(ramp);
+    }
     r["reaction"] = reactions[k];
     list.push(std::move(r));
   }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "contact_Json.hpp"
+#include "contact_LoadRamp.hpp"
 #include "tfeti_FetiSolver.hpp"
 #include "tfeti_StrictParameters.hpp"
 
@@ -28,10 +29,18 @@ struct PrescribedDisplacement {
   std::string boundary;
   int component = 0;
   double value = 0.0;
+  LoadRamp ramp;  // the load-factor window over which the value is applied (contact_LoadRamp)
+};
+
+// A prescribed value and the window of the load factor over which it grows.
+struct PrescribedValue {
+  double value = 0.0;
+  LoadRamp ramp;
+  double at(double loadFactor) const { return ramp.factor(loadFactor) * value; }
 };
 
 // (untorn node, component) -> prescribed value.
-using PrescribedValues = std::map<std::pair<long long, int>, double>;
+using PrescribedValues = std::map<std::pair<long long, int>, PrescribedValue>;
 
 // A validator of component lists: ints 0 (x), 1 (y), 2 (z).
 tfeti::strict::Validator componentsValidator();
@@ -51,16 +60,18 @@ using BoundaryNodes = std::function<std::vector<long long>(const std::string&)>;
 // The prescribed values per (node, component) of a problem with dofsPerNode unknowns per node,
 // checked: a component must be below dofsPerNode, a boundary must exist, and a (node,
 // component) given twice (two prescribed boundaries meeting at an edge, or a prescribed and a
-// fixed or symmetry boundary) must have one value; where a fixed or symmetry condition already
-// holds the component at zero, the prescribed zero is dropped. Every rank derives the same
-// result (the boundaries are known on every rank), so errors are raised on every rank alike.
+// fixed or symmetry boundary) must have one value (and one ramp); where a fixed or symmetry
+// condition already holds the component at zero, the prescribed zero is dropped. Every rank derives
+// the same result (the boundaries are known on every rank), so errors are raised on every rank
+// alike.
 PrescribedValues prescribedValues(const std::vector<PrescribedDisplacement>& prescribed,
                                   int dofsPerNode, const BoundaryNodes& nodesOf,
                                   const std::vector<std::string>& fixed,
                                   const std::vector<std::pair<std::string, int>>& symmetry);
 
 // The equality rows of the prescribed values for this rank's subdomains at load factor t:
-//   u_{s, dpn n + c} = t * value(node, c) - current[i][dpn n + c]
+//   u_{s, dpn n + c} = ramp(t) * value(node, c) - current[i][dpn n + c]
+// (ramp(t) = t for the default window {0, 1})
 // for every local subdomain i (id s) and local node n of a prescribed (node, c). `current`
 // (empty: zero) is the displacement the solve starts from: in a nonlinear loop, the Newton
 // increment's rows have the right-hand side c_E(t) - B_E u (see docs/boundary_conditions.md).

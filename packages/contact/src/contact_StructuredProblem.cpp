@@ -145,7 +145,7 @@ double relativeErrorAgainstDirectSolve(const StructuredProblem& problem,
   for (int d : whole.mesh.dirichletDofs(dpn)) fixed[d] = 1;
   for (const auto& [nc, value] : problem.prescribedValues()) {
     fixed[nc.first * dpn + nc.second] = 1;
-    g[nc.first * dpn + nc.second] = value;
+    g[nc.first * dpn + nc.second] = value.value;  // one solve: the full value
   }
   auto& K = whole.K;
   for (int i = 0; i < K.rows; ++i)

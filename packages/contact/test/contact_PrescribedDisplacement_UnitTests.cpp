@@ -33,7 +33,7 @@ StructuredProblem patch(int dim) {
   p.fixed.clear();
   const char* faces[3] = {"x0", "y0", "z0"};
   for (int c = 0; c < dim; ++c) p.symmetry.push_back({faces[c], c});
-  p.prescribed = {{"x1", 0, kDelta}};
+  p.prescribed = {{"x1", 0, kDelta, {}}};
   return p;
 }
 
@@ -123,7 +123,7 @@ TEUCHOS_UNIT_TEST(PrescribedDisplacement, PoissonLinearSolution) {
   p.subdomains = {3, 2};
   p.elements = {3, 3};
   p.source = 0.0;
-  p.prescribed = {{"x1", 0, 1.0}};  // with u = 0 on x0 (the default Fixed boundaries)
+  p.prescribed = {{"x1", 0, 1.0, {}}};  // with u = 0 on x0 (the default Fixed boundaries)
   auto local = contact::buildLocalSubdomains(p, *comm);
   const auto rows = contact::prescribedDisplacementRows(local, p.prescribedValues(), 1.0);
   tfeti::FetiSolver solver(comm, p.numSubdomains(), std::move(local), parameters(), {}, rows);
@@ -150,23 +150,23 @@ TEUCHOS_UNIT_TEST(PrescribedDisplacement, ConflictingAndInvalidConditions) {
   };
   StructuredProblem p = patch(2);
   p.symmetry = {{"y0", 1}};
-  p.prescribed.push_back({"y1", 0, 2 * kDelta});  // meets x1 at the corner (2, 1)
+  p.prescribed.push_back({"y1", 0, 2 * kDelta, {}});  // meets x1 at the corner (2, 1)
   const std::string twoValues = message(p);
   p = patch(2);
-  p.prescribed = {{"x0", 0, kDelta}};  // x0 is a symmetry face for u_x
+  p.prescribed = {{"x0", 0, kDelta, {}}};  // x0 is a symmetry face for u_x
   const std::string onSymmetry = message(p);
   p = patch(2);
   // Another component, zero, on x1: allowed (at the corner with y0 the symmetry holds it).
-  p.prescribed.push_back({"x1", 1, 0.0});
+  p.prescribed.push_back({"x1", 1, 0.0, {}});
   const std::string otherComponent = message(p);
   p = patch(2);
-  p.prescribed = {{"x0", 1, kDelta}};  // u_y = delta meets u_y = 0 of y0 at the origin
+  p.prescribed = {{"x0", 1, kDelta, {}}};  // u_y = delta meets u_y = 0 of y0 at the origin
   const std::string corner = message(p);
   p = patch(2);
-  p.prescribed = {{"x1", 2, kDelta}};
+  p.prescribed = {{"x1", 2, kDelta, {}}};
   const std::string component = message(p);
   p = patch(2);
-  p.prescribed = {{"z1", 0, kDelta}};
+  p.prescribed = {{"z1", 0, kDelta, {}}};
   const std::string face = message(p);
   for (const auto& m : {twoValues, onSymmetry, corner, component, face}) out << m << "\n";
   TEST_ASSERT(twoValues.find("different values of the same component") != std::string::npos);

@@ -682,7 +682,10 @@ ConstraintReport FetiSolver::constraintReport() const {
       const InequalityRow& r = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
       const int side = r.boundActive(l[i]);
       fr[0] = std::max({fr[0], r.lowerBound - l[i], l[i] - r.upperBound});
-      fr[1] = std::max(fr[1], side == 0 ? std::abs(v[i]) : std::max(0.0, -side * v[i]));
+      // A degenerate box (l = u: an open node's zero Coulomb bound) holds lambda at both bounds
+      // at once: any slip is admissible there.
+      if (r.lowerBound != r.upperBound)
+        fr[1] = std::max(fr[1], side == 0 ? std::abs(v[i]) : std::max(0.0, -side * v[i]));
       fr[2] += 1.0;
       fr[3] += side == 0 ? 1.0 : 0.0;
     } else if (tearing_.isInequality(row)) {
