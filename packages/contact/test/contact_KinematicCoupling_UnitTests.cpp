@@ -13,9 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
