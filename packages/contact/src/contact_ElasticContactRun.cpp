@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -66,6 +67,12 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
   spec.meshFile = cp.get<std::string>("Mesh file");
   if (spec.meshFile.empty())
     throw std::invalid_argument("Contact problem: \"Mesh file\" is required (a .geo or .msh)");
+  // Checked here, not only by the mesh reader, so that the error names the parameter.
+  const std::string ext = std::filesystem::path(spec.meshFile).extension().string();
+  if (ext != ".msh" && ext != ".geo")
+    throw std::invalid_argument("Contact problem/Mesh file: \"" + spec.meshFile +
+                                "\" is neither a .msh file (a mesh) nor a .geo file (a geometry "
+                                "meshed at run time)");
   spec.meshOptions.order = cp.get<int>("Element order");
   spec.meshOptions.quads = cp.get<bool>("Quadrilaterals");
   spec.meshOptions.sizeFactor = cp.get<double>("Mesh size factor");
