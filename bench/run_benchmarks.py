@@ -21,6 +21,11 @@ cylinders_tied: the two-cylinder problem at about 100k, 500k, 1M and 4M unknowns
 hertz_sphere: the elastic Hertz sphere (examples/hertz_sphere_elastic.xml, Hex8) refined to about
             0.1M and 1M unknowns (up to --max-dofs): Hessian multiplications, setup and solve
             times, memory, errors against Hertz
+cattaneo:   the Cattaneo-Mindlin problem (examples/cattaneo_cylinders.xml: Coulomb mu = 0.3,
+            normal then tangential loading) at about 0.1M and 1M unknowns (up to
+            --contact-max-dofs), and the same mesh and loads frictionless: Hessian
+            multiplications and Newton iterations per step, Coulomb fixed-point iterations,
+            times, memory, c/a against Cattaneo-Mindlin
 sweep3d:    3D elasticity on the unit cube (clamped on x = 0, trilinear hexahedra), about 0.1M,
             0.5M, 1M and 2M unknowns, subdomains of 4^3, 6^3 and 8^3 elements, against Belos
             CG + MueLu (six rigid modes as nullspace) and, up to --direct3d-max-dofs, KLU2
@@ -512,6 +517,77 @@ def hertz_sphere(o):
               flush=True)
 
 
+# Unknowns of examples/cattaneo_cylinders.geo against its mesh size factor (19,161 nodes at 0.5,
+# 116,943 at 0.2: ~ 2 x 4.8e3 / sf^2), and subdomains per body for about 3000 unknowns each.
+CATTANEO_SIZES = ((0.31, 16), (0.1, 160))
+
+
+def cattaneo_run(o, name, sf, subdomains, friction=True):
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
+    with open(os.path.join(root, "cattaneo_cylinders.xml")) as f:
+        xml = f.read()
+    xml = xml.replace('value="cattaneo_cylinders.geo"',
+                      'value="%s"' % os.path.join(root, "cattaneo_cylinders.geo"))
+    xml = xml.replace('<Parameter name="Mesh size factor" type="double" value="0.5"/>',
+                      f'<Parameter name="Mesh size factor" type="double" value="{sf}"/>')
+    xml = xml.replace('value="{8, 8}"', f'value="{{{subdomains}, {subdomains}}}"')
+    xml = xml.replace('<ParameterList name="FETI">', '<ParameterList name="Output">\n'
+                      '    <Parameter name="VTU" type="bool" value="false"/>\n'
+                      '  </ParameterList>\n  <ParameterList name="FETI">')
+    if not friction:
+        # The same mesh, steps and loads without the Friction list: the top edge's prescribed
+        # u_x then slides the cylinder on the block with no tangential force.
+        a = xml.index('<ParameterList name="Friction">')
+        b = xml.index("</ParameterList>", a) + len("</ParameterList>")
+        xml = xml[:a] + xml[b:]
+    for key, value in o.feti_set:
+        xml = set_parameter(xml, key, value)
+    d = os.path.join(o.out, name)
+    os.makedirs(d, exist_ok=True)
+    path = os.path.join(d, "input.xml")
+    with open(path, "w") as f:
+        f.write(xml)
+    mpirun([o.build + "/bin/tfeti_contact", "--input=" + path, "--output=" + d], o.ranks)
+    try:
+        with open(d + "/summary.json") as f:
+            return json.load(f)
+    except OSError:
+        return None
+
+
+def cattaneo(o):
+    """Coulomb friction against the frictionless problem on the same mesh and load steps."""
+    print("\n## Cattaneo-Mindlin (Coulomb mu = 0.3) against frictionless, same mesh and steps, "
+          "SMALBE, 2 ranks\n")
+    print("| size factor | unknowns | subdomains | friction | Hessian mults step 1 / 2 | Newton "
+          "it. step 1 / 2 | fixed-point it. step 1 / 2 | setup s | solve s | peak MiB/rank | "
+          "Q/(mu P) | c/a | c/a closed form |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for sf, subs in CATTANEO_SIZES:
+        dofs = 2 * 4.8e3 / sf ** 2
+        if dofs > o.contact_max_dofs:
+            continue
+        for friction in (True, False):
+            label = "Coulomb" if friction else "none"
+            progress(f"Cattaneo, size factor {sf} (about {dofs:,.0f} unknowns), friction {label}")
+            s = cattaneo_run(o, f"cattaneo_sf{sf}_{label}", sf, subs, friction)
+            if s is None:
+                print(f"| {sf} | failed | | {label} |", flush=True)
+                continue
+            steps, t, c = s["steps"], s["timings"], s["contact"]
+            mults = " / ".join(str(x["hessian_multiplications"]) for x in steps)
+            newton = " / ".join(str(x["outer_iterations"]) for x in steps)
+            fp = " / ".join(str(x["iterations"]) for x in s["nonlinear"].get("fixed_point", []))
+            cm = c.get("cattaneo_mindlin", {})
+            conv = "" if s["converged"] else " (not converged)"
+            print(f"| {sf} | {s['primal_dim']:,} | {s['subdomains']} | {label}{conv} | {mults} | "
+                  f"{newton} | {fp or '-'} | {t['setup_s']:.1f} | {t['solve_s']:.1f} | "
+                  f"{s['peak_rss_mb']:.0f} | {cm.get('q_over_mu_p', float('nan')):.3f} | "
+                  f"{cm.get('stick_ratio', float('nan')):.3f} | "
+                  f"{cm.get('stick_ratio_closed_form', float('nan')):.3f} |", flush=True)
+            progress(f"  {s['nonlinear']['total_hessian_multiplications']} Hessian "
+                     f"multiplications, solve {t['solve_s']:.1f} s")
+
+
 def solvers(o):
     print("\n## Local solver choice (Poisson 1000x500, 20x10 subdomains of 50x50 elements)\n")
     print(HEADER)
@@ -544,4 +620,4 @@ if __name__ == "__main__":
         {"sweep": sweep, "reference": reference, "solvers": solvers, "membranes": membranes,
          "cylinders_convergence": cylinders_convergence, "cylinders": cylinders,
          "sweep3d": sweep3d, "cylinders_tied": cylinders_tied,
-         "hertz_sphere": hertz_sphere}[name](o)
+         "hertz_sphere": hertz_sphere, "cattaneo": cattaneo}[name](o)
