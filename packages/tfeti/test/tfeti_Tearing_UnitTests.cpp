@@ -128,9 +128,9 @@ std::vector<double> groupMatrix(const tfeti::ScalingGroups& s, std::size_t g) {
   return Q;
 }
 
-// Every scaling group's Q is the Moore-Penrose pseudo-inverse of its block A of B B^T:
-// A Q A = A, Q A Q = Q, Q and A Q symmetric (relative to max |A|, max |Q|); every row is in
-// exactly one group. Returns the largest group's size (over all ranks).
+// Every scaling group's Q is the Moore-Penrose pseudo-inverse of its block A of B B^T (the four
+// Penrose conditions: A Q A = A, Q A Q = Q, Q and A Q symmetric, relative to the size of the
+// products); every row is in exactly one group. Returns the largest group's size (over all ranks).
 int checkGroupScalings(const tfeti::Tearing& t, const tfeti::Comm& c, Teuchos::FancyOStream& out,
                        bool& success) {
   double pinvErr = 0.0;
@@ -168,10 +168,12 @@ int checkGroupScalings(const tfeti::Tearing& t, const tfeti::Comm& c, Teuchos::F
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < m; ++j) {
         const std::size_t k = std::size_t(j) * m + i, kt = std::size_t(i) * m + j;
-        pinvErr = std::max({pinvErr, std::abs(AQA[k] - A[k]) / aMax,
-                            std::abs(QAQ[k] - Q[k]) / std::max(qMax, 1e-300),
-                            std::abs(Q[k] - Q[kt]) / std::max(qMax, 1e-300),
-                            std::abs(AQ[k] - AQ[kt]) / std::max(aMax * qMax, 1e-300)});
+        // Each residual relative to the size of its products (rounding grows with |A| |Q|).
+        pinvErr =
+            std::max({pinvErr, std::abs(AQA[k] - A[k]) / (aMax * std::max(aMax * qMax, 1.0)),
+                      std::abs(QAQ[k] - Q[k]) / std::max(qMax * std::max(aMax * qMax, 1.0), 1e-300),
+                      std::abs(Q[k] - Q[kt]) / std::max(qMax, 1e-300),
+                      std::abs(AQ[k] - AQ[kt]) / std::max(aMax * qMax, 1e-300)});
       }
   }
   largest = static_cast<int>(tfeti_test::globalMax(c, double(largest)));
