@@ -58,6 +58,11 @@
                                           force balances the load and the fixed boundaries'
                                           reaction to T; with Hertz, p_max and
                                           the half-width within the given tolerance
+  check_summary.py bounded_iterations --max N DIR1 [DIR2 ...]
+                                          a tied run (Contact type = tied, PCPG): converged,
+                                          B u = c on the gluing and tied rows to 1e-6 of
+                                          max|u|, at most N iterations, and the same count and
+                                          max|u| (1e-6) in every DIR (other rank counts)
   check_summary.py same_nonlinear DIR1 DIR2 ...
                                           the same load steps and, per step, p_max, contact
                                           extent and max von Mises to 1e-5, max plastic strain
@@ -523,6 +528,30 @@ def tied(dirs):
               f"force error {c['force_relative_error']:.1e}")
 
 
+def bounded_iterations(dirs, max_iterations):
+    """Issue 13: the dual iterations of a tied problem stay below what the preconditioner's
+    scaling must reach, independently of the rank count."""
+    ref = load(dirs[0])
+    for d in dirs:
+        s = load(d)
+        c = s["contact"]
+        if not s["converged"] or s.get("contact_type") != "tied":
+            fail(f"{d}: converged {s['converged']}, contact type {s.get('contact_type')}")
+        u = s["max_abs_u"]
+        if c["equality_residual"] > KKT_TOL * u:
+            fail(f"{d}: max|B u - c| over the gluing and tied rows = {c['equality_residual']:.3e}"
+                 f" > {KKT_TOL} x max|u| = {KKT_TOL * u:.3e}")
+        if s["iterations"] > max_iterations:
+            fail(f"{d}: {s['iterations']} PCPG iterations > {max_iterations} "
+                 f"({s['subdomains']} subdomains)")
+        if s["iterations"] != ref["iterations"]:
+            fail(f"{d}: {s['iterations']} iterations, {ref['iterations']} in {dirs[0]}")
+        if abs(u - ref["max_abs_u"]) > 1e-6 * ref["max_abs_u"]:
+            fail(f"{d}: max|u| {u} differs from {ref['max_abs_u']} ({dirs[0]})")
+        print(f"OK: {d}: {s['subdomains']} subdomains, {s['ranks']} ranks: {s['iterations']} "
+              f"iterations (at most {max_iterations}), max|B u - c| {c['equality_residual']:.1e}")
+
+
 def zero_load(dirs):
     """No load: the contact force, p_max and every displacement exactly zero."""
     for d in dirs:
@@ -863,6 +892,9 @@ if __name__ == "__main__":
         tiny_load(args[0], option(args, "--full-load", 0.0))
     elif mode == "tied":
         tied(args)
+    elif mode == "bounded_iterations":
+        bounded_iterations([a for i, a in enumerate(args) if a != "--max" and
+                            (i == 0 or args[i - 1] != "--max")], int(option(args, "--max", 0)))
     elif mode == "membranes_scaling":
         membranes_scaling(args)
     elif mode == "nonlinear":

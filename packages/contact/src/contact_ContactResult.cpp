@@ -81,6 +81,7 @@ Json elasticSummary(const ContactResult& r) {
   s["dirichlet_rows"] = r.feti.dirichletRows;
   s["contact_rows"] = r.feti.contactRows;
   s["coarse_dim"] = r.feti.coarse;
+  s["largest_scaling_group"] = r.feti.largestScalingGroup;
   s["converged"] = r.converged;
   s["iterations"] = r.qp.iterations;
   s["relative_residual"] = r.qp.relativeResidual;

@@ -51,6 +51,7 @@ struct ContactMeasures {
 struct FetiDimensions {
   std::string formulation, preconditioner, localSolver;
   long long primal = 0, dual = 0, gluingRows = 0, dirichletRows = 0, contactRows = 0, coarse = 0;
+  long long largestScalingGroup = 0;
   long long dualOperatorApplies = 0;
   unsigned long long factorBytes = 0;
 };

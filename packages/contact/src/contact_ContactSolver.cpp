@@ -404,6 +404,7 @@ ContactResult ContactSolver::solve() {
   res.feti.dirichletRows = static_cast<long long>(solver.dirichletRows());
   res.feti.contactRows = static_cast<long long>(solver.inequalityRows());
   res.feti.coarse = static_cast<long long>(solver.coarseDimension());
+  res.feti.largestScalingGroup = static_cast<long long>(solver.largestScalingGroup());
   res.feti.dualOperatorApplies = static_cast<long long>(solver.dualOperatorApplies());
   res.feti.factorBytes = static_cast<unsigned long long>(solver.globalFactorBytes());
   res.qp = lastQp;

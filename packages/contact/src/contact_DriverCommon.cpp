@@ -140,6 +140,7 @@ void addSolverSummary(Json& s, const tfeti::FetiSolver& solver, const tfeti::Dua
   s["dirichlet_rows"] = solver.dirichletRows();
   s["contact_rows"] = solver.inequalityRows();
   s["coarse_dim"] = solver.coarseDimension();
+  s["largest_scaling_group"] = solver.largestScalingGroup();
   s["converged"] = result.converged;
   s["iterations"] = result.iterations;
   s["relative_residual"] = result.relativeResidual;

@@ -47,25 +47,11 @@ void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp 
 }
 
 DualPreconditioner::DualPreconditioner(const Tearing& tearing, SubdomainList subdomains)
-    : B_(tearing.B),
-      subdomains_(std::move(subdomains)),
-      groupRows_(tearing.groupRows),
-      groupScaling_(tearing.groupScaling) {}
+    : B_(tearing.B), subdomains_(std::move(subdomains)), scaling_(tearing.scaling) {}
 
 void DualPreconditioner::scale(MultiVector& X) const {
-  std::vector<double> tmp;
-  for (std::size_t j = 0; j < X.getNumVectors(); ++j) {
-    auto x = X.getDataNonConst(j);
-    for (std::size_t g = 0; g < groupRows_.size(); ++g) {
-      const auto& rows = groupRows_[g];
-      const auto& Q = groupScaling_[g];
-      const int m = static_cast<int>(rows.size());
-      tmp.assign(m, 0.0);
-      for (int c = 0; c < m; ++c)
-        for (int r = 0; r < m; ++r) tmp[r] += Q[c * m + r] * x[rows[c]];
-      for (int r = 0; r < m; ++r) x[rows[r]] = tmp[r];
-    }
-  }
+  for (std::size_t j = 0; j < X.getNumVectors(); ++j)
+    scaling_.apply(X.getDataNonConst(j).getRawPtr());
 }
 
 void DualPreconditioner::apply(const MultiVector& X, MultiVector& Y,

@@ -58,8 +58,7 @@ class DualPreconditioner : public Operator {
   void scale(MultiVector& X) const;
   Teuchos::RCP<const CrsMatrix> B_;
   SubdomainList subdomains_;
-  std::vector<std::vector<LO>> groupRows_;
-  std::vector<std::vector<double>> groupScaling_;
+  ScalingGroups scaling_;
   mutable Teuchos::RCP<MultiVector> p1_, p2_, q_;
   mutable std::vector<double> vb_, yb_;
 };

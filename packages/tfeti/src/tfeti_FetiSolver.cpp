@@ -105,6 +105,11 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
     pl->set("Gluing at Dirichlet nodes", true,
             "keep gluing rows at interface nodes on the Dirichlet boundary (the paper's count; "
             "in TFETI they duplicate the Dirichlet rows)");
+    pl->set("Inequality row scaling", "joined",
+            "the preconditioner's scaling (B B^T)^+ of the inequality rows: joined: each joins "
+            "the scaling group of the rows it shares dofs with (a tied or contact row on a node "
+            "a cut shares joins the node's gluing rows); separate: each row its own group",
+            choice({"joined", "separate"}));
     pl->set("Preconditioner", "dirichlet", "dual preconditioner",
             choice({"dirichlet", "lumped", "none"}));
     std::vector<std::string> solvers = localSolverTypes();
@@ -256,6 +261,9 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
                   : gluing == "none"    ? Gluing::None
                                         : Gluing::NonRedundant;
     opts.gluingAtDirichletNodes = params_.get<bool>("Gluing at Dirichlet nodes");
+    opts.inequalityScaling = params_.get<std::string>("Inequality row scaling") == "separate"
+                                 ? TearingOptions::InequalityScaling::Separate
+                                 : TearingOptions::InequalityScaling::Joined;
     std::vector<TearingInput> input;
     for (const auto& sd : data_) {
       TearingInput in;

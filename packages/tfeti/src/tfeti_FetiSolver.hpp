@@ -92,7 +92,8 @@ struct FetiTimings {
 class FetiSolver {
  public:
   // "Formulation" (TFETI | FETI), "Kernel tolerance" (1e-8), "Gluing" (nonredundant | redundant),
-  // "Gluing at Dirichlet nodes" (true), "Preconditioner" (none | lumped | dirichlet), "Local
+  // "Gluing at Dirichlet nodes" (true), "Inequality row scaling" (joined | separate),
+  // "Preconditioner" (none | lumped | dirichlet), "Local
   // solver" (cholmod | klu2 | tacho), "Dual solver" (auto | PCPG | SMALBE | penalty) and the
   // sublists "PCPG", "MPRGP", "SMALBE" and "Penalty".
   static Teuchos::RCP<const Teuchos::ParameterList> validParameters();
@@ -192,6 +193,8 @@ class FetiSolver {
   GO dirichletRows() const { return tearing_.numDirichletRows; }
   GO userEqualityRows() const { return tearing_.numUserEqualityRows; }
   GO inequalityRows() const { return tearing_.numInequalityRows; }
+  // The rows of the largest scaling group of the preconditioner (docs/qp_solvers.md).
+  GO largestScalingGroup() const { return tearing_.largestScalingGroup; }
   GO coarseDimension() const { return coarse_->dimension(); }
   long long dualOperatorApplies() const { return F_->numApplies(); }
   const FetiTimings& timings() const { return timings_; }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -252,63 +253,67 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   std::size_t maxEntries = 2;
   for (const auto& row : user) maxEntries = std::max(maxEntries, row.entries.size());
   for (const auto& row : ineq) maxEntries = std::max(maxEntries, row.entries.size());
-  // The entries of equality row r (automatic or the caller's).
+  // The entries of row r (automatic, the caller's equality row or an inequality row).
   auto entriesOf = [&](GO r) {
     std::vector<ConstraintEntry> e;
     if (r < numAuto) {
       const Row& row = rows[r];
       for (int k = 0; k < row.n; ++k) e.push_back({row.sub[k], row.dof[k], row.coef[k]});
-    } else {
+    } else if (r < numEq) {
       e = user[r - numAuto].entries;
+    } else {
+      e = ineq[r - numEq].entries;
     }
     return e;
   };
 
-  // Scaling groups of the equality rows: the automatic groups, joined through the dofs the
-  // caller's rows share with them or with each other.
-  std::vector<int> groupOf(numEq);
+  // Scaling groups: the automatic groups, joined through the dofs the caller's rows share with
+  // them or with each other (the inequality rows too, unless they are scaled separately).
+  const GO numJoined =
+      options.inequalityScaling == TearingOptions::InequalityScaling::Joined ? t.numRows : numEq;
+  std::vector<int> groupOf(t.numRows);
   std::vector<GO> groupLowest;  // lowest subdomain of each group: its owner's
   {
-    Components comp(static_cast<std::size_t>(numEq));
+    Components comp(static_cast<std::size_t>(t.numRows));
     std::vector<GO> firstOfGroup(groupOwner.size(), -1);
     for (GO r = 0; r < numAuto; ++r) {
       GO& first = firstOfGroup[rows[r].group];
       if (first < 0) first = r;
       comp.join(first, r);
     }
-    if (!user.empty()) {
+    if (numJoined > numAuto) {
       std::map<std::pair<int, int>, GO> rowOfDof;
-      for (GO r = 0; r < numEq; ++r)
+      for (GO r = 0; r < numJoined; ++r)
         for (const auto& e : entriesOf(r)) {
           auto [it, added] = rowOfDof.insert({{e.subdomain, e.dof}, r});
           if (!added) comp.join(it->second, r);
         }
     }
-    std::map<std::size_t, int> size;
-    for (GO r = 0; r < numEq; ++r) ++size[comp.find(r)];
     std::map<std::size_t, int> groupOfRoot;
-    for (GO r = 0; r < numEq; ++r) {
-      const std::size_t root = comp.find(r);
-      // Too large a group: the automatic groups and one group per caller's row instead.
-      const bool split = size[root] > kMaxScalingGroup;
-      const std::size_t key =
-          split ? (r < numAuto ? static_cast<std::size_t>(firstOfGroup[rows[r].group]) : r) : root;
-      auto [it, added] = groupOfRoot.insert({key, static_cast<int>(groupLowest.size())});
-      if (added) groupLowest.push_back(std::numeric_limits<GO>::max());
+    std::vector<GO> groupSize;
+    for (GO r = 0; r < t.numRows; ++r) {
+      auto [it, added] = groupOfRoot.insert({comp.find(r), static_cast<int>(groupLowest.size())});
+      if (added) {
+        groupLowest.push_back(std::numeric_limits<GO>::max());
+        groupSize.push_back(0);
+      }
       groupOf[r] = it->second;
+      ++groupSize[it->second];
       for (const auto& e : entriesOf(r))
         groupLowest[it->second] = std::min<GO>(groupLowest[it->second], e.subdomain);
+    }
+    t.numScalingGroups = static_cast<GO>(groupSize.size());
+    for (GO size : groupSize) {
+      t.largestScalingGroup = std::max(t.largestScalingGroup, size);
+      if (size > kMaxDenseScalingGroup) ++t.numSparseScalingGroups;
     }
   }
 
   // The multiplier map: rows of groups owned here.
   const int me = comm->getRank();
   std::vector<GO> myRows;
-  for (GO r = 0; r < numEq; ++r)
+  for (GO r = 0; r < t.numRows; ++r)
     if (owner[groupLowest[groupOf[r]]] == me) myRows.push_back(r);
-  for (std::size_t r = 0; r < ineq.size(); ++r)
-    if (owner[ineq[r].entries.front().subdomain] == me)
-      myRows.push_back(numEq + static_cast<GO>(r));
   t.multiplierMap = Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(t.numRows),
                                          Teuchos::ArrayView<const GO>(myRows), 0, comm));
 
@@ -374,10 +379,8 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     }
 
   // Owned groups and the pseudo-inverse of their block of B B^T (entries on one dof add up).
-  std::size_t numMyEq = 0;
-  while (numMyEq < myRows.size() && myRows[numMyEq] < numEq) ++numMyEq;
   std::map<int, std::vector<LO>> groupLids;  // owned group -> local rows, ascending
-  for (std::size_t l = 0; l < numMyEq; ++l)
+  for (std::size_t l = 0; l < myRows.size(); ++l)
     groupLids[groupOf[myRows[l]]].push_back(static_cast<LO>(l));
   for (auto& [group, lids] : groupLids) {
     const int m = static_cast<int>(lids.size());
@@ -385,28 +388,58 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     for (int i = 0; i < m; ++i)
       for (const auto& e : entriesOf(myRows[lids[i]]))
         coefs[i][std::make_pair(e.subdomain, e.dof)] += e.coef;
-    std::vector<double> BBt(m * m, 0.0);
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j)
-        for (const auto& [dof, v] : coefs[i]) {
-          auto it = coefs[j].find(dof);
-          if (it != coefs[j].end()) BBt[j * m + i] += v * it->second;
-        }
-    t.groupScaling.push_back(dense::pseudoInverseSpd(m, BBt));
-    t.groupRows.push_back(std::move(lids));
-  }
-  for (std::size_t l = numMyEq; l < myRows.size(); ++l) {
-    // Entries on one dof add up before the row norm is taken.
-    std::map<std::pair<int, int>, double> coefs;
-    for (const auto& e : ineq[myRows[l] - numEq].entries) coefs[{e.subdomain, e.dof}] += e.coef;
-    double norm2 = 0.0;
-    for (const auto& [key, v] : coefs) norm2 += v * v;
-    t.groupRows.push_back({static_cast<LO>(l)});
-    t.groupScaling.push_back({norm2 > 0.0 ? 1.0 / norm2 : 0.0});
+    if (m <= kMaxDenseScalingGroup) {
+      std::vector<double> BBt(m * m, 0.0);
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < m; ++j)
+          for (const auto& [dof, v] : coefs[i]) {
+            auto it = coefs[j].find(dof);
+            if (it != coefs[j].end()) BBt[j * m + i] += v * it->second;
+          }
+      t.scaling.dense.push_back(dense::pseudoInverseSpd(m, BBt));
+      t.scaling.sparse.push_back(nullptr);
+    } else {
+      // B B^T of the group through the rows on each dof.
+      std::map<std::pair<int, int>, std::vector<std::pair<int, double>>> rowsOnDof;
+      for (int i = 0; i < m; ++i)
+        for (const auto& [dof, v] : coefs[i]) rowsOnDof[dof].emplace_back(i, v);
+      std::vector<int> ri, ci;
+      std::vector<double> vals;
+      for (const auto& [dof, on] : rowsOnDof)
+        for (const auto& [i, vi] : on)
+          for (const auto& [j, vj] : on) {
+            ri.push_back(i);
+            ci.push_back(j);
+            vals.push_back(vi * vj);
+          }
+      t.scaling.dense.emplace_back();
+      t.scaling.sparse.push_back(
+          std::make_shared<SparsePseudoInverse>(csrFromTriplets(m, m, ri, ci, vals)));
+    }
+    t.scaling.rows.push_back(std::move(lids));
   }
   t.userEqualityRows = user;
   t.inequalityRows = ineq;
   return t;
+}
+
+void ScalingGroups::apply(double* x) const {
+  std::vector<double> in, out;
+  for (std::size_t g = 0; g < rows.size(); ++g) {
+    const auto& lids = rows[g];
+    const int m = static_cast<int>(lids.size());
+    in.resize(m);
+    out.assign(m, 0.0);
+    for (int i = 0; i < m; ++i) in[i] = x[lids[i]];
+    if (sparse[g]) {
+      sparse[g]->apply(in.data(), out.data());
+    } else {
+      const auto& Q = dense[g];
+      for (int c = 0; c < m; ++c)
+        for (int r = 0; r < m; ++r) out[r] += Q[c * m + r] * in[c];
+    }
+    for (int i = 0; i < m; ++i) x[lids[i]] = out[i];
+  }
 }
 
 }  // namespace tfeti

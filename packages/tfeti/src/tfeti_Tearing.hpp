@@ -10,18 +10,23 @@
 // in a canonical order (by their entries, then the right-hand side) so that the numbering
 // depends on the mesh and the rows, not on the number of ranks or on which rank passed a row.
 //
-// Scaling groups: equality rows that share a dof (transitively) form a group, whose rows are
-// owned by the rank of the group's lowest-numbered subdomain and whose block of B B^T is
-// pseudo-inverted for the preconditioner's scaling. The automatic rows of one (node, component)
-// are a group (they touch disjoint dofs from other groups, so B B^T is block diagonal); a
-// caller's row joins the groups it touches. A group that would exceed kMaxScalingGroup rows (a
-// long chain of multi-point constraints) is split back into the automatic groups and one group
-// per caller's row: the scaling is then block-diagonal approximation of (B B^T)^+, still a valid
-// (symmetric positive) preconditioner scaling. Every inequality row is its own group.
+// Scaling groups: rows that share a dof (transitively) form a group, whose rows are owned by
+// the rank of the group's lowest-numbered subdomain and whose block of B B^T is pseudo-inverted
+// for the preconditioner's scaling Q = (B B^T)^+ (block diagonal by group, so Q is exactly the
+// pseudo-inverse of B B^T). The automatic rows of one (node, component) are a group (they touch
+// disjoint dofs from other groups); a caller's equality row joins the groups it touches, and so
+// does an inequality row (a tied or contact row on a node that a cut shares between subdomains
+// joins that node's gluing group) unless TearingOptions::inequalityScaling is Separate, which
+// makes every inequality row its own group (weight 1/||row||^2, the scaling before issue 13).
+// A group of at most kMaxDenseScalingGroup rows keeps a dense pseudo-inverse; a larger one (a
+// contact surface whose node-to-face rows share master nodes chains all its rows into one
+// group) a sparse factorization (SparsePseudoInverse).
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
+#include "tfeti_SparsePseudoInverse.hpp"
 #include "tfeti_Subdomain.hpp"
 #include "tfeti_SubdomainMesh.hpp"
 #include "tfeti_Types.hpp"
@@ -37,6 +42,10 @@ struct TearingOptions {
   // The paper counts gluing rows also at interface nodes on the Dirichlet boundary. In TFETI
   // these rows are linearly dependent on the Dirichlet rows; false drops them.
   bool gluingAtDirichletNodes = true;
+  // Joined: the inequality rows join the scaling groups of the rows whose dofs they share;
+  // Separate: each is its own group (docs/qp_solvers.md, "Scaling groups of the inequality rows").
+  enum class InequalityScaling { Joined, Separate };
+  InequalityScaling inequalityScaling = InequalityScaling::Joined;
 };
 
 // A local subdomain as the tearing sees it.
@@ -91,8 +100,20 @@ struct EqualityRow {
   double rhs = 0.0;
 };
 
-// Rows of a scaling group of equality rows at most (see above).
-constexpr int kMaxScalingGroup = 64;
+// Rows of a scaling group with a dense pseudo-inverse at most; larger groups are factorized
+// sparsely (see above).
+constexpr int kMaxDenseScalingGroup = 64;
+
+// Locally owned scaling groups: local row indices (ascending) and the pseudo-inverse of their
+// B B^T block: dense (column-major) for groups of at most kMaxDenseScalingGroup rows, otherwise
+// dense[g] is empty and sparse[g] is set.
+struct ScalingGroups {
+  std::vector<std::vector<LO>> rows;
+  std::vector<std::vector<double>> dense;
+  std::vector<std::shared_ptr<const SparsePseudoInverse>> sparse;
+  // x = Q x on the locally owned rows of x (the local values of a vector on multiplierMap).
+  void apply(double* x) const;
+};
 
 struct RowEntry {
   GO row;       // multiplier id
@@ -107,9 +128,11 @@ struct Tearing {
   std::vector<GO> dofOffset;  // first global dof of every subdomain
   // For each local subdomain (same order as the input): the rows that touch it.
   std::vector<std::vector<RowEntry>> subdomainRows;
-  // Locally owned groups: local row indices and the pseudo-inverse of their B B^T block.
-  std::vector<std::vector<LO>> groupRows;
-  std::vector<std::vector<double>> groupScaling;
+  // The preconditioner's scaling Q, by locally owned group.
+  ScalingGroups scaling;
+  // Over all ranks: the number of scaling groups, the rows of the largest and the number of
+  // groups factorized sparsely.
+  GO numScalingGroups = 0, largestScalingGroup = 0, numSparseScalingGroups = 0;
   GO numRows = 0, numGluingRows = 0, numDirichletRows = 0;
   // The caller's equality rows: global rows [firstUserEqualityRow, firstInequalityRow).
   GO numUserEqualityRows = 0, firstUserEqualityRow = 0;

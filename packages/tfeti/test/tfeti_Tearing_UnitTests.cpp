@@ -112,6 +112,78 @@ std::pair<int, int> locate(const tfeti::Tearing& t, GO col) {
   return {s, static_cast<int>(col - t.dofOffset[s])};
 }
 
+// The dense matrix of scaling group g (whatever its storage), by applying it to unit vectors.
+std::vector<double> groupMatrix(const tfeti::ScalingGroups& s, std::size_t g) {
+  const int m = static_cast<int>(s.rows[g].size());
+  tfeti::ScalingGroups one;
+  one.rows.emplace_back(m);
+  std::iota(one.rows[0].begin(), one.rows[0].end(), 0);
+  one.dense = {s.dense[g]};
+  one.sparse = {s.sparse[g]};
+  std::vector<double> Q(std::size_t(m) * m, 0.0);
+  for (int j = 0; j < m; ++j) {
+    Q[std::size_t(j) * m + j] = 1.0;
+    one.apply(&Q[std::size_t(j) * m]);
+  }
+  return Q;
+}
+
+// Every scaling group's Q is the Moore-Penrose pseudo-inverse of its block A of B B^T (the four
+// Penrose conditions: A Q A = A, Q A Q = Q, Q and A Q symmetric, relative to the size of the
+// products); every row is in exactly one group. Returns the largest group's size (over all ranks).
+int checkGroupScalings(const tfeti::Tearing& t, const tfeti::Comm& c, Teuchos::FancyOStream& out,
+                       bool& success) {
+  double pinvErr = 0.0;
+  long long groupedRows = 0;
+  int largest = 0;
+  for (std::size_t g = 0; g < t.scaling.rows.size(); ++g) {
+    const auto& rows = t.scaling.rows[g];
+    const int m = static_cast<int>(rows.size());
+    largest = std::max(largest, m);
+    groupedRows += m;
+    std::vector<std::vector<std::pair<GO, double>>> e;
+    for (LO r : rows) e.push_back(rowEntries(*t.B, r));
+    std::vector<double> A(std::size_t(m) * m, 0.0);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        for (const auto& [ci, vi] : e[i])
+          for (const auto& [cj, vj] : e[j])
+            if (ci == cj) A[std::size_t(j) * m + i] += vi * vj;
+    const std::vector<double> Q = groupMatrix(t.scaling, g);
+    auto mul = [m](const std::vector<double>& X, const std::vector<double>& Y) {
+      std::vector<double> Z(std::size_t(m) * m, 0.0);
+      for (int j = 0; j < m; ++j)
+        for (int k = 0; k < m; ++k)
+          for (int i = 0; i < m; ++i)
+            Z[std::size_t(j) * m + i] += X[std::size_t(k) * m + i] * Y[std::size_t(j) * m + k];
+      return Z;
+    };
+    double aMax = 0.0, qMax = 0.0;
+    for (std::size_t k = 0; k < A.size(); ++k) {
+      aMax = std::max(aMax, std::abs(A[k]));
+      qMax = std::max(qMax, std::abs(Q[k]));
+    }
+    const auto AQ = mul(A, Q);
+    const auto AQA = mul(AQ, A), QAQ = mul(mul(Q, A), Q);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j) {
+        const std::size_t k = std::size_t(j) * m + i, kt = std::size_t(i) * m + j;
+        // Each residual relative to the size of its products (rounding grows with |A| |Q|).
+        pinvErr =
+            std::max({pinvErr, std::abs(AQA[k] - A[k]) / (aMax * std::max(aMax * qMax, 1.0)),
+                      std::abs(QAQ[k] - Q[k]) / std::max(qMax * std::max(aMax * qMax, 1.0), 1e-300),
+                      std::abs(Q[k] - Q[kt]) / std::max(qMax, 1e-300),
+                      std::abs(AQ[k] - AQ[kt]) / std::max(aMax * qMax, 1e-300)});
+      }
+  }
+  largest = static_cast<int>(tfeti_test::globalMax(c, double(largest)));
+  out << "  scaling groups: largest " << largest << " rows, pseudo-inverse error "
+      << tfeti_test::globalMax(c, pinvErr) << "\n";
+  TEST_COMPARE(tfeti_test::globalMax(c, pinvErr), <, 1e-12);
+  TEST_EQUALITY(tfeti_test::globalSum(c, groupedRows), static_cast<long long>(t.numRows));
+  return largest;
+}
+
 // Every structural property of B on one configuration. All verdicts are global (reduced).
 void checkStructure(const tfeti::StructuredRectangle& rect, int dpn,
                     const tfeti::TearingOptions& opts, Teuchos::FancyOStream& out, bool& success) {
@@ -233,36 +305,7 @@ void checkStructure(const tfeti::StructuredRectangle& rect, int dpn,
                 static_cast<long long>(t.B->getGlobalNumEntries()));
   TEST_EQUALITY(tfeti_test::globalSum(c, badEntries), 0LL);
 
-  // Group scalings are the pseudo-inverses of the B B^T blocks: (BBt) Q (BBt) = BBt, Q BBt Q = Q.
-  double pinvErr = 0.0;
-  long long groupedRows = 0;
-  for (std::size_t g = 0; g < t.groupRows.size(); ++g) {
-    const auto& rows = t.groupRows[g];
-    const int m = static_cast<int>(rows.size());
-    groupedRows += m;
-    std::vector<std::vector<std::pair<GO, double>>> e;
-    for (LO r : rows) e.push_back(rowEntries(*t.B, r));
-    std::vector<double> A(std::size_t(m) * m, 0.0);
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j)
-        for (const auto& [ci, vi] : e[i])
-          for (const auto& [cj, vj] : e[j])
-            if (ci == cj) A[std::size_t(j) * m + i] += vi * vj;
-    const auto& Q = t.groupScaling[g];
-    auto mul = [m](const std::vector<double>& X, const std::vector<double>& Y) {
-      std::vector<double> Z(std::size_t(m) * m, 0.0);
-      for (int j = 0; j < m; ++j)
-        for (int k = 0; k < m; ++k)
-          for (int i = 0; i < m; ++i)
-            Z[std::size_t(j) * m + i] += X[std::size_t(k) * m + i] * Y[std::size_t(j) * m + k];
-      return Z;
-    };
-    const auto AQA = mul(mul(A, Q), A), QAQ = mul(mul(Q, A), Q);
-    for (std::size_t k = 0; k < A.size(); ++k)
-      pinvErr = std::max({pinvErr, std::abs(AQA[k] - A[k]), std::abs(QAQ[k] - Q[k])});
-  }
-  TEST_COMPARE(tfeti_test::globalMax(c, pinvErr), <, 1e-12);
-  TEST_EQUALITY(tfeti_test::globalSum(c, groupedRows), static_cast<long long>(t.numRows));
+  checkGroupScalings(t, c, out, success);
 
   // The numbering does not depend on the rank count: a serial tearing of all subdomains has the
   // same rows under the same ids.
@@ -436,3 +479,119 @@ TEUCHOS_UNIT_TEST(Tearing, BoundedRowsKeepTheirBounds) {
 }
 
 }  // namespace
+
+namespace {
+
+// (subdomain, local node) of every copy of every node, and the untorn nodes on y = 1 by x.
+struct Copies {
+  std::map<GO, std::vector<std::pair<int, int>>> of;
+  std::map<double, GO> top;
+};
+Copies copiesOf(const tfeti::StructuredRectangle& rect) {
+  Copies c;
+  for (int s = 0; s < rect.numSubdomains(); ++s) {
+    const tfeti::SubdomainMesh m = rect.subdomain(s);
+    for (int n = 0; n < m.numNodes(); ++n) {
+      c.of[m.globalNode[n]].push_back({s, n});
+      if (m.coords[2 * n + 1] == 1.0) c.top[m.coords[2 * n]] = m.globalNode[n];
+    }
+  }
+  return c;
+}
+
+// The global rows of the (local) scaling group holding global row `row`, or empty.
+std::vector<GO> groupOfRow(const tfeti::Tearing& t, GO row) {
+  for (const auto& lids : t.scaling.rows) {
+    std::vector<GO> rows;
+    for (LO l : lids) rows.push_back(t.multiplierMap->getGlobalElement(l));
+    if (std::find(rows.begin(), rows.end(), row) != rows.end()) return rows;
+  }
+  return {};
+}
+
+}  // namespace
+
+// Issue 13: a row against a rigid plane (or a tied row) on a node that a cut shares between two
+// subdomains names one copy of the node; it shares that dof with the node's gluing row, so it
+// joins its group and Q is (B B^T)^+ of the pair (Separate: the row alone, weight 1/||row||^2).
+TEUCHOS_UNIT_TEST(Tearing, InequalityRowOnACutNodeJoinsItsGluingGroup) {
+  const auto comm = Tpetra::getDefaultComm();
+  const tfeti::StructuredRectangle rect = unitSquare(2, 2);
+  const Copies copies = copiesOf(rect);
+  const GO node = copies.top.at(0.5);  // on the vertical cut x = 1/2
+  TEST_EQUALITY(copies.of.at(node).size(), 2u);
+  const auto [sub, localNode] = copies.of.at(node).front();
+  std::vector<tfeti::TearingInput> local;
+  for (int s : myIds(rect, *comm)) local.push_back(tearingInput(rect.subdomain(s), 2));
+  std::vector<tfeti::InequalityRow> mine;
+  if (comm->getRank() == 0) mine.push_back({{{sub, 2 * localNode + 1, 1.0}}, 0.0});
+  for (auto mode : {tfeti::TearingOptions::InequalityScaling::Joined,
+                    tfeti::TearingOptions::InequalityScaling::Separate}) {
+    tfeti::TearingOptions opts;
+    opts.inequalityScaling = mode;
+    const tfeti::Tearing t = tfeti::buildTearing(comm, rect.numSubdomains(), local, 2, opts, mine);
+    const std::vector<GO> group = groupOfRow(t, t.firstInequalityRow);
+    const double size = tfeti_test::globalMax(*comm, static_cast<double>(group.size()));
+    // The other row of a joined group is the gluing row of component y at the node.
+    double gluingOfTheNode = 0.0;
+    if (group.size() == 2) {
+      const GO other = group[0] == t.firstInequalityRow ? group[1] : group[0];
+      const LO l = t.multiplierMap->getLocalElement(other);
+      const GO col = t.dofOffset[sub] + 2 * localNode + 1;
+      for (const auto& [c, v] : rowEntries(*t.B, l))
+        if (c == col && std::abs(v) == 1.0 && !t.isInequality(other)) gluingOfTheNode = 1.0;
+    }
+    const bool joined = mode == tfeti::TearingOptions::InequalityScaling::Joined;
+    out << (joined ? "joined" : "separate") << ": the row's group has " << size << " rows\n";
+    TEST_EQUALITY(size, joined ? 2.0 : 1.0);
+    TEST_EQUALITY(tfeti_test::globalMax(*comm, gluingOfTheNode), joined ? 1.0 : 0.0);
+    checkGroupScalings(t, *comm, out, success);
+  }
+}
+
+// A chain of node-to-face-like rows along y = 1 (each row couples a node with its neighbour, as
+// a slave node's row couples it with the master face's nodes) is one group of more rows than the
+// dense limit, with the gluing and Dirichlet rows of the nodes it touches: it is factorized
+// sparsely, and Q is still the pseudo-inverse of its (here singular: a duplicated row) block.
+TEUCHOS_UNIT_TEST(Tearing, ChainLongerThanTheDenseLimitIsFactorizedSparsely) {
+  const auto comm = Tpetra::getDefaultComm();
+  const tfeti::StructuredRectangle rect(0, 1, 0, 1, 6, 3, 8, 2);
+  const Copies copies = copiesOf(rect);
+  std::vector<GO> top;
+  for (const auto& [x, node] : copies.top) top.push_back(node);
+  TEST_EQUALITY(top.size(), 49u);
+  std::vector<tfeti::InequalityRow> rows;
+  auto dofOf = [&](GO node, int copy, int comp) {
+    const auto& cs = copies.of.at(node);
+    const auto& [s, n] = cs[copy % cs.size()];
+    return tfeti::ConstraintEntry{s, 2 * n + comp, 1.0};
+  };
+  for (std::size_t i = 0; i + 1 < top.size(); ++i) {
+    // y of node i (its last copy) against x and y of node i + 1 (its first copy), and x of node
+    // i against y of node i.
+    auto a = dofOf(top[i], 1, 1), b = dofOf(top[i + 1], 0, 1), c = dofOf(top[i + 1], 0, 0);
+    b.coef = -0.6, c.coef = -0.3;
+    rows.push_back({{a, b, c}, 0.01});
+    auto d = dofOf(top[i], 0, 0), e = dofOf(top[i], 0, 1);
+    e.coef = -0.5;
+    rows.push_back({{d, e}, 0.0});
+  }
+  rows.push_back(rows[7]);  // a duplicate: B B^T of the group is singular
+  std::vector<tfeti::InequalityRow> mine;
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    if (static_cast<int>(k) % comm->getSize() == comm->getRank()) mine.push_back(rows[k]);
+  std::vector<tfeti::TearingInput> local;
+  for (int s : myIds(rect, *comm)) local.push_back(tearingInput(rect.subdomain(s), 2));
+  const tfeti::Tearing t = tfeti::buildTearing(comm, rect.numSubdomains(), local, 2, {}, mine);
+  TEST_EQUALITY(t.numInequalityRows, GO(2 * 48 + 1));
+  out << "groups " << t.numScalingGroups << ", largest " << t.largestScalingGroup << ", sparse "
+      << t.numSparseScalingGroups << "\n";
+  TEST_COMPARE(t.largestScalingGroup, >, GO(2 * 48 + 1));
+  TEST_EQUALITY(t.numSparseScalingGroups, GO(1));
+  const int largest = checkGroupScalings(t, *comm, out, success);
+  TEST_EQUALITY(GO(largest), t.largestScalingGroup);
+  double nullity = 0.0;
+  for (const auto& s : t.scaling.sparse)
+    if (s) nullity = std::max(nullity, static_cast<double>(s->nullity()));
+  TEST_COMPARE(tfeti_test::globalMax(*comm, nullity), >=, 1.0);
+}
