@@ -4,7 +4,7 @@ solved by Belos CG + MueLu and by Amesos2 KLU2 (tfeti_baseline) in the same run.
 
   python3 bench/run_benchmarks.py [--build build] [--ranks 2]
                                   [--sets sweep,reference,solvers,membranes,cylinders_convergence,cylinders]
-                                  [--max-dofs 4.3e6] [--out bench-out]
+                                  [--max-dofs 4.3e6] [--out bench-out] [--reserve-gib 3]
 
 sweep:      2D elasticity, 64k, 256k, 1M and 4M unknowns, subdomains of 16x16 and 32x32 elements
 reference:  Poisson 1000x500 cells and elasticity 600x300 cells, with 2 subdomains (one per
@@ -26,6 +26,11 @@ cattaneo:   the Cattaneo-Mindlin problem (examples/cattaneo_cylinders.xml: Coulo
             --contact-max-dofs), and the same mesh and loads frictionless: Hessian
             multiplications and Newton iterations per step, Coulomb fixed-point iterations,
             times, memory, c/a against Cattaneo-Mindlin
+size2d:     the largest 2D linear solves: plane-strain elasticity, H/h = 16, from 1.2M to about
+            23M unknowns (up to --max-dofs): times, iterations, peak memory per rank, bytes per
+            unknown and the memory after every phase; a run whose estimated memory (the bytes
+            per unknown of the run before it) would leave less than --reserve-gib of the
+            machine's available memory is not started
 sweep3d:    3D elasticity on the unit cube (clamped on x = 0, trilinear hexahedra), about 0.1M,
             0.5M, 1M and 2M unknowns, subdomains of 4^3, 6^3 and 8^3 elements, against Belos
             CG + MueLu (six rigid modes as nullspace) and, up to --direct3d-max-dofs, KLU2
@@ -184,6 +189,63 @@ def sweep(o):
             ratio = (f" TFETI ({s['subdomains']} subdomains) {tf:.2f} s / baseline "
                      f"{b['setup_s'] + b['solve_s']:.2f} s = {tf / (b['setup_s'] + b['solve_s']):.2f}x")
         print(base_row(label, b) + ratio)
+
+
+# (cells x, cells y): H/h = 16, the subdomains 16x16 elements; the last has 20.08M unknowns
+# untorn (22.66M with the subdomains' copies of the interface nodes).
+SIZE2D = [(1024, 512), (2048, 1024), (2816, 1408), (3456, 1728), (4480, 2240)]
+
+
+def available_gib():
+    with open("/proc/meminfo") as f:
+        for line in f:
+            if line.startswith("MemAvailable:"):
+                return int(line.split()[1]) / 2**20
+    return 0.0
+
+
+def size2d(o):
+    print("\n## Size: the largest 2D linear solves (elasticity, H/h = 16, Dirichlet, CHOLMOD, "
+          f"{o.ranks} ranks)\n")
+    print("| cells | unknowns | untorn unknowns | subdomains | setup s | solve s | iterations | "
+          "peak MiB/rank | bytes/unknown | K+ factors MiB | preconditioner factors MiB |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|", flush=True)
+    per_unknown = 1000.0  # bytes per unknown over all ranks before the first measurement
+    phases = []
+    for nx, ny in SIZE2D:
+        sx, sy = nx // 16, ny // 16
+        unknowns = sx * sy * 2 * 17 * 17
+        if unknowns > o.max_dofs:
+            continue
+        need = per_unknown * unknowns * 1.1 / 2**30
+        free = available_gib()
+        if need + o.reserve_gib > free:
+            progress(f"size2d {nx}x{ny}: not started, it needs about {need:.1f} GiB and "
+                     f"{free:.1f} GiB are available ({o.reserve_gib} GiB kept for the system)")
+            print(f"| {nx}x{ny} | {unknowns:,} | not started: needs ~{need:.1f} GiB, "
+                  f"{free:.1f} GiB available | | | | | | | | |", flush=True)
+            break
+        progress(f"size2d {nx}x{ny}: {unknowns:,} unknowns, about {need:.1f} GiB "
+                 f"({free:.1f} GiB available)")
+        s = feti(o, "elasticity", nx, ny, sx, sy)
+        if not s:
+            break
+        m = s["memory"]
+        per_unknown = m["bytes_per_unknown"]
+        t = s["timings"]
+        print(f"| {nx}x{ny} | {s['primal_dim']:,} | {2 * (nx + 1) * (ny + 1):,} | "
+              f"{s['subdomains']} | {t['setup_s']:.1f} | {t['solve_s']:.1f} | "
+              f"{s['iterations']} | {m['peak_mib_per_rank']:.0f} | {per_unknown:.0f} | "
+              f"{s['factor_bytes'] / 2**20:.0f} | "
+              f"{s['preconditioner_factor_bytes'] / 2**20:.0f} |", flush=True)
+        phases.append((f"{nx}x{ny}", m))
+    for label, m in phases:
+        print(f"\nMemory after each phase, {label} (MiB per rank, the larger rank; "
+              "peak: the high-water mark so far)\n")
+        print("| phase | resident | peak | peak, all ranks |\n|---|---|---|---|")
+        for p in m["phases"]:
+            print(f"| {p['phase']} | {p['rss_mib_max']:.0f} | {p['peak_mib_max']:.0f} | "
+                  f"{p['peak_mib_sum']:.0f} |")
 
 
 def reference(o):
@@ -605,6 +667,9 @@ if __name__ == "__main__":
                    default="solvers,reference,sweep,membranes,cylinders_convergence,cylinders")
     p.add_argument("--max-dofs", type=float, default=4.3e6)
     p.add_argument("--out", default="bench-out")
+    p.add_argument("--reserve-gib", type=float, default=3.0,
+                   help="size2d: memory left to the system; a run that would leave less is "
+                   "not started")
     p.add_argument("--preconditioners3d", default="lumped,dirichlet")
     p.add_argument("--direct3d-max-dofs", type=float, default=5e4,
                    help="largest 3D case solved by KLU2 (its fill grows fast in 3D: at 32^3 "
@@ -619,5 +684,5 @@ if __name__ == "__main__":
     for name in o.sets.split(","):
         {"sweep": sweep, "reference": reference, "solvers": solvers, "membranes": membranes,
          "cylinders_convergence": cylinders_convergence, "cylinders": cylinders,
-         "sweep3d": sweep3d, "cylinders_tied": cylinders_tied,
+         "sweep3d": sweep3d, "cylinders_tied": cylinders_tied, "size2d": size2d,
          "hertz_sphere": hertz_sphere, "cattaneo": cattaneo}[name](o)

@@ -131,8 +131,17 @@ std::vector<tfeti::EqualityRow> prescribedRows(const StructuredProblem& sp,
   return prescribedDisplacementRows(local, sp.prescribedValues(), 1.0);
 }
 
+// The linear model problems solve once and never update their solver: the subdomain matrices
+// are freed once the preconditioners are set up, unless the input keeps them.
+void freeMatricesAfterSetup(ParameterList& params) {
+  auto& feti = params.sublist("FETI");
+  if (feti.getEntry("Keep subdomain matrices").isDefault())
+    feti.set("Keep subdomain matrices", false);
+}
+
 int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
               const std::string& dir) {
+  freeMatricesAfterSetup(params);
   const bool root = comm->getRank() == 0;
   const std::string field = params.get<std::string>("Problem");
   const StructuredProblem sp = problemFrom(params, field);
@@ -143,11 +152,17 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
         "Output: \"VTU\" is not available for 3D structured problems in this release; set it "
         "to false");
 
+  // Memory per phase: the libraries and parameters, this rank's subdomains meshed and
+  // assembled, the solver's phases, the output.
+  tfeti::MemoryLog memory;
+  memory.record(*comm, "start");
   auto subdomains = buildLocalSubdomains(sp, *comm);
   const auto rows = prescribedRows(sp, subdomains);
+  memory.record(*comm, "assembly");
   tfeti::FetiSolver solver(comm, sp.numSubdomains(), std::move(subdomains), params.sublist("FETI"),
                            {}, rows);
   const tfeti::DualResult result = solver.solve();
+  memory.append(solver.memory());
 
   Json s = Json::object();
   s["study"] = "single";
@@ -195,6 +210,8 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
       std::cout << "max relative error against direct solve: " << err << "\n";
   }
   if (out.get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", vtuPiece(solver));
+  memory.record(*comm, "output");
+  s["memory"] = memoryJson(memory, solver.primalDimension());
   writeSummary(*comm, dir, s, params);
   if (root && verbosity > 0)
     std::cout << field << " " << sp.dim() << "D: " << sp.numSubdomains() << " subdomains, primal "
@@ -221,6 +238,7 @@ int runScalability(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& p
   const auto ratios = sc.get<Array<int>>("H over h");
   const auto precs = sc.get<Array<std::string>>("Preconditioners");
   const double tol = params.sublist("FETI").sublist("PCPG").get<double>("Relative tolerance");
+  freeMatricesAfterSetup(params);
   bool allConverged = true;
 
   Json table = Json::array();

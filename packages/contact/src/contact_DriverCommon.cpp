@@ -104,6 +104,28 @@ double peakRssMb(const tfeti::Comm& comm) {
   return all;
 }
 
+Json memoryJson(const tfeti::MemoryLog& log, long long unknowns) {
+  Json j = Json::object();
+  Json phases = Json::array();
+  double peakMax = 0.0, peakSum = 0.0;
+  for (const auto& p : log.phases()) {
+    Json q = Json::object();
+    q["phase"] = p.phase;
+    q["rss_mib_max"] = p.maxOverRanks.rssMib;
+    q["peak_mib_max"] = p.maxOverRanks.peakMib;
+    q["rss_mib_sum"] = p.sumOverRanks.rssMib;
+    q["peak_mib_sum"] = p.sumOverRanks.peakMib;
+    phases.push(std::move(q));
+    peakMax = std::max(peakMax, p.maxOverRanks.peakMib);
+    peakSum = std::max(peakSum, p.sumOverRanks.peakMib);
+  }
+  j["phases"] = std::move(phases);
+  j["peak_mib_per_rank"] = peakMax;
+  j["peak_mib_all_ranks"] = peakSum;
+  j["bytes_per_unknown"] = unknowns > 0 ? peakSum * 1048576.0 / static_cast<double>(unknowns) : 0.0;
+  return j;
+}
+
 VtuPiece vtuPiece(const tfeti::FetiSolver& solver) {
   VtuPiece piece;
   VtuField u{"u", 1, {}}, sub{"subdomain", 1, {}};
@@ -149,6 +171,7 @@ void addSolverSummary(Json& s, const tfeti::FetiSolver& solver, const tfeti::Dua
   s["residual_history"] = std::move(history);
   s["dual_operator_applies"] = solver.dualOperatorApplies();
   s["factor_bytes"] = static_cast<unsigned long long>(solver.globalFactorBytes());
+  s["memory"] = memoryJson(solver.memory(), solver.primalDimension());
 }
 
 Json qpJson(const tfeti::DualResult& r) {

@@ -20,6 +20,10 @@ void writeSummary(const tfeti::Comm& comm, const std::string& dir, const Json& s
                   const Teuchos::ParameterList& params);
 // Largest resident set size over the ranks, in MiB.
 double peakRssMb(const tfeti::Comm& comm);
+// The "memory" object of a summary: per phase (in the order run) the resident size after it and
+// the peak so far, the largest over the ranks and the sum over them (MiB); the peak per rank and
+// over all ranks, and the peak over all ranks in bytes per unknown.
+Json memoryJson(const tfeti::MemoryLog& log, long long unknowns);
 // The solved subdomains of this rank: u (or displacement) per node, subdomain id per cell.
 VtuPiece vtuPiece(const tfeti::FetiSolver& solver);
 

@@ -32,7 +32,12 @@ std::vector<tfeti::SubdomainData> buildLocalSubdomains(const StructuredProblem& 
   const auto mesh = problem.mesh();
   std::vector<tfeti::SubdomainData> local;
   const std::vector<int> cells = mesh.subdomainCells();
-  for (int s : tfeti::subdomainsOfRank(comm.getRank(), mesh.numSubdomains(), comm.getSize())) {
+  const std::vector<int> mine =
+      tfeti::subdomainsOfRank(comm.getRank(), mesh.numSubdomains(), comm.getSize());
+  // Reserved: a growing vector would copy every subdomain assembled so far (SubdomainData's move
+  // may throw, so std::vector copies), doubling the memory of the matrices for a moment.
+  local.reserve(mine.size());
+  for (int s : mine) {
     tfeti::SubdomainMesh m = mesh.subdomain(s);
     problem.applyFaceConditions(m);
     local.push_back(assemble(problem, std::move(m), cells));

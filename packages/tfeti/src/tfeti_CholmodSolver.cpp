@@ -10,9 +10,15 @@ namespace tfeti {
 namespace {
 
 // One CHOLMOD workspace per process: subdomains are factorized and solved one after the other
-// (Kokkos is Serial here), and a common per subdomain would multiply its workspace.
+// (Kokkos is Serial here), and a common per subdomain would multiply its workspace. The same
+// holds for the dense vectors of a solve (the solution and CHOLMOD's own workspace, five vectors
+// of the matrix's size): kept per factor they took 70 bytes per unknown of a 2D TFETI run, a
+// third of what its subdomain matrices take (docs/benchmarks.md, "Size").
 struct CholmodCommon {
   cholmod_common c;
+  cholmod_dense* X = nullptr;
+  cholmod_dense* Y = nullptr;
+  cholmod_dense* E = nullptr;
   CholmodCommon() {
     cholmod_start(&c);
     c.print = 0;
@@ -21,12 +27,21 @@ struct CholmodCommon {
     // indefinite matrix, and a subdomain matrix that is not positive definite is a bug to report.
     c.final_ll = 1;
   }
-  ~CholmodCommon() { cholmod_finish(&c); }
+  ~CholmodCommon() {
+    cholmod_free_dense(&X, &c);
+    cholmod_free_dense(&Y, &c);
+    cholmod_free_dense(&E, &c);
+    cholmod_finish(&c);
+  }
 };
 
-cholmod_common* common() {
+CholmodCommon& shared() {
   static CholmodCommon instance;
-  return &instance.c;
+  return instance;
+}
+
+cholmod_common* common() {
+  return &shared().c;
 }
 
 // CHOLMOD's factorization kind: its own choice (supernodal when flops / nnz(L) >= 40), or forced.
@@ -71,7 +86,7 @@ class CholmodSolver final : public LocalSolver {
   }
 
   void solve(const double* b, double* x, int nrhs) override {
-    cholmod_common* c = common();
+    CholmodCommon& w = shared();
     cholmod_dense B;
     std::memset(&B, 0, sizeof(B));
     B.nrow = static_cast<size_t>(n_);
@@ -81,9 +96,10 @@ class CholmodSolver final : public LocalSolver {
     B.x = const_cast<double*>(b);
     B.xtype = CHOLMOD_REAL;
     B.dtype = CHOLMOD_DOUBLE;
-    if (!cholmod_solve2(CHOLMOD_A, L_, &B, nullptr, &X_, nullptr, &Y_, &E_, c))
+    // CHOLMOD reallocates the shared vectors when the size changes (one matrix size to the next).
+    if (!cholmod_solve2(CHOLMOD_A, L_, &B, nullptr, &w.X, nullptr, &w.Y, &w.E, &w.c))
       throw std::runtime_error("cholmod: solve failed");
-    std::memcpy(x, X_->x, sizeof(double) * B.nzmax);
+    std::memcpy(x, w.X->x, sizeof(double) * B.nzmax);
   }
 
   std::size_t factorBytes() const override {
@@ -103,16 +119,10 @@ class CholmodSolver final : public LocalSolver {
   void release() {
     cholmod_common* c = common();
     if (L_) cholmod_free_factor(&L_, c);
-    if (X_) cholmod_free_dense(&X_, c);
-    if (Y_) cholmod_free_dense(&Y_, c);
-    if (E_) cholmod_free_dense(&E_, c);
   }
   CholmodKind kind_;
   int n_ = 0;
   cholmod_factor* L_ = nullptr;
-  cholmod_dense* X_ = nullptr;
-  cholmod_dense* Y_ = nullptr;
-  cholmod_dense* E_ = nullptr;
 };
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "tfeti_DualOperators.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace tfeti {
@@ -38,11 +39,12 @@ DualOperator::DualOperator(Teuchos::RCP<const CrsMatrix> B, Teuchos::RCP<const O
 
 void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp /*mode: symmetric*/,
                          Scalar alpha, Scalar beta) const {
+  // One primal work vector: K+ applies in place (each subdomain's block is read before it is
+  // written), which saves a vector of the primal size.
   ensure(p1_, B_->getDomainMap(), X.getNumVectors());
-  ensure(p2_, B_->getDomainMap(), X.getNumVectors());
   B_->apply(X, *p1_, Teuchos::TRANS);
-  Kplus_->apply(*p1_, *p2_);
-  B_->apply(*p2_, Y, Teuchos::NO_TRANS, alpha, beta);
+  Kplus_->apply(*p1_, *p1_);
+  B_->apply(*p1_, Y, Teuchos::NO_TRANS, alpha, beta);
   applies_ += static_cast<long long>(X.getNumVectors());
 }
 
@@ -60,26 +62,26 @@ void DualPreconditioner::apply(const MultiVector& X, MultiVector& Y,
   const std::size_t nv = X.getNumVectors();
   ensure(q_, B_->getRangeMap(), nv);
   ensure(p1_, B_->getDomainMap(), nv);
-  ensure(p2_, B_->getDomainMap(), nv);
   Tpetra::deep_copy(*q_, X);
   scale(*q_);
   B_->apply(*q_, *p1_, Teuchos::TRANS);
-  p2_->putScalar(0.0);
+  // In place, one primal work vector: a subdomain's interface values are read before its block
+  // is overwritten (zero off the interface).
   for (std::size_t j = 0; j < nv; ++j) {
-    auto v = p1_->getData(j);
-    auto y = p2_->getDataNonConst(j);
+    auto y = p1_->getDataNonConst(j);
     std::size_t offset = 0;
     for (const auto& s : subdomains_) {
       const auto& b = s->interfaceDofs();
       vb_.resize(b.size());
       yb_.resize(b.size());
-      for (std::size_t k = 0; k < b.size(); ++k) vb_[k] = v[offset + b[k]];
+      for (std::size_t k = 0; k < b.size(); ++k) vb_[k] = y[offset + b[k]];
       s->applyPreconditionerBlock(vb_.data(), yb_.data());
+      std::fill(y.getRawPtr() + offset, y.getRawPtr() + offset + s->numDofs(), 0.0);
       for (std::size_t k = 0; k < b.size(); ++k) y[offset + b[k]] = yb_[k];
       offset += s->numDofs();
     }
   }
-  B_->apply(*p2_, *q_);
+  B_->apply(*p1_, *q_);
   scale(*q_);
   Y.update(alpha, *q_, beta);
 }

@@ -42,7 +42,7 @@ class DualOperator : public Operator {
  private:
   Teuchos::RCP<const CrsMatrix> B_;
   Teuchos::RCP<const Operator> Kplus_;
-  mutable Teuchos::RCP<MultiVector> p1_, p2_;
+  mutable Teuchos::RCP<MultiVector> p1_;
   mutable long long applies_ = 0;
 };
 
@@ -59,7 +59,7 @@ class DualPreconditioner : public Operator {
   Teuchos::RCP<const CrsMatrix> B_;
   SubdomainList subdomains_;
   ScalingGroups scaling_;
-  mutable Teuchos::RCP<MultiVector> p1_, p2_, q_;
+  mutable Teuchos::RCP<MultiVector> p1_, q_;
   mutable std::vector<double> vb_, yb_;
 };
 

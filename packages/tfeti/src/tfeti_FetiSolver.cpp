@@ -7,6 +7,7 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <chrono>
+#include <exception>
 #include <iostream>
 #include <limits>
 
@@ -20,21 +21,27 @@
 namespace tfeti {
 
 namespace {
-// Wall time of a phase, measured between barriers so that it is the slowest rank's time.
+// Wall time of a phase, measured between barriers so that it is the slowest rank's time, and,
+// with a log, the memory after it.
 class PhaseTimer {
  public:
-  PhaseTimer(const Comm& comm, double& into) : comm_(comm), into_(into) {
+  PhaseTimer(const Comm& comm, double& into, MemoryLog* log = nullptr, const char* phase = "")
+      : comm_(comm), into_(into), log_(log), phase_(phase) {
     comm_.barrier();
     start_ = std::chrono::steady_clock::now();
   }
   ~PhaseTimer() {
     comm_.barrier();
     into_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    // Unwinding (an error thrown on every rank): no report of a phase that did not finish.
+    if (log_ && std::uncaught_exceptions() == 0) log_->record(comm_, phase_);
   }
 
  private:
   const Comm& comm_;
   double& into_;
+  MemoryLog* log_;
+  const char* phase_;
   std::chrono::steady_clock::time_point start_;
 };
 
@@ -182,6 +189,10 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
             "the multiplier at which lambda = 0 is the solution when no load acts (c_I the gaps "
             "of the inequality rows; at the solution it is Q (c - B u), the gaps left open)",
             choice({"gap", "zero"}));
+    pl->set("Keep subdomain matrices", true,
+            "false: free each subdomain matrix K once its preconditioner is set up (a linear "
+            "solve needs it no more; about 200 bytes per unknown in 2D); update() then cannot "
+            "rebuild a preconditioner whose interface dofs changed");
     pl->set("Warm start", true,
             "SMALBE / penalty after update(): start from the multipliers of the previous solve "
             "(projected onto G lambda = e and the bounds) when the dual dimension is unchanged");
@@ -227,7 +238,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
 void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords) {
   const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
   const std::string solver = params_.get<std::string>("Local solver");
-  PhaseTimer t(*comm_, timings_.factorization);
+  PhaseTimer t(*comm_, timings_.factorization, &memory_, "factorization");
   subdomains_.clear();
   // An error in one subdomain is reported on every rank (no rank left waiting in a collective).
   collectively(*comm_, [&] {
@@ -239,8 +250,9 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
       kernel.kernel = sd.kernel;
       kernel.residualTolerance = params_.get<double>("Kernel tolerance");
       const std::vector<int> dirichletDofs = sd.mesh.dirichletDofs(sd.dofsPerNode);
+      // K and f move into the subdomain (data_ keeps the mesh, the kernel and the sizes).
       subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, coords[i],
-                                                        kernel, std::move(sd.K), sd.f,
+                                                        kernel, std::move(sd.K), std::move(sd.f),
                                                         dirichletDofs, formulation, solver));
     }
   });
@@ -253,7 +265,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
       parsePreconditioner(params_.get<std::string>("Preconditioner"));
   const std::string solver = params_.get<std::string>("Local solver");
   {
-    PhaseTimer t(*comm_, timings_.tearing);
+    PhaseTimer t(*comm_, timings_.tearing, &memory_, "tearing");
     TearingOptions opts;
     opts.formulation = formulation;
     const std::string gluing = params_.get<std::string>("Gluing");
@@ -282,12 +294,12 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
     if (formulation == Formulation::FETI) requireNoRowOnEliminatedDofs();
   }
   {
-    PhaseTimer t(*comm_, timings_.coarse);
+    PhaseTimer t(*comm_, timings_.coarse, &memory_, "coarse");
     coarse_ = std::make_unique<CoarseSpace>(tearing_, subdomains_,
                                             params_.get<std::string>("Coarse solver"));
   }
   {
-    PhaseTimer t(*comm_, timings_.preconditioner);
+    PhaseTimer t(*comm_, timings_.preconditioner, &memory_, "preconditioner");
     collectively(*comm_, [&] {
       for (std::size_t i = 0; i < subdomains_.size(); ++i) {
         std::vector<int> dofs;
@@ -298,6 +310,8 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
         // dofs: the interior factorization is redone only when they change.
         if (newSubdomains || dofs != subdomains_[i]->interfaceDofs())
           subdomains_[i]->setupPreconditioner(dofs, precType, solver);
+        // Freed one by one, so that K and the preconditioner's factors never coexist in full.
+        if (!params_.get<bool>("Keep subdomain matrices")) subdomains_[i]->releaseStiffness();
       }
     });
     if (precType != PreconditionerType::None)
@@ -308,7 +322,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
 }
 
 void FetiSolver::buildDualRhs() {
-  PhaseTimer t(*comm_, timings_.dualRhs);
+  PhaseTimer t(*comm_, timings_.dualRhs, &memory_, "dual_rhs");
   f_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
   {
     auto f = f_->getDataNonConst(0);
@@ -420,7 +434,7 @@ DualResult FetiSolver::solve() {
   Vector g(tearing_.multiplierMap);
   DualResult result;
   if (method == "PCPG") {
-    PhaseTimer t(*comm_, timings_.solve);
+    PhaseTimer t(*comm_, timings_.solve, &memory_, "solve");
     Tpetra::deep_copy(*lambda_, *lambda0_);
     Pcpg pcpg(F_, *coarse_, M_, params_.sublist("PCPG"));
     const long long before = F_->numApplies();
@@ -436,7 +450,7 @@ DualResult FetiSolver::solve() {
     result = solveQp(method);
   }
   {
-    PhaseTimer t(*comm_, timings_.recovery);
+    PhaseTimer t(*comm_, timings_.recovery, &memory_, "recovery");
     // u = K+ (f - B^T lambda) + R alpha, alpha fitted on the rows that hold with equality.
     MultiVector rhs(tearing_.primalMap, 1);
     u_vec_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
@@ -503,7 +517,7 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   using Qp = BoundConstrainedQp<Scalar, MV, Operator>;
   DualResult result;
   result.method = method;
-  PhaseTimer t(*comm_, timings_.solve);
+  PhaseTimer t(*comm_, timings_.solve, &memory_, "solve");
   const auto map = tearing_.multiplierMap;
   // lambda = lambda~ + mu: b = P (d - F lambda~), bounds l_I - lambda~_I <= mu_I <= u_I -
   // lambda~_I (l = 0, u = +inf for the non-penetration rows; a box for friction rows).

@@ -36,6 +36,7 @@
 #include "tfeti_CoarseSpace.hpp"
 #include "tfeti_CollectiveError.hpp"
 #include "tfeti_DualOperators.hpp"
+#include "tfeti_MemoryUsage.hpp"
 #include "tfeti_Pcpg.hpp"
 #include "tfeti_QpProblem.hpp"
 #include "tfeti_SubdomainMesh.hpp"
@@ -46,6 +47,7 @@ namespace tfeti {
 // mesh.dim is the spatial dimension (coords: dim per node); dofsPerNode is 1 (scalar) or
 // mesh.dim (elasticity), or anything with a kernel given. The kernel of K is found from
 // mesh.quads / mesh.elements (or the graph of K) unless `kernel` is given.
+// FetiSolver moves K and f into its subdomains: its data() keeps them empty.
 struct SubdomainData {
   SubdomainMesh mesh;
   int dofsPerNode = 1;
@@ -93,8 +95,9 @@ class FetiSolver {
  public:
   // "Formulation" (TFETI | FETI), "Kernel tolerance" (1e-8), "Gluing" (nonredundant | redundant),
   // "Gluing at Dirichlet nodes" (true), "Inequality row scaling" (joined | separate),
-  // "Preconditioner" (none | lumped | dirichlet), "Local
-  // solver" (cholmod | klu2 | tacho), "Dual solver" (auto | PCPG | SMALBE | penalty) and the
+  // "Preconditioner" (none | lumped | dirichlet), "Local solver" (cholmod | klu2 | tacho), "Dual
+  // solver" (auto | PCPG | SMALBE | penalty), "Keep subdomain matrices" (true; false frees K after
+  // the preconditioner's set-up) and the
   // sublists "PCPG", "MPRGP", "SMALBE" and "Penalty".
   static Teuchos::RCP<const Teuchos::ParameterList> validParameters();
   // "Preconditioning in face" is a parameter of the FETI list only: the solver sets it for MPRGP
@@ -198,6 +201,9 @@ class FetiSolver {
   GO coarseDimension() const { return coarse_->dimension(); }
   long long dualOperatorApplies() const { return F_->numApplies(); }
   const FetiTimings& timings() const { return timings_; }
+  // Resident and peak memory after each phase (the phases of timings(): factorization, tearing,
+  // coarse, preconditioner, dual_rhs, solve, recovery), the latest sample of each.
+  const MemoryLog& memory() const { return memory_; }
   // Bytes of all subdomain factors on all ranks (K+ and, if any, the preconditioner's).
   std::size_t globalFactorBytes() const;
   std::size_t globalPreconditionerFactorBytes() const;
@@ -234,6 +240,7 @@ class FetiSolver {
   Teuchos::RCP<MultiVector> f_, u_vec_;
   std::vector<std::vector<double>> u_;
   FetiTimings timings_;
+  MemoryLog memory_;
   Teuchos::RCP<std::ostream> out_;
 };
 

@@ -25,6 +25,14 @@ double diagonalOrOne(const CsrMatrix& A, int i) {
   return (k >= 0 && A.values[k] > 0.0) ? A.values[k] : 1.0;
 }
 
+// Work vectors of the solves, shared by every subdomain of the thread: one solve runs at a time,
+// and vectors per subdomain (three of its size) took 20 bytes per unknown.
+std::vector<double>& scratch(int which, std::size_t size) {
+  thread_local std::vector<double> buffers[2];
+  buffers[which].resize(size);
+  return buffers[which];
+}
+
 // Replaces rows and columns of the given dofs by their diagonal: decouples them while keeping
 // the scale of the matrix (and its symmetry).
 CsrMatrix decoupleDofs(const CsrMatrix& A, const std::vector<int>& dofs) {
@@ -110,8 +118,12 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
                              "kernel than the " +
                              std::to_string(kernelDim_) + " modes found (" + e.what() + ")");
   }
-  work_.resize(K_.rows);
+  numDofs_ = K_.rows;
   checkNoExtraKernel();
+}
+
+void Subdomain::releaseStiffness() {
+  K_ = CsrMatrix{};
 }
 
 std::string Subdomain::name() const {
@@ -119,9 +131,9 @@ std::string Subdomain::name() const {
 }
 
 void Subdomain::setLoad(std::vector<double> f) {
-  if (static_cast<int>(f.size()) != K_.rows)
+  if (static_cast<int>(f.size()) != numDofs_)
     throw std::invalid_argument(name() + ": the load vector f has " + std::to_string(f.size()) +
-                                " entries, K has " + std::to_string(K_.rows) + " rows");
+                                " entries, K has " + std::to_string(numDofs_) + " rows");
   f_ = std::move(f);
   for (int d : dirichlet_) f_[d] = 0.0;
 }
@@ -235,22 +247,26 @@ void Subdomain::chooseFixingDofs() {
 }
 
 void Subdomain::applyPseudoInverse(const double* b, double* x, int nrhs) {
-  const int n = K_.rows;
+  const int n = numDofs_;
   if (fixing_.empty()) {
     factor_->solve(b, x, nrhs);
     return;
   }
-  work_.resize(static_cast<std::size_t>(n) * nrhs);
-  std::copy(b, b + static_cast<std::size_t>(n) * nrhs, work_.begin());
+  std::vector<double>& work = scratch(0, static_cast<std::size_t>(n) * nrhs);
+  std::copy(b, b + static_cast<std::size_t>(n) * nrhs, work.begin());
   for (int j = 0; j < nrhs; ++j)
-    for (int d : fixing_) work_[static_cast<std::size_t>(j) * n + d] = 0.0;
-  factor_->solve(work_.data(), x, nrhs);
+    for (int d : fixing_) work[static_cast<std::size_t>(j) * n + d] = 0.0;
+  factor_->solve(work.data(), x, nrhs);
   for (int j = 0; j < nrhs; ++j)
     for (int d : fixing_) x[static_cast<std::size_t>(j) * n + d] = 0.0;
 }
 
 void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs, PreconditionerType type,
                                     const std::string& localSolver) {
+  if (type != PreconditionerType::None && !hasStiffness())
+    throw std::logic_error(name() +
+                           ": the preconditioner cannot be set up again: K was released after "
+                           "the first set-up (FETI \"Keep subdomain matrices\" = false)");
   precType_ = type;
   interface_ = interfaceDofs;
   std::sort(interface_.begin(), interface_.end());
@@ -265,7 +281,6 @@ void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs, Preco
     if (!isB[i]) interior_.push_back(i);
   if (interior_.empty()) return;
   Kbi_ = K_.submatrix(interface_, interior_);
-  Kib_ = K_.submatrix(interior_, interface_);
   interiorFactor_ = createLocalSolver(localSolver);
   try {
     interiorFactor_->factorize(K_.submatrix(interior_, interior_));
@@ -273,20 +288,24 @@ void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs, Preco
     throw std::runtime_error("subdomain " + std::to_string(id_) +
                              ": Dirichlet preconditioner, interior block: " + e.what());
   }
-  wi_.resize(interior_.size());
-  zi_.resize(interior_.size());
 }
 
 void Subdomain::applyPreconditionerBlock(const double* vb, double* yb) {
   Kbb_.multiply(vb, yb);
   if (precType_ != PreconditionerType::Dirichlet || interior_.empty()) return;
-  // S v = K_bb v - K_bi K_ii^{-1} K_ib v
-  Kib_.multiply(vb, wi_.data());
-  interiorFactor_->solve(wi_.data(), zi_.data());
+  // S v = K_bb v - K_bi K_ii^{-1} K_ib v, K_ib v = K_bi^T v: every w_i sums over the interface
+  // rows in increasing order, as a row of K_ib would.
+  std::vector<double>& wi = scratch(0, interior_.size());
+  std::vector<double>& zi = scratch(1, interior_.size());
+  std::fill(wi.begin(), wi.end(), 0.0);
+  for (int r = 0; r < Kbi_.rows; ++r)
+    for (int k = Kbi_.rowPtr[r]; k < Kbi_.rowPtr[r + 1]; ++k)
+      wi[Kbi_.colInd[k]] += Kbi_.values[k] * vb[r];
+  interiorFactor_->solve(wi.data(), zi.data());
   for (int r = 0; r < Kbi_.rows; ++r) {
     double s = 0.0;
     for (int k = Kbi_.rowPtr[r]; k < Kbi_.rowPtr[r + 1]; ++k)
-      s += Kbi_.values[k] * zi_[Kbi_.colInd[k]];
+      s += Kbi_.values[k] * zi[Kbi_.colInd[k]];
     yb[r] -= s;
   }
 }
