@@ -7,6 +7,7 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <chrono>
+#include <ctime>
 #include <iostream>
 #include <limits>
 
@@ -20,22 +21,36 @@
 namespace tfeti {
 
 namespace {
-// Wall time of a phase, measured between barriers so that it is the slowest rank's time.
+// Wall time of a phase, measured between barriers so that it is the slowest rank's time, and
+// the CPU time the ranks' processes spent in it (summed over ranks, every thread counted): on a
+// shared machine the wall time measures the load, the CPU time the work.
 class PhaseTimer {
  public:
-  PhaseTimer(const Comm& comm, double& into) : comm_(comm), into_(into) {
+  PhaseTimer(const Comm& comm, double& wall, double& cpu) : comm_(comm), wall_(wall), cpu_(cpu) {
     comm_.barrier();
     start_ = std::chrono::steady_clock::now();
+    cpuStart_ = processCpuSeconds();
   }
   ~PhaseTimer() {
+    const double cpu = processCpuSeconds() - cpuStart_;
     comm_.barrier();
-    into_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    wall_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    double sum = 0.0;
+    Teuchos::reduceAll(comm_, Teuchos::REDUCE_SUM, cpu, Teuchos::outArg(sum));
+    cpu_ += sum;
   }
 
  private:
+  static double processCpuSeconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+  }
   const Comm& comm_;
-  double& into_;
+  double& wall_;
+  double& cpu_;
   std::chrono::steady_clock::time_point start_;
+  double cpuStart_ = 0.0;
 };
 
 const char* const kPreconditioningInFace = "Preconditioning in face";
@@ -222,7 +237,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
 void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords) {
   const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
   const std::string solver = params_.get<std::string>("Local solver");
-  PhaseTimer t(*comm_, timings_.factorization);
+  PhaseTimer t(*comm_, timings_.factorization, cpuTimings_.factorization);
   subdomains_.clear();
   // An error in one subdomain is reported on every rank (no rank left waiting in a collective).
   collectively(*comm_, [&] {
@@ -248,7 +263,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
       parsePreconditioner(params_.get<std::string>("Preconditioner"));
   const std::string solver = params_.get<std::string>("Local solver");
   {
-    PhaseTimer t(*comm_, timings_.tearing);
+    PhaseTimer t(*comm_, timings_.tearing, cpuTimings_.tearing);
     TearingOptions opts;
     opts.formulation = formulation;
     const std::string gluing = params_.get<std::string>("Gluing");
@@ -274,12 +289,12 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
     if (formulation == Formulation::FETI) requireNoRowOnEliminatedDofs();
   }
   {
-    PhaseTimer t(*comm_, timings_.coarse);
+    PhaseTimer t(*comm_, timings_.coarse, cpuTimings_.coarse);
     coarse_ = std::make_unique<CoarseSpace>(tearing_, subdomains_,
                                             params_.get<std::string>("Coarse solver"));
   }
   {
-    PhaseTimer t(*comm_, timings_.preconditioner);
+    PhaseTimer t(*comm_, timings_.preconditioner, cpuTimings_.preconditioner);
     collectively(*comm_, [&] {
       for (std::size_t i = 0; i < subdomains_.size(); ++i) {
         std::vector<int> dofs;
@@ -300,7 +315,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
 }
 
 void FetiSolver::buildDualRhs() {
-  PhaseTimer t(*comm_, timings_.dualRhs);
+  PhaseTimer t(*comm_, timings_.dualRhs, cpuTimings_.dualRhs);
   f_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
   {
     auto f = f_->getDataNonConst(0);
@@ -412,7 +427,7 @@ DualResult FetiSolver::solve() {
   Vector g(tearing_.multiplierMap);
   DualResult result;
   if (method == "PCPG") {
-    PhaseTimer t(*comm_, timings_.solve);
+    PhaseTimer t(*comm_, timings_.solve, cpuTimings_.solve);
     Tpetra::deep_copy(*lambda_, *lambda0_);
     Pcpg pcpg(F_, *coarse_, M_, params_.sublist("PCPG"));
     const long long before = F_->numApplies();
@@ -428,7 +443,7 @@ DualResult FetiSolver::solve() {
     result = solveQp(method);
   }
   {
-    PhaseTimer t(*comm_, timings_.recovery);
+    PhaseTimer t(*comm_, timings_.recovery, cpuTimings_.recovery);
     // u = K+ (f - B^T lambda) + R alpha, alpha fitted on the rows that hold with equality.
     MultiVector rhs(tearing_.primalMap, 1);
     u_vec_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
@@ -495,7 +510,7 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   using Qp = BoundConstrainedQp<Scalar, MV, Operator>;
   DualResult result;
   result.method = method;
-  PhaseTimer t(*comm_, timings_.solve);
+  PhaseTimer t(*comm_, timings_.solve, cpuTimings_.solve);
   const auto map = tearing_.multiplierMap;
   // lambda = lambda~ + mu: b = P (d - F lambda~), bounds l_I - lambda~_I <= mu_I <= u_I -
   // lambda~_I (l = 0, u = +inf for the non-penetration rows; a box for friction rows).
@@ -792,7 +807,8 @@ double FetiSolver::timeDualApply(int repeats) const {
   x.randomize();
   double seconds = 0.0;
   {
-    PhaseTimer t(*comm_, seconds);
+    double cpu = 0.0;
+    PhaseTimer t(*comm_, seconds, cpu);
     for (int r = 0; r < repeats; ++r) F_->apply(x, y);
   }
   return seconds / repeats;
