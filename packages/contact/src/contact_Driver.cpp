@@ -163,8 +163,6 @@ int runSingle(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params
   s["preconditioner_factor_bytes"] =
       static_cast<unsigned long long>(solver.globalPreconditionerFactorBytes());
   s["timings"] = timingsJson(solver.timings(), result.iterations);
-  // CPU seconds of the same phases, summed over the ranks: comparable on a loaded machine.
-  s["cpu_timings"] = timingsJson(solver.cpuTimings(), result.iterations);
   if (out.get<bool>("Time dual operator")) {
     // One F apply streams every subdomain factor twice (forward and backward substitution):
     // its time against the factor bytes gives the achieved bandwidth.

@@ -7,7 +7,6 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <chrono>
-#include <ctime>
 #include <iostream>
 #include <limits>
 
@@ -21,36 +20,22 @@
 namespace tfeti {
 
 namespace {
-// Wall time of a phase, measured between barriers so that it is the slowest rank's time, and
-// the CPU time the ranks' processes spent in it (summed over ranks, every thread counted): on a
-// shared machine the wall time measures the load, the CPU time the work.
+// Wall time of a phase, measured between barriers so that it is the slowest rank's time.
 class PhaseTimer {
  public:
-  PhaseTimer(const Comm& comm, double& wall, double& cpu) : comm_(comm), wall_(wall), cpu_(cpu) {
+  PhaseTimer(const Comm& comm, double& into) : comm_(comm), into_(into) {
     comm_.barrier();
     start_ = std::chrono::steady_clock::now();
-    cpuStart_ = processCpuSeconds();
   }
   ~PhaseTimer() {
-    const double cpu = processCpuSeconds() - cpuStart_;
     comm_.barrier();
-    wall_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    double sum = 0.0;
-    Teuchos::reduceAll(comm_, Teuchos::REDUCE_SUM, cpu, Teuchos::outArg(sum));
-    cpu_ += sum;
+    into_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
 
  private:
-  static double processCpuSeconds() {
-    timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-  }
   const Comm& comm_;
-  double& wall_;
-  double& cpu_;
+  double& into_;
   std::chrono::steady_clock::time_point start_;
-  double cpuStart_ = 0.0;
 };
 
 const char* const kPreconditioningInFace = "Preconditioning in face";
@@ -237,7 +222,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
 void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords) {
   const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
   const std::string solver = params_.get<std::string>("Local solver");
-  PhaseTimer t(*comm_, timings_.factorization, cpuTimings_.factorization);
+  PhaseTimer t(*comm_, timings_.factorization);
   subdomains_.clear();
   // An error in one subdomain is reported on every rank (no rank left waiting in a collective).
   collectively(*comm_, [&] {
@@ -263,7 +248,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
       parsePreconditioner(params_.get<std::string>("Preconditioner"));
   const std::string solver = params_.get<std::string>("Local solver");
   {
-    PhaseTimer t(*comm_, timings_.tearing, cpuTimings_.tearing);
+    PhaseTimer t(*comm_, timings_.tearing);
     TearingOptions opts;
     opts.formulation = formulation;
     const std::string gluing = params_.get<std::string>("Gluing");
@@ -289,12 +274,12 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
     if (formulation == Formulation::FETI) requireNoRowOnEliminatedDofs();
   }
   {
-    PhaseTimer t(*comm_, timings_.coarse, cpuTimings_.coarse);
+    PhaseTimer t(*comm_, timings_.coarse);
     coarse_ = std::make_unique<CoarseSpace>(tearing_, subdomains_,
                                             params_.get<std::string>("Coarse solver"));
   }
   {
-    PhaseTimer t(*comm_, timings_.preconditioner, cpuTimings_.preconditioner);
+    PhaseTimer t(*comm_, timings_.preconditioner);
     collectively(*comm_, [&] {
       for (std::size_t i = 0; i < subdomains_.size(); ++i) {
         std::vector<int> dofs;
@@ -315,7 +300,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
 }
 
 void FetiSolver::buildDualRhs() {
-  PhaseTimer t(*comm_, timings_.dualRhs, cpuTimings_.dualRhs);
+  PhaseTimer t(*comm_, timings_.dualRhs);
   f_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
   {
     auto f = f_->getDataNonConst(0);
@@ -427,7 +412,7 @@ DualResult FetiSolver::solve() {
   Vector g(tearing_.multiplierMap);
   DualResult result;
   if (method == "PCPG") {
-    PhaseTimer t(*comm_, timings_.solve, cpuTimings_.solve);
+    PhaseTimer t(*comm_, timings_.solve);
     Tpetra::deep_copy(*lambda_, *lambda0_);
     Pcpg pcpg(F_, *coarse_, M_, params_.sublist("PCPG"));
     const long long before = F_->numApplies();
@@ -443,7 +428,7 @@ DualResult FetiSolver::solve() {
     result = solveQp(method);
   }
   {
-    PhaseTimer t(*comm_, timings_.recovery, cpuTimings_.recovery);
+    PhaseTimer t(*comm_, timings_.recovery);
     // u = K+ (f - B^T lambda) + R alpha, alpha fitted on the rows that hold with equality.
     MultiVector rhs(tearing_.primalMap, 1);
     u_vec_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
@@ -510,7 +495,7 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   using Qp = BoundConstrainedQp<Scalar, MV, Operator>;
   DualResult result;
   result.method = method;
-  PhaseTimer t(*comm_, timings_.solve, cpuTimings_.solve);
+  PhaseTimer t(*comm_, timings_.solve);
   const auto map = tearing_.multiplierMap;
   // lambda = lambda~ + mu: b = P (d - F lambda~), bounds l_I - lambda~_I <= mu_I <= u_I -
   // lambda~_I (l = 0, u = +inf for the non-penetration rows; a box for friction rows).
@@ -807,8 +792,7 @@ double FetiSolver::timeDualApply(int repeats) const {
   x.randomize();
   double seconds = 0.0;
   {
-    double cpu = 0.0;
-    PhaseTimer t(*comm_, seconds, cpu);
+    PhaseTimer t(*comm_, seconds);
     for (int r = 0; r < repeats; ++r) F_->apply(x, y);
   }
   return seconds / repeats;

@@ -195,8 +195,6 @@ class FetiSolver {
   GO coarseDimension() const { return coarse_->dimension(); }
   long long dualOperatorApplies() const { return F_->numApplies(); }
   const FetiTimings& timings() const { return timings_; }
-  // The same phases in CPU seconds of the processes, summed over the ranks.
-  const FetiTimings& cpuTimings() const { return cpuTimings_; }
   // Bytes of all subdomain factors on all ranks (K+ and, if any, the preconditioner's).
   std::size_t globalFactorBytes() const;
   std::size_t globalPreconditionerFactorBytes() const;
@@ -232,7 +230,7 @@ class FetiSolver {
   double normEstimate_ = 0.0, previousNorm_ = 0.0;
   Teuchos::RCP<MultiVector> f_, u_vec_;
   std::vector<std::vector<double>> u_;
-  FetiTimings timings_, cpuTimings_;
+  FetiTimings timings_;
   Teuchos::RCP<std::ostream> out_;
 };
 
