@@ -13,6 +13,11 @@ packages=(
   libmetis-dev libopenmpi-dev openmpi-bin
   # local subdomain factorization (CHOLMOD) and its siblings
   libsuitesparse-dev
+  # an optimized BLAS/LAPACK: installing it switches Debian's alternatives libblas.so.3 and
+  # liblapack.so.3 (netlib's reference code otherwise) to OpenBLAS for CHOLMOD, Trilinos and
+  # MueLu alike; the serial variant starts no threads (every MPI rank is one core). It cut the
+  # 3D setup's CPU time by 40 % (docs/benchmarks.md, "OpenBLAS and CHOLMOD's threads").
+  libopenblas0-serial
   # unstructured meshes: the Gmsh C++ API (gmsh.h) meshes .geo files and reads .msh files
   libgmsh-dev
   # output checks and plot scripts

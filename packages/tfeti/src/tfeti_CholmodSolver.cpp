@@ -1,6 +1,8 @@
 // CHOLMOD (SuiteSparse) sparse Cholesky behind the LocalSolver interface.
 #include <cholmod.h>
+#include <dlfcn.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -8,6 +10,21 @@
 
 namespace tfeti {
 namespace {
+
+// CHOLMOD's supernodal kernels open OpenMP parallel regions with a fixed num_threads clause (4 in
+// this build; CHOLMOD 3.0 has no Common->nthreads_max). Every MPI rank here is one core, so those
+// threads only compete with the other ranks: on 2 cores running 2 ranks they spent 15 % of the
+// samples spinning (docs/benchmarks.md, "3D setup profile"). A max-active-levels of 0 makes every
+// parallel region run on its encountering thread alone, whatever its num_threads clause.
+// The OpenMP runtime is looked up rather than linked: it is present only when CHOLMOD was built
+// with OpenMP. An explicit OMP_THREAD_LIMIT in the environment (e.g. one rank per node) is
+// respected instead.
+void keepCholmodSerial() {
+  if (std::getenv("OMP_THREAD_LIMIT")) return;
+  using SetLevels = void (*)(int);
+  if (auto set = reinterpret_cast<SetLevels>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels")))
+    set(0);
+}
 
 // One CHOLMOD workspace per process: subdomains are factorized and solved one after the other
 // (Kokkos is Serial here), and a common per subdomain would multiply its workspace. The same
@@ -20,6 +37,7 @@ struct CholmodCommon {
   cholmod_dense* Y = nullptr;
   cholmod_dense* E = nullptr;
   CholmodCommon() {
+    keepCholmodSerial();
     cholmod_start(&c);
     c.print = 0;
     c.error_handler = nullptr;

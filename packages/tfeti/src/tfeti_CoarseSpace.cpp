@@ -1,45 +1,24 @@
 #include "tfeti_CoarseSpace.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
-#include <TpetraExt_MatrixMatrix.hpp>
 
-#include <map>
-
+#include <algorithm>
 #include <stdexcept>
-#include "tfeti_Gather.hpp"
+
+#include "tfeti_CoarseGramian.hpp"
 
 namespace tfeti {
 
 std::unique_ptr<LocalSolver> CoarseSpace::factorizeGramian(const CrsMatrix& G,
                                                            const std::string& localSolver) const {
-  auto comm = G.getRowMap()->getComm();
-  CrsMatrix GGt(coarseMap_, 0);
-  Tpetra::MatrixMatrix::Multiply(G, false, G, true, GGt);
-
-  // Gather G G^T to every rank and factorize it there: the coarse problem is small, and a
-  // replicated factor makes every coarse solve communication-free after one Import.
-  std::vector<long long> ij;
-  std::vector<double> vals;
-  for (std::size_t l = 0; l < coarseMap_->getNodeNumElements(); ++l) {
-    const GO g = coarseMap_->getGlobalElement(static_cast<LO>(l));
-    Teuchos::ArrayView<const LO> cols;
-    Teuchos::ArrayView<const double> v;
-    GGt.getLocalRowView(static_cast<LO>(l), cols, v);
-    for (std::size_t k = 0; k < static_cast<std::size_t>(cols.size()); ++k) {
-      ij.insert(ij.end(), {g, GGt.getColMap()->getGlobalElement(cols[k])});
-      vals.push_back(v[k]);
-    }
-  }
-  const auto allIj = allGather(*comm, ij);
-  const auto allVals = allGather(*comm, vals);
-  std::vector<int> ri, ci;
-  for (std::size_t k = 0; k < allVals.size(); ++k) {
-    ri.push_back(static_cast<int>(allIj[2 * k]));
-    ci.push_back(static_cast<int>(allIj[2 * k + 1]));
-  }
-  const int nc = static_cast<int>(dimension_);
+  // G G^T assembled from its subdomain-pair blocks and replicated on every rank, which factorizes
+  // it there: the coarse problem is small, and a replicated factor makes every coarse solve
+  // communication-free after one Import.
+  const std::vector<GO> offset =
+      coarseBlockOffsets(*G.getRowMap()->getComm(), coarseOffset_, dimension_);
+  const CsrMatrix GGt = assembleGramian(G, offset);
   auto factor = createLocalSolver(localSolver);
-  factor->factorize(csrFromTriplets(nc, nc, ri, ci, allVals));
+  factor->factorize(GGt);
   return factor;
 }
 
@@ -83,30 +62,36 @@ CoarseSpace::CoarseSpace(const Tearing& tearing, const SubdomainList& subdomains
   coarseMap_ = Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(dimension_),
                                     Teuchos::ArrayView<const GO>(mine), 0, comm));
 
-  // G = R^T B^T, one row per kernel vector, assembled where the subdomain lives.
-  std::vector<std::map<GO, double>> gRows;
+  // G = R^T B^T, one row per kernel vector, assembled where the subdomain lives: the rows of B
+  // touching the subdomain (entries on one row summed), then one dot product per kernel vector.
+  std::vector<std::vector<RowEntry>> entries(subdomains.size());
+  std::vector<std::vector<GO>> cols(subdomains.size());
+  Teuchos::Array<size_t> counts;
+  for (std::size_t i = 0; i < subdomains.size(); ++i) {
+    entries[i] = tearing.subdomainRows[i];
+    std::stable_sort(entries[i].begin(), entries[i].end(),
+                     [](const RowEntry& a, const RowEntry& b) { return a.row < b.row; });
+    for (const auto& e : entries[i])
+      if (cols[i].empty() || cols[i].back() != e.row) cols[i].push_back(e.row);
+    counts.resize(counts.size() + subdomains[i]->kernelDim(), cols[i].size());
+  }
+  G_ = Teuchos::rcp(new CrsMatrix(coarseMap_, counts()));
+  std::vector<double> vals;
+  std::size_t gRow = 0;
   for (std::size_t i = 0; i < subdomains.size(); ++i) {
     const auto& s = *subdomains[i];
     const int n = s.numDofs();
-    for (int k = 0; k < s.kernelDim(); ++k) {
-      std::map<GO, double> entries;
-      for (const auto& e : tearing.subdomainRows[i])
-        entries[e.row] += e.coef * s.kernel()[static_cast<std::size_t>(k) * n + e.dof];
-      gRows.push_back(std::move(entries));
+    for (int k = 0; k < s.kernelDim(); ++k, ++gRow) {
+      const double* R = s.kernel().data() + static_cast<std::size_t>(k) * n;
+      vals.assign(cols[i].size(), 0.0);
+      std::size_t c = 0;
+      for (const auto& e : entries[i]) {
+        while (cols[i][c] != e.row) ++c;
+        vals[c] += e.coef * R[e.dof];
+      }
+      G_->insertGlobalValues(mine[gRow], Teuchos::ArrayView<const GO>(cols[i]),
+                             Teuchos::ArrayView<const double>(vals));
     }
-  }
-  Teuchos::Array<size_t> counts(gRows.size());
-  for (std::size_t r = 0; r < gRows.size(); ++r) counts[r] = gRows[r].size();
-  G_ = Teuchos::rcp(new CrsMatrix(coarseMap_, counts()));
-  for (std::size_t r = 0; r < gRows.size(); ++r) {
-    std::vector<GO> cols;
-    std::vector<double> vals;
-    for (const auto& [c, v] : gRows[r]) {
-      cols.push_back(c);
-      vals.push_back(v);
-    }
-    G_->insertGlobalValues(mine[r], Teuchos::ArrayView<const GO>(cols),
-                           Teuchos::ArrayView<const double>(vals));
   }
   G_->fillComplete(tearing.multiplierMap, coarseMap_);
   if (dimension_ == 0) return;
