@@ -63,11 +63,22 @@
                                           B u = c on the gluing and tied rows to 1e-6 of
                                           max|u|, at most N iterations, and the same count and
                                           max|u| (1e-6) in every DIR (other rank counts)
-  check_summary.py same_nonlinear DIR1 DIR2 ...
+  check_summary.py same_nonlinear [--friction] DIR1 DIR2 ...
                                           the same load steps and, per step, p_max, contact
                                           extent and max von Mises to 1e-5, max plastic strain
                                           to 1e-3
                                           (other rank counts, or a run continued by restart)
+                                          and, with --friction, the friction
+                                          results: contact keys, per node
+                                          (final and per-step contact CSVs) the multipliers,
+                                          slip increment, accumulated and net slip to 1e-5 of
+                                          the column's largest value, the same states
+  check_summary.py friction_fields DIR    the accumulated slip step by step (per-step CSVs) and
+                                          the VTU's friction point data against the CSV
+  check_summary.py tresca_bonded TRESCA BONDED [--tol T]
+                                          Tresca with a huge slip bound against the pair
+                                          bonded: both closed and sticking everywhere, the
+                                          reactions, tangential force and displacements to T
   check_summary.py nonlinear_vs_elastic NONLINEAR ELASTIC [--tol T]
                                           a one-step nonlinear run of a linear elastic material
                                           against the elastic contact run: p_max and the contact
@@ -637,9 +648,70 @@ def nonlinear(d, force_tol, hertz_tol):
           f"extent {c['contact_extent']:.5e}, force error {c['force_relative_error']:.1e}")
 
 
-def same_nonlinear(dirs):
+FRICTION_KEYS = ("normal_force", "tangential_force", "max_accumulated_slip", "max_net_slip")
+FRICTION_COLUMNS = ("lambda", "tangential_force", "slip_increment", "accumulated_slip", "net_slip")
+
+
+def read_rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def same_friction(d, ref_dir, tol):
+    """Two frictional runs' friction results: the contact keys FRICTION_KEYS to tol relative; per
+    node (matched by its id) in the final contact CSV and in every per-step CSV both have, the
+    multipliers, the step's slip and the accumulated slip to tol of the column's largest value,
+    and the same state (stick or slip; but at the transition, see at_bound). Returns the largest
+    differences."""
+    import glob
+    import os
+    a, b = load(ref_dir)["contact"], load(d)["contact"]
+    fr = load(ref_dir)["parameters"]["Contact problem"]["Friction"]
+    for key in FRICTION_KEYS:
+        if abs(a[key] - b[key]) > tol * max(abs(a[key]), 1e-300):
+            fail(f"{d}: contact.{key} {b[key]} differs from {a[key]} ({ref_dir})")
+    files = ["contact_pressure.csv"] + sorted(
+        os.path.basename(p) for p in glob.glob(ref_dir + "/contact_pressure_step_*.csv")
+        if os.path.exists(d + "/" + os.path.basename(p)))
+    worst = {c: 0.0 for c in FRICTION_COLUMNS}
+    for name in files:
+        ra = {r["node"]: r for r in read_rows(ref_dir + "/" + name)}
+        rb = {r["node"]: r for r in read_rows(d + "/" + name)}
+        if set(ra) != set(rb):
+            fail(f"{d}/{name}: other slave nodes than {ref_dir}/{name}")
+        for col in FRICTION_COLUMNS:
+            scale = max(abs(float(r[col])) for r in ra.values())
+            for n, r in ra.items():
+                diff = abs(float(r[col]) - float(rb[n][col]))
+                worst[col] = max(worst[col], diff / scale if scale > 0 else diff)
+                if diff > tol * scale:
+                    fail(f"{d}/{name}: node {n} {col} {rb[n][col]} differs from {r[col]} "
+                         f"({ref_dir}; tolerance {tol} x {scale:.3e})")
+        for n, r in ra.items():
+            # A node exactly at the stick/slip transition (|lambda_T| at its bound to 1e-4 in
+            # both runs) may be classified either way by rounding; any other must agree.
+            if r["state"] != rb[n]["state"] and not (at_bound(r, fr) and at_bound(rb[n], fr)):
+                fail(f"{d}/{name}: node {n} is {rb[n]['state']}, {r['state']} in {ref_dir}")
+    return files, worst
+
+
+def at_bound(row, friction):
+    """|lambda_T| within 1e-4 of its bound (Coulomb: mu lambda_N; Tresca: the traction g)."""
+    if friction["Friction law"] == "Coulomb":
+        bound, value = friction["Friction coefficient"] * float(row["lambda"]), row["tangential_force"]
+    else:
+        bound, value = friction["Slip bound"], row["tangential_traction"]
+    return bound > 0 and abs(abs(float(value)) - bound) <= 1e-4 * bound
+
+
+def same_nonlinear(dirs, friction=False):
     ref = load(dirs[0])["steps"]
     for d in dirs[1:]:
+        if friction:
+            files, worst = same_friction(d, dirs[0], 1e-5)
+            print(f"OK: {d}: friction results of {len(files)} contact CSVs agree, largest "
+                  "differences relative to the column's largest value: " +
+                  ", ".join(f"{c} {v:.1e}" for c, v in worst.items()))
         other = load(d)["steps"]
         if [s["load_factor"] for s in other] != [s["load_factor"] for s in ref]:
             fail(f"{d}: load steps {[s['load_factor'] for s in other]} differ from "
@@ -850,6 +922,149 @@ def same_final(dirs):
     print(f"OK: {len(dirs)} runs end in the same state")
 
 
+def vtu_point_data(path, names):
+    """Points (x, y, z per point) and the named point-data arrays of one ASCII VTU piece."""
+    import re
+    with open(path) as f:
+        xml = f.read()
+
+    def array(name):
+        m = re.search(r'<DataArray[^>]*Name="%s"[^>]*>(.*?)</DataArray>' % name, xml, re.S)
+        if not m:
+            fail(f"{path}: no DataArray {name}")
+        return [float(v) for v in m.group(1).split()]
+    return array("Points"), {n: array(n) for n in names}
+
+
+STATE_CODES = {"open": 0, "stick": 1, "slip": 2}
+
+
+def friction_fields(d):
+    """The friction history and fields of a frictional nonlinear run with per-step contact CSVs
+    and a final VTU: per node (its id), the accumulated slip of every step is the previous
+    step's plus |slip increment| when the node is closed (the net slip: plus the signed
+    increment), the path is at least |net| and positive at every node that slipped; the VTU's
+    friction point data (contact_pressure, tangential_traction, slip_increment,
+    accumulated_slip, net_slip, friction_state) at every point that is a slave node with a row
+    equal the final contact CSV's at that node (position x + u to 1e-9 of the extent, values to
+    1e-8 of the column's largest), -1 state and zeros elsewhere."""
+    import glob
+    s = load(d)
+    steps = sorted(glob.glob(d + "/contact_pressure_step_*.csv"))
+    if len(steps) < 2:
+        fail(f"{d}: fewer than 2 per-step contact CSVs")
+    acc = {}
+    worst = 0.0
+    for path in steps:
+        rows = read_rows(path)
+        scale = max(abs(float(r["slip_increment"])) for r in rows) or 1.0
+        for r in rows:
+            path0, net0 = acc.get(r["node"], (0.0, 0.0))
+            ds = float(r["slip_increment"]) if r["state"] != "open" else 0.0
+            expect = (path0 + abs(ds), net0 + ds)
+            got = (float(r["accumulated_slip"]), float(r["net_slip"]))
+            err = max(abs(e - g) for e, g in zip(expect, got)) / scale
+            worst = max(worst, err)
+            if err > 1e-9:
+                fail(f"{path}: node {r['node']} accumulated slip {got} against the previous "
+                     f"step's plus this step's {expect}")
+            if got[0] < abs(got[1]) - 1e-12 * scale:
+                fail(f"{path}: node {r['node']}: path {got[0]} below |net| {abs(got[1])}")
+            acc[r["node"]] = got
+    final = read_rows(d + "/contact_pressure.csv")
+    slipped = [r for r in final if r["state"] == "slip"]
+    if not slipped or min(float(r["accumulated_slip"]) for r in slipped) <= 0.0:
+        fail(f"{d}: no slipping node, or one without accumulated slip")
+    names = ("contact_pressure", "tangential_traction", "slip_increment", "accumulated_slip",
+             "net_slip", "friction_state")
+    columns = {"contact_pressure": "pressure", "tangential_traction": "tangential_traction",
+               "slip_increment": "slip_increment", "accumulated_slip": "accumulated_slip",
+               "net_slip": "net_slip"}
+    pieces = sorted(glob.glob(d + "/solution_*.vtu"))
+    if not pieces:
+        fail(f"{d}: no solution_*.vtu")
+    xs = [float(r["x"]) for r in final] + [float(r["y"]) for r in final]
+    extent = max(xs) - min(xs)
+    scales = {n: max(abs(float(r[c])) for r in final) or 1.0 for n, c in columns.items()}
+    seen, points = set(), 0
+    for path in pieces:
+        pts, f = vtu_point_data(path, names + ("displacement",))
+        u = f["displacement"]
+        for k in range(len(pts) // 3):
+            state = f["friction_state"][k]
+            if state < 0:
+                if state != -1 or any(f[n][k] != 0.0 for n in columns):
+                    fail(f"{path}: point {k} without a contact row has friction values")
+                continue
+            x, y = pts[3 * k] + u[3 * k], pts[3 * k + 1] + u[3 * k + 1]
+            match = [r for r in final if abs(float(r["x"]) - x) <= 1e-9 * extent and
+                     abs(float(r["y"]) - y) <= 1e-9 * extent]
+            if len(match) != 1:
+                fail(f"{path}: point {k} at ({x}, {y}) matches {len(match)} contact CSV rows")
+            r = match[0]
+            if STATE_CODES[r["state"]] != state:
+                fail(f"{path}: point {k} friction_state {state}, the CSV says {r['state']}")
+            for n, c in columns.items():
+                if abs(f[n][k] - float(r[c])) > 1e-8 * scales[n]:
+                    fail(f"{path}: point {k} {n} {f[n][k]} against the CSV's {r[c]}")
+            seen.add(r["node"])
+            points += 1
+    if seen != {r["node"] for r in final}:
+        fail(f"{d}: {len(final) - len(seen)} contact CSV nodes missing from the VTU")
+    print(f"OK: {d}: accumulated slip over {len(steps)} steps (worst {worst:.1e} of the step's "
+          f"largest slip), largest path {s['contact']['max_accumulated_slip']:.4e} m, net "
+          f"{s['contact']['max_net_slip']:.4e} m; VTU friction fields at {points} points "
+          f"({len(seen)} slave nodes) equal the CSV")
+
+
+def tresca_bonded(tdir, bdir, tol):
+    """Tresca with a huge slip bound against the same plate bonded (Contact type = bonded): the
+    bonded pair is closed everywhere (every normal multiplier > 0, so it is also a solution of
+    the unilateral problem) and every Tresca node sticks; the prescribed entries' reactions (the
+    top edge's normal and tangential forces), the Tresca tangential force against the bonded
+    tangential reaction, and every displacement (VTU points by position) agree to tol (of
+    max |u| for the displacements)."""
+    t, b = load(tdir), load(bdir)
+    for s, d in ((t, tdir), (b, bdir)):
+        if not s["converged"]:
+            fail(f"{d}: did not converge")
+    if b.get("contact_type") != "bonded":
+        fail(f"{bdir}: contact type {b.get('contact_type')}, not bonded")
+    bonded = read_rows(b["contact_csv"])
+    if min(float(r["lambda"]) for r in bonded) <= 0.0:
+        fail(f"{bdir}: a bonded node pulls (lambda <= 0): the pair opens, no fair comparison")
+    tres = read_rows(t["contact_csv"])
+    if any(r["state"] != "stick" for r in tres) or len(tres) != len(bonded):
+        fail(f"{tdir}: not every one of the {len(bonded)} nodes sticks")
+    diffs = []
+    rt = {(e["boundary"], e["component"]): e["reaction"] for e in t["prescribed"]}
+    rb = {(e["boundary"], e["component"]): e["reaction"] for e in b["prescribed"]}
+    for key, v in rb.items():
+        diffs.append((f"reaction {key[0]} u_{'xyz'[key[1]]}", abs(rt[key] - v) / abs(v)))
+    qb = [v for (name, c), v in rb.items() if c == 0][0]
+    qt = t["contact"]["tangential_force"]
+    diffs.append(("tangential force", abs(abs(qt) - abs(qb)) / abs(qb)))
+    ub = {}
+    for _, x, y, _, ux, uy, _ in vtu_nodes(bdir):
+        ub[(round(x, 9), round(y, 9))] = (ux, uy)
+    scale = b["max_abs_u"]
+    worst = 0.0
+    for _, x, y, _, ux, uy, _ in vtu_nodes(tdir):
+        ref = ub.get((round(x, 9), round(y, 9)))
+        if ref is None:
+            fail(f"{tdir}: a point at ({x}, {y}) the bonded run does not have")
+        worst = max(worst, abs(ux - ref[0]) / scale, abs(uy - ref[1]) / scale)
+    diffs.append(("max |u_Tresca - u_bonded| / max|u|", worst))
+    for name, v in diffs:
+        if v > tol:
+            fail(f"{tdir}: {name} differs from the bonded run by {v:.2e} > {tol:.0e}")
+    print(f"OK: Tresca g = {t['contact']['slip_bound']:.0e} against bonded: tangential force "
+          f"{qt:.10e} (bonded reaction {qb:.10e}); " +
+          ", ".join(f"{n} {v:.1e}" for n, v in diffs) +
+          f"; max ratio {t['contact']['max_tangential_ratio']:.2e}, bonded lambda_N > 0 at all "
+          f"{len(bonded)} nodes")
+
+
 def option(args, name, default):
     return float(args[args.index(name) + 1]) if name in args else default
 
@@ -900,7 +1115,7 @@ if __name__ == "__main__":
     elif mode == "nonlinear":
         nonlinear(args[0], option(args, "--force-tol", 1e-6), option(args, "--hertz-tol", 0.0))
     elif mode == "same_nonlinear":
-        same_nonlinear(args)
+        same_nonlinear([a for a in args if a != "--friction"], "--friction" in args)
     elif mode == "nonlinear_vs_elastic":
         nonlinear_vs_elastic(args[0], args[1], option(args, "--tol", 1e-3))
     elif mode == "plastic":
@@ -914,6 +1129,10 @@ if __name__ == "__main__":
     elif mode == "friction":
         friction(args[0], args[1], option(args, "--force", 0.0), option(args, "--mu", 0.0),
                  option(args, "--tol", 1e-6), option(args, "--resultant-tol", None))
+    elif mode == "friction_fields":
+        friction_fields(args[0])
+    elif mode == "tresca_bonded":
+        tresca_bonded(args[0], args[1], option(args, "--tol", 1e-6))
     elif mode == "arc_grows":
         arc_grows(args[0], args[1])
     else:

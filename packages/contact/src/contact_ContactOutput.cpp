@@ -157,7 +157,9 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
   // Friction adds its columns; a frictionless run's file is unchanged.
   const bool friction = !nodes.empty() && nodes.front().frictionState >= 0;
   csv << (dim == 3 ? "x,y,z,lambda,pressure,radius" : "x,y,lambda,pressure,angle")
-      << (friction ? ",tangential_force,tangential_traction,slip_increment,state\n" : "\n")
+      << (friction ? ",tangential_force,tangential_traction,slip_increment,state,accumulated_slip,"
+                     "net_slip,node\n"
+                   : "\n")
       << std::setprecision(12);
   for (const auto& n : nodes) {
     csv << n.x << "," << n.y << ",";
@@ -165,7 +167,8 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
     csv << n.lambda << "," << n.pressure << "," << (dim == 3 ? n.radius : n.angle);
     if (friction)
       csv << "," << n.tangentialForce << "," << n.tangentialTraction << "," << n.slip << ","
-          << frictionStateName(n.frictionState);
+          << frictionStateName(n.frictionState) << "," << n.accumulatedSlip << "," << n.netSlip
+          << "," << n.slaveNode;
     csv << "\n";
   }
 }

@@ -33,6 +33,10 @@ struct ContactNode {
   int frictionState = -1;
   double tangentialForce = 0.0, tangentialTraction = 0.0, slip = 0.0, tangent[3] = {0, 0, 0};
   double slipBound = 0.0;  // the bound of |tangentialForce| in the last solve
+  // Over the load steps so far, this one included (contact_FrictionHistory.hpp): the slip's
+  // path length, sum |slip| over the steps that ended with the node closed, and its signed sum
+  // along the node's tangent (2D; 3D: along the first tangent).
+  double accumulatedSlip = 0.0, netSlip = 0.0;
 };
 
 // How the contact zone's extent is measured. 2D: the half-width along x (a contact centred at
@@ -86,7 +90,8 @@ struct PlaneHalfWidth {
 std::vector<PlaneHalfWidth> halfWidthPerPlane(const std::vector<ContactNode>& nodes);
 
 // Rank 0 writes the nodes as CSV: x,y,lambda,pressure,angle (2D) or x,y,z,lambda,pressure,radius
-// (3D); throws naming the file.
+// (3D), with friction then tangential_force,tangential_traction,slip_increment,state,
+// accumulated_slip,net_slip,node (the slave node's global id); throws naming the file.
 void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
                      const std::vector<ContactNode>& nodes, int dim = 2);
 

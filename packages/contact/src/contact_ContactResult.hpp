@@ -85,7 +85,7 @@ struct ContactResult {
 
   FetiDimensions feti;
   tfeti::DualResult qp;  // the (last) QP solve: counters, residual history, method, rho
-  std::string contactType = "frictionless";  // elastic_contact: frictionless | tied
+  std::string contactType = "frictionless";  // elastic_contact: frictionless | tied | bonded
   // The bodies and their materials (summary.json: "materials" per body, and "material" when
   // every body has the same).
   std::vector<ElasticContactSpec::Body> materials;

@@ -93,6 +93,8 @@ struct ContactSolver::Run {
   double loadNorm = 0.0, appliedForce = 0.0;
   double loadDirection[3] = {0.0, 0.0, 0.0};
   NonlinearHistory history;
+  FrictionSpec friction;
+  FrictionHistory frictionHistory;  // read by a restart, kept up to date by the load steps
   std::vector<plasticity::StressField> stresses;  // elastic_contact: of the solution
   std::vector<ContactNode> nodes;                 // elastic_contact: of the solution
 
@@ -148,6 +150,7 @@ void ContactSolver::setup() {
   if (!r.linear) checkNonlinearParameters(params);
   if (!r.linear) r.options = nonlinearOptionsFrom(params);
   r.spec = r.linear ? elasticContactSpec(params) : nonlinearContactSpec(params);
+  r.friction = frictionSpec(params, r.spec.slave, r.spec.master);
   r.feti = fetiParameters(params, r.spec);
   if (!dir_.empty() && comm_->getRank() == 0) std::filesystem::create_directories(dir_);
 
@@ -192,7 +195,8 @@ void ContactSolver::setup() {
       throw std::invalid_argument(
           "Nonlinear: \"Restart\" reads OUTPUT/restart: set the output directory");
     std::vector<SubdomainRestart> saved;
-    r.history = readRestart(dir_ + "/restart", problem, saved);
+    r.history = readRestart(dir_ + "/restart", problem, saved,
+                            r.friction.active() ? &r.frictionHistory : nullptr);
     for (std::size_t i = 0; i < problem.local.size(); ++i) {
       model.u[i] = saved[i].displacement;
       if (model.plastic[i]) model.plastic[i]->setCommittedHistory(saved[i].history);
@@ -249,7 +253,9 @@ ContactResult ContactSolver::solve() {
   LoadStepIteration iteration(comm_, model, solver, opt, r.spec.slave, r.spec.master,
                               r.spec.obstacle ? &*r.spec.obstacle : nullptr, r.loadNorm);
   // Friction (nonlinear_contact only): tangential rows beside the contact rows of every iteration.
-  iteration.friction = frictionSpec(params_, r.spec.slave, r.spec.master);
+  iteration.friction = r.friction;
+  // A restart continues the friction state of the step it starts from.
+  iteration.frictionBounds = r.frictionHistory.bounds;
   if (root && r.verbosity > 1 && !r.linear)
     iteration.onIteration = [&](const IterationRecord& rec) {
       std::cout << "  step " << rec.step << " (t = " << rec.loadFactor << ") iteration "
@@ -260,6 +266,7 @@ ContactResult ContactSolver::solve() {
     };
   NonlinearStepOutput output(comm_, model, solver, opt, dir_);
   output.friction = iteration.friction;
+  output.accumulatedSlip = r.frictionHistory.slip;
   std::vector<FixedPointStep> fixedPointSteps;  // Coulomb, per converged step
   const std::string restartDir = dir_ + "/restart";
   const auto writeTables = [&]() {
@@ -364,7 +371,13 @@ ContactResult ContactSolver::solve() {
     }
     if (files) output.writeContactCsv(dir_ + "/contact_pressure_" + base + ".csv");
     writeTables();
-    if (files) saveRestart(*comm_, restartDir, history, model);
+    if (r.friction.active()) {
+      output.commitSlip();
+      r.frictionHistory = {output.accumulatedSlip, iteration.frictionBounds};
+    }
+    if (files)
+      saveRestart(*comm_, restartDir, history, model,
+                  r.friction.active() ? &r.frictionHistory : nullptr);
     if (root && r.verbosity > 0)
       std::cout << "nonlinear_contact: step " << step << " converged at load factor " << t << " in "
                 << rec.outerIterations << " iterations (" << rec.hessianMultiplications
@@ -408,7 +421,7 @@ ContactResult ContactSolver::solve() {
   res.feti.dualOperatorApplies = static_cast<long long>(solver.dualOperatorApplies());
   res.feti.factorBytes = static_cast<unsigned long long>(solver.globalFactorBytes());
   res.qp = lastQp;
-  res.contactType = r.spec.tied ? "tied" : "frictionless";
+  res.contactType = r.spec.bonded ? "bonded" : r.spec.tied ? "tied" : "frictionless";
   res.history = history;
   res.converged = r.linear ? !qpFailed : !failed && !stopped;
   res.exitCode = failed ? 3 : qpFailed ? 2 : 0;

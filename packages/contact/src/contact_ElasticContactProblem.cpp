@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "contact_SurfaceWeights.hpp"
+#include "contact_TangentialRows.hpp"
 #include "tfeti_SubdomainDistribution.hpp"
 #include "tfeti_SubdomainMesh.hpp"
 
@@ -417,6 +418,16 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   for (int n : p.master->masterNodes()) surface.insert(n);
   p.surfaceNodes.assign(surface.begin(), surface.end());
   updateContact(p, {}, comm.getRank(), spec.slave, spec.master);
+  if (spec.bonded && comm.getRank() == 0) {
+    // Bonded: beside each contact row its tangential rows, B_T u = 0 (held with equality as the
+    // contact rows): no relative motion of the pair along the surface either.
+    auto dofOf = [&](int node, int component) {
+      return std::make_pair(p.copyOf[node].first, dim * p.copyOf[node].second + component);
+    };
+    for (const auto& row : p.contact.rows)
+      for (const ContactRow& t : tangentialRows(row, dim))
+        p.inequalities.push_back(toInequalityRow(t, dofOf));
+  }
 
   // Lumping weights: a slave node's share of the slave boundary's length (2D) or area (3D); the
   // contact pressure is its multiplier (a nodal force; per unit thickness in 2D) divided by it.

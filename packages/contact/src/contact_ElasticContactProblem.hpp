@@ -50,8 +50,10 @@ struct ElasticContactSpec {
   std::string slave, master;  // the contact pair
   // A rigid obstacle as the master instead of a Master boundary (its dim is the mesh's).
   std::optional<RigidObstacle> obstacle;
-  double searchRadius = 0.0;           // 0: a tenth of the mesh's extent
-  bool tied = false;                   // Contact type = tied: the rows held with equality
+  double searchRadius = 0.0;  // 0: a tenth of the mesh's extent
+  bool tied = false;          // Contact type = tied or bonded: the rows held with equality
+  // Contact type = bonded: the contact rows' tangential rows join them (held with equality too).
+  bool bonded = false;
   std::string distribution = "graph";  // subdomains to ranks: graph (Zoltan2) or block
   // The contact zone's shape (how its extent is reported): auto, line or point; point needs a
   // 3D mesh.

@@ -119,12 +119,13 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     throw std::invalid_argument("Contact problem: \"Slave\" and \"Master\" both name \"" +
                                 spec.slave + "\"; a contact pair needs two different boundaries");
   spec.searchRadius = cp.get<double>("Search radius");
-  spec.tied = cp.get<std::string>("Contact type") == "tied";
+  const std::string contactType = cp.get<std::string>("Contact type");
+  spec.bonded = contactType == "bonded";
+  spec.tied = contactType == "tied" || spec.bonded;
   if (spec.tied && params.get<std::string>("Problem") != "elastic_contact")
-    throw std::invalid_argument(
-        "Contact problem: \"Contact type\" = tied is available for "
-        "Problem = elastic_contact only (got " +
-        params.get<std::string>("Problem") + ")");
+    throw std::invalid_argument("Contact problem: \"Contact type\" = " + contactType +
+                                " is available for Problem = elastic_contact only (got " +
+                                params.get<std::string>("Problem") + ")");
   const auto& ro = cp.sublist("Rigid obstacle");
   const std::string type = ro.get<std::string>("Type");
   if (type != "none") {
@@ -201,9 +202,10 @@ void addElasticContactParameters(ParameterList& pl) {
   cp.set("Contact type", "frictionless",
          "frictionless: B_I u <= gap, contact pressure >= 0; tied: B_I u = gap, the pair bonded "
          "in the normal direction (the same rows held with equality, pressure of either sign: a "
-         "linear problem solved by PCPG; elastic_contact only)",
+         "linear problem solved by PCPG; elastic_contact only); bonded: tied, and the tangential "
+         "rows B_T u = 0 beside them (no relative motion along the surface either)",
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-             Teuchos::tuple<std::string>("frictionless", "tied"), "Contact type")));
+             Teuchos::tuple<std::string>("frictionless", "tied", "bonded"), "Contact type")));
   cp.set("Search radius", 0.0,
          "slave nodes farther from the master get no row; 0: a tenth of "
          "the mesh's extent",
@@ -277,7 +279,11 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   int restartStep = -1;
   if (nonlinear && params.sublist("Nonlinear").get<bool>("Restart")) {
     std::vector<SubdomainRestart> saved;
-    restartStep = readRestart(outputDirectory + "/restart", problem, saved).step;
+    FrictionHistory friction;
+    const bool frictional = frictionSpec(params, spec.slave, spec.master).active();
+    restartStep =
+        readRestart(outputDirectory + "/restart", problem, saved, frictional ? &friction : nullptr)
+            .step;
   }
   const auto rows = static_cast<long long>(problem.contact.rows.size());
   const std::string solver = tfeti::FetiSolver::dualSolverFor(fetiParameters(params, spec), rows);

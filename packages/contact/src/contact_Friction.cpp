@@ -195,11 +195,14 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const Frict
                      int dim) {
   double force = 0.0, ratio = 0.0, stickLo = 0.0, stickHi = 0.0, closedLo = 0.0, closedHi = 0.0;
   long long slip = 0, stick = 0, closed = 0;
-  double normal = 0.0;
+  double normal = 0.0, maxPath = 0.0, maxNet = 0.0, maxStep = 0.0;
   for (const auto& n : nodes) {
     force += n.tangentialForce * n.tangent[0];
     normal += n.lambda;
+    maxPath = std::max(maxPath, n.accumulatedSlip);
+    maxNet = std::max(maxNet, std::abs(n.netSlip));
     if (n.frictionState == 0) continue;
+    maxStep = std::max(maxStep, std::abs(n.slip));
     closedLo = closed ? std::min(closedLo, n.x) : n.x;
     closedHi = closed ? std::max(closedHi, n.x) : n.x;
     ++closed;
@@ -224,6 +227,9 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const Frict
   f["stick_nodes"] = stick;
   if (dim == 2) f["stick_half_width"] = stick ? 0.5 * (stickHi - stickLo) : 0.0;
   f["max_tangential_ratio"] = ratio;
+  f["max_slip_increment"] = maxStep;
+  f["max_accumulated_slip"] = maxPath;
+  f["max_net_slip"] = maxNet;
   if (dim == 2) {
     // Half the x extent of the closed nodes: the contact half-width a that goes with the stick
     // half-width c (both measured on the nodes, so that their ratio shares the mesh's bias).

@@ -75,7 +75,9 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
 // normal_force (the sum of the normal multipliers, P of a flat contact), tangential_force (the
 // resultant of the tangential forces along x), slip_nodes, stick_nodes,
 // stick_half_width (2D: half the x extent of the stick nodes), max_tangential_ratio (max
-// |lambda_T| / its bound over the closed nodes: 1 at a slipping node).
+// |lambda_T| / its bound over the closed nodes: 1 at a slipping node), max_slip_increment (max
+// |slip of the step| over the closed nodes), max_accumulated_slip and max_net_slip (the largest
+// path length and |signed sum| of the slip over the steps, contact_FrictionHistory.hpp).
 void addFrictionJson(Json& c, const std::vector<ContactNode>& nodes, const FrictionSpec& friction,
                      int dim);
 

@@ -17,9 +17,10 @@ ElasticContactSpec nonlinearContactSpec(const ParameterList& params) {
 }
 
 NonlinearHistory readRestart(const std::string& restartDir, const ElasticContactProblem& problem,
-                             std::vector<SubdomainRestart>& subdomains) {
+                             std::vector<SubdomainRestart>& subdomains, FrictionHistory* friction) {
   NonlinearHistory history = readRestartState(restartDir);
   const std::string stepDir = restartStepDirectory(restartDir, history.step);
+  if (friction) *friction = readFrictionRestart(stepDir);
   subdomains.clear();
   for (const auto& local : problem.local) {
     subdomains.push_back(readSubdomainRestart(stepDir, local.mesh.id));

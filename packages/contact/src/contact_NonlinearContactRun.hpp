@@ -27,6 +27,7 @@
 #include "tfeti_FetiSolver.hpp"
 
 #include "contact_ElasticContactProblem.hpp"
+#include "contact_FrictionHistory.hpp"
 #include "contact_NonlinearHistory.hpp"
 #include "contact_NonlinearOptions.hpp"
 
@@ -44,8 +45,11 @@ void checkNonlinearParameters(const Teuchos::ParameterList& params);
 ElasticContactSpec nonlinearContactSpec(const Teuchos::ParameterList& params);
 // The restart state in `restartDir` (OUTPUT/restart) and this rank's subdomain files of its
 // last step, checked against the problem's subdomains (throws std::runtime_error naming the file).
+// friction: when given (a frictional run), the step's friction state (friction.txt) is read
+// into it.
 NonlinearHistory readRestart(const std::string& restartDir, const ElasticContactProblem& problem,
-                             std::vector<SubdomainRestart>& subdomains);
+                             std::vector<SubdomainRestart>& subdomains,
+                             FrictionHistory* friction = nullptr);
 // The norm of the external load of the subdomains (every rank); throws when no load is applied.
 double requireLoad(const tfeti::Comm& comm, const std::vector<tfeti::SubdomainData>& local);
 // As requireLoad, but a prescribed obstacle motion ("Nonlinear"/"Obstacle displacement") or a

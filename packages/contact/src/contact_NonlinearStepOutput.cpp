@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <iomanip>
+#include <map>
 #include <sstream>
 #include <utility>
 
@@ -42,20 +43,53 @@ void NonlinearStepOutput::evaluate(const Field& u) {
   const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
   nodes_ = contactNodes(problem, solver_, options_.rule, current,
                         model_.surfaceDisplacement(*comm_, du));
-  if (friction.active())
+  if (friction.active()) {
     addFrictionResults(nodes_, problem, solver_, friction,
                        model_.surfaceDisplacement(*comm_, model_.u), current);
+    addAccumulatedSlip(nodes_, accumulatedSlip);
+  }
 }
 
 std::string NonlinearStepOutput::writeVtu(const std::string& base, const Field& u) const {
   std::vector<SubdomainFields> fields;
-  for (std::size_t i = 0; i < u.size(); ++i)
+  std::vector<std::string> names{"plastic_strain"};
+  if (friction.active())
+    names.insert(names.end(), kFrictionPointFields.begin(), kFrictionPointFields.end());
+  for (std::size_t i = 0; i < u.size(); ++i) {
     fields.push_back({&model_.problem.localElements[i],
                       model_.problem.local[i].mesh.id,
                       &u[i],
                       &stresses_[i],
                       {plasticNodal_[i]}});
-  return contact::writeVtu(*comm_, dir_, base, stressPiece(fields, {"plastic_strain"}));
+    if (friction.active())
+      for (auto& f : frictionPointFields(nodes_, model_.problem.local[i].mesh.globalNode))
+        fields.back().extra.push_back(std::move(f));
+  }
+  return contact::writeVtu(*comm_, dir_, base, stressPiece(fields, names));
+}
+
+const std::vector<std::string> kFrictionPointFields{"contact_pressure", "tangential_traction",
+                                                    "slip_increment",   "accumulated_slip",
+                                                    "net_slip",         "friction_state"};
+
+std::vector<std::vector<double>> frictionPointFields(const std::vector<ContactNode>& nodes,
+                                                     const std::vector<tfeti::GO>& globalNode) {
+  std::map<tfeti::GO, const ContactNode*> bySlave;
+  for (const auto& n : nodes) bySlave[n.slaveNode] = &n;
+  const std::size_t count = globalNode.size();
+  std::vector<std::vector<double>> f(kFrictionPointFields.size(), std::vector<double>(count, 0.0));
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto it = bySlave.find(globalNode[k]);
+    if (it == bySlave.end()) {
+      f[5][k] = -1.0;
+      continue;
+    }
+    const ContactNode& n = *it->second;
+    const double values[] = {n.pressure, n.tangentialTraction,   n.slip, n.accumulatedSlip,
+                             n.netSlip,  double(n.frictionState)};
+    for (std::size_t c = 0; c < f.size(); ++c) f[c][k] = values[c];
+  }
+  return f;
 }
 
 void NonlinearStepOutput::writeContactCsv(const std::string& path) const {
@@ -79,7 +113,8 @@ std::vector<PvdEntry> stepCollection(const NonlinearHistory& history) {
 }
 
 void saveRestart(const tfeti::Comm& comm, const std::string& restartDir,
-                 const NonlinearHistory& history, const NonlinearModel& model) {
+                 const NonlinearHistory& history, const NonlinearModel& model,
+                 const FrictionHistory* friction) {
   const bool root = comm.getRank() == 0;
   const std::string stepDir = restartStepDirectory(restartDir, history.step);
   if (root) std::filesystem::create_directories(stepDir);
@@ -93,6 +128,8 @@ void saveRestart(const tfeti::Comm& comm, const std::string& restartDir,
   }
   comm.barrier();
   if (root) {
+    // Every rank holds the whole friction state (the contact nodes are global).
+    if (friction) writeFrictionRestart(stepDir, *friction);
     writeRestartState(restartDir, history);
     // Older steps are no longer named by state.txt.
     for (const auto& entry : std::filesystem::directory_iterator(restartDir))
