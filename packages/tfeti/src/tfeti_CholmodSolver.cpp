@@ -6,6 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "tfeti_CholmodView.hpp"
 #include "tfeti_LocalSolver.hpp"
 
 namespace tfeti {
@@ -76,20 +77,8 @@ class CholmodSolver final : public LocalSolver {
   void factorize(const CsrMatrix& A) override {
     release();
     n_ = A.rows;
-    // A symmetric CSR matrix is its own CSC; stype = 1 tells CHOLMOD to read the upper part.
     cholmod_sparse S;
-    std::memset(&S, 0, sizeof(S));
-    S.nrow = S.ncol = static_cast<size_t>(A.rows);
-    S.nzmax = A.nnz();
-    S.p = const_cast<int*>(A.rowPtr.data());
-    S.i = const_cast<int*>(A.colInd.data());
-    S.x = const_cast<double*>(A.values.data());
-    S.stype = 1;
-    S.itype = CHOLMOD_INT;
-    S.xtype = CHOLMOD_REAL;
-    S.dtype = CHOLMOD_DOUBLE;
-    S.sorted = 1;
-    S.packed = 1;
+    cholmodUpperView(A, S);
     cholmod_common* c = common();
     // The workspace is shared by every factor: set the kind for this analysis only.
     const int defaultKind = c->supernodal;

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "tfeti_CholmodView.hpp"
+
 namespace tfeti {
 namespace {
 
@@ -19,18 +21,7 @@ std::vector<int> amdOrdering(const CsrMatrix& A) {
   c.print = 0;
   c.error_handler = nullptr;
   cholmod_sparse S;
-  std::memset(&S, 0, sizeof(S));
-  S.nrow = S.ncol = static_cast<size_t>(A.rows);
-  S.nzmax = A.nnz();
-  S.p = const_cast<int*>(A.rowPtr.data());
-  S.i = const_cast<int*>(A.colInd.data());
-  S.x = const_cast<double*>(A.values.data());
-  S.stype = 1;
-  S.itype = CHOLMOD_INT;
-  S.xtype = CHOLMOD_REAL;
-  S.dtype = CHOLMOD_DOUBLE;
-  S.sorted = 1;
-  S.packed = 1;
+  cholmodUpperView(A, S);
   const int ok = cholmod_amd(&S, nullptr, 0, perm.data(), &c);
   cholmod_finish(&c);
   if (!ok) throw std::runtime_error("SparsePseudoInverse: AMD ordering failed");
