@@ -881,7 +881,8 @@ def cattaneo(d, tol):
     loading plate: a coupled and a prescribed component of one boundary): Q/(mu P) about 1/2,
     the stick half-width c within tol of a sqrt(1 - Q/(mu P)), stick and slip nodes both
     present, the friction rows' conditions of the last solve, the normal force equal to the
-    applied load, the plate's prescribed reaction balancing Q, the coupled boundary straight."""
+    applied load, the plate's prescribed reaction balancing Q, the resultant contact force
+    balancing the plate's reaction and the load to 1e-6, the coupled boundary straight."""
     s = load(d)
     if not s["converged"]:
         fail(f"{d}: did not converge")
@@ -914,9 +915,19 @@ def cattaneo(d, tol):
     Q = cm["tangential_force"]
     if len(reaction) != 1 or abs(abs(reaction[0]) - Q) > 1e-2 * Q:
         fail(f"{d}: the plate's reaction {reaction} does not balance Q = {Q}")
+    # The cylinder's equilibrium (G lambda = e, to the QP's equality tolerance): the resultant
+    # of the nodes' contact force vectors (normal and tangential, each in its node's frame) is
+    # minus the plate's reaction along x and the applied line load along y.
+    F = c["contact_force"]
+    balance = max(abs(F[0] + reaction[0]), abs(F[1] - c["applied_force"]))
+    if balance > 1e-6 * math.hypot(F[0], F[1]):
+        fail(f"{d}: contact force {F} against (-{reaction[0]}, {c['applied_force']}): "
+             f"{balance:.3e}")
     for e in s["couplings"]:
         if e["spread"] > 1e-8 * s["max_abs_u"]:
             fail(f"{d}: coupled {e['boundary']} spreads by {e['spread']:.2e}")
+    print(f"OK: contact force ({F[0]:.8e}, {F[1]:.8e}) balances the plate and the load to "
+          f"{balance / math.hypot(F[0], F[1]):.1e}")
     print(f"OK: P {cm['normal_force']:.6e}, Q {Q:.6e}, Q/(mu P) {q:.4f}; a "
           f"{cm['contact_half_width'] * 1e3:.3f} mm, c {cm['stick_half_width'] * 1e3:.3f} mm, "
           f"c/a {cm['stick_ratio']:.4f} against {cm['stick_ratio_closed_form']:.4f} "
