@@ -63,16 +63,17 @@
                                           B u = c on the gluing and tied rows to 1e-6 of
                                           max|u|, at most N iterations, and the same count and
                                           max|u| (1e-6) in every DIR (other rank counts)
-  check_summary.py same_nonlinear [--friction] DIR1 DIR2 ...
+  check_summary.py same_nonlinear DIR1 DIR2 ...
                                           the same load steps and, per step, p_max, contact
                                           extent and max von Mises to 1e-5, max plastic strain
                                           to 1e-3
                                           (other rank counts, or a run continued by restart)
-                                          and, with --friction, the friction
-                                          results: contact keys, per node
-                                          (final and per-step contact CSVs) the multipliers,
-                                          slip increment, accumulated and net slip to 1e-5 of
-                                          the column's largest value, the same states
+                                          and, when DIR1 is frictional, the friction results:
+                                          the resultant contact force, the largest accumulated
+                                          and net slip, per node (final and per-step contact
+                                          CSVs) the contact force's components, slip
+                                          increment, accumulated and net slip to 1e-5 of the
+                                          column's largest value, the same states
   check_summary.py friction_fields DIR    the accumulated slip step by step (per-step CSVs) and
                                           the VTU's friction point data against the CSV
   check_summary.py tresca_bonded TRESCA BONDED [--tol T]
@@ -648,8 +649,15 @@ def nonlinear(d, force_tol, hertz_tol):
           f"extent {c['contact_extent']:.5e}, force error {c['force_relative_error']:.1e}")
 
 
-FRICTION_KEYS = ("normal_force", "tangential_force", "max_accumulated_slip", "max_net_slip")
-FRICTION_COLUMNS = ("lambda", "tangential_force", "slip_increment", "accumulated_slip", "net_slip")
+# Compared across runs: what the solution determines. Not the split of a node's contact force
+# into the multipliers lambda (normal) and tangential_force, nor their sums normal_force and
+# tangential_force: a slave node that sits on a master node where the master kinks (the centre
+# node of the symmetric Cattaneo mesh) takes either segment's frame as rounding decides, and its
+# two multipliers rotate by the kink's angle (docs/friction.md). Its force vector (force_x, ...)
+# and the resultant contact_force do not.
+FRICTION_KEYS = ("max_accumulated_slip", "max_net_slip")
+FRICTION_COLUMNS = ("slip_increment", "accumulated_slip", "net_slip")
+FORCE_COLUMNS = ("force_x", "force_y", "force_z")
 
 
 def read_rows(path):
@@ -658,35 +666,52 @@ def read_rows(path):
 
 
 def same_friction(d, ref_dir, tol):
-    """Two frictional runs' friction results: the contact keys FRICTION_KEYS to tol relative; per
-    node (matched by its id) in the final contact CSV and in every per-step CSV both have, the
-    multipliers, the step's slip and the accumulated slip to tol of the column's largest value,
+    """Two frictional runs' friction results: the resultant contact force (to tol of its
+    magnitude) and the contact keys FRICTION_KEYS (to tol relative); per node (matched by its
+    id) in the final contact CSV and in every per-step CSV both have, the contact force's
+    components to tol of the largest force's magnitude, the step's slip and the accumulated slip
+    to tol of the column's largest value (the slips at least to KKT_TOL max|u|, the level at which a sticking node's slip is zero),
     and the same state (stick or slip; but at the transition, see at_bound). Returns the largest
     differences."""
     import glob
     import os
     a, b = load(ref_dir)["contact"], load(d)["contact"]
     fr = load(ref_dir)["parameters"]["Contact problem"]["Friction"]
+    fa, fb = a["contact_force"], b["contact_force"]
+    size = math.sqrt(sum(v * v for v in fa))
+    if len(fa) != len(fb) or any(abs(x - y) > tol * size for x, y in zip(fa, fb)):
+        fail(f"{d}: contact.contact_force {fb} differs from {fa} ({ref_dir})")
     for key in FRICTION_KEYS:
         if abs(a[key] - b[key]) > tol * max(abs(a[key]), 1e-300):
             fail(f"{d}: contact.{key} {b[key]} differs from {a[key]} ({ref_dir})")
     files = ["contact_pressure.csv"] + sorted(
         os.path.basename(p) for p in glob.glob(ref_dir + "/contact_pressure_step_*.csv")
         if os.path.exists(d + "/" + os.path.basename(p)))
-    worst = {c: 0.0 for c in FRICTION_COLUMNS}
+    columns = FORCE_COLUMNS[:len(fa)] + FRICTION_COLUMNS
+    # A sticking node's slip is zero to the QP's tolerance, which the friction checks hold to
+    # KKT_TOL max|u|: below that two runs' slips need not agree (in a step where every node
+    # sticks the column's largest value is such a zero).
+    slip_floor = KKT_TOL * load(ref_dir)["max_abs_u"]
+    worst = {c: 0.0 for c in columns}
     for name in files:
         ra = {r["node"]: r for r in read_rows(ref_dir + "/" + name)}
         rb = {r["node"]: r for r in read_rows(d + "/" + name)}
         if set(ra) != set(rb):
             fail(f"{d}/{name}: other slave nodes than {ref_dir}/{name}")
-        for col in FRICTION_COLUMNS:
-            scale = max(abs(float(r[col])) for r in ra.values())
+        # The force is a vector: its components to tol of its largest magnitude (in a step
+        # loaded normally only, the x components are small beside the y ones).
+        force_scale = max(math.sqrt(sum(float(r[c]) ** 2 for c in columns if c in FORCE_COLUMNS))
+                          for r in ra.values())
+        for col in columns:
+            scale = (force_scale if col in FORCE_COLUMNS else
+                     max(abs(float(r[col])) for r in ra.values()))
             for n, r in ra.items():
                 diff = abs(float(r[col]) - float(rb[n][col]))
-                worst[col] = max(worst[col], diff / scale if scale > 0 else diff)
-                if diff > tol * scale:
+                allowed = tol * scale if col in FORCE_COLUMNS else max(tol * scale, slip_floor)
+                worst[col] = max(worst[col], tol * diff / allowed if allowed > 0 else diff)
+                if diff > allowed:
                     fail(f"{d}/{name}: node {n} {col} {rb[n][col]} differs from {r[col]} "
-                         f"({ref_dir}; tolerance {tol} x {scale:.3e})")
+                         f"({ref_dir}; tolerance {allowed:.3e})")
         for n, r in ra.items():
             # A node exactly at the stick/slip transition (|lambda_T| at its bound to 1e-4 in
             # both runs) may be classified either way by rounding; any other must agree.
@@ -704,13 +729,18 @@ def at_bound(row, friction):
     return bound > 0 and abs(abs(float(value)) - bound) <= 1e-4 * bound
 
 
-def same_nonlinear(dirs, friction=False):
+def same_nonlinear(dirs):
+    """Nonlinear runs of one problem (other rank counts, a restart): the same load steps and per
+    step p_max, extent, von Mises and plastic strain; frictional runs also the friction results
+    (same_friction)."""
     ref = load(dirs[0])["steps"]
+    friction = "friction_law" in load(dirs[0]).get("contact", {})
     for d in dirs[1:]:
         if friction:
             files, worst = same_friction(d, dirs[0], 1e-5)
             print(f"OK: {d}: friction results of {len(files)} contact CSVs agree, largest "
-                  "differences relative to the column's largest value: " +
+                  "differences relative to the column's largest value (forces: the largest "
+                  "force's magnitude; slips: at least KKT_TOL max|u| / tol): " +
                   ", ".join(f"{c} {v:.1e}" for c, v in worst.items()))
         other = load(d)["steps"]
         if [s["load_factor"] for s in other] != [s["load_factor"] for s in ref]:
@@ -863,7 +893,8 @@ def cattaneo(d, tol):
     loading plate: a coupled and a prescribed component of one boundary): Q/(mu P) about 1/2,
     the stick half-width c within tol of a sqrt(1 - Q/(mu P)), stick and slip nodes both
     present, the friction rows' conditions of the last solve, the normal force equal to the
-    applied load, the plate's prescribed reaction balancing Q, the coupled boundary straight."""
+    applied load, the plate's prescribed reaction balancing Q, the resultant contact force
+    balancing the plate's reaction and the load to 1e-6, the coupled boundary straight."""
     s = load(d)
     if not s["converged"]:
         fail(f"{d}: did not converge")
@@ -896,9 +927,19 @@ def cattaneo(d, tol):
     Q = cm["tangential_force"]
     if len(reaction) != 1 or abs(abs(reaction[0]) - Q) > 1e-2 * Q:
         fail(f"{d}: the plate's reaction {reaction} does not balance Q = {Q}")
+    # The cylinder's equilibrium (G lambda = e, to the QP's equality tolerance): the resultant
+    # of the nodes' contact force vectors (normal and tangential, each in its node's frame) is
+    # minus the plate's reaction along x and the applied line load along y.
+    F = c["contact_force"]
+    balance = max(abs(F[0] + reaction[0]), abs(F[1] - c["applied_force"]))
+    if balance > 1e-6 * math.hypot(F[0], F[1]):
+        fail(f"{d}: contact force {F} against (-{reaction[0]}, {c['applied_force']}): "
+             f"{balance:.3e}")
     for e in s["couplings"]:
         if e["spread"] > 1e-8 * s["max_abs_u"]:
             fail(f"{d}: coupled {e['boundary']} spreads by {e['spread']:.2e}")
+    print(f"OK: contact force ({F[0]:.8e}, {F[1]:.8e}) balances the plate and the load to "
+          f"{balance / math.hypot(F[0], F[1]):.1e}")
     print(f"OK: P {cm['normal_force']:.6e}, Q {Q:.6e}, Q/(mu P) {q:.4f}; a "
           f"{cm['contact_half_width'] * 1e3:.3f} mm, c {cm['stick_half_width'] * 1e3:.3f} mm, "
           f"c/a {cm['stick_ratio']:.4f} against {cm['stick_ratio_closed_form']:.4f} "
@@ -1115,7 +1156,7 @@ if __name__ == "__main__":
     elif mode == "nonlinear":
         nonlinear(args[0], option(args, "--force-tol", 1e-6), option(args, "--hertz-tol", 0.0))
     elif mode == "same_nonlinear":
-        same_nonlinear([a for a in args if a != "--friction"], "--friction" in args)
+        same_nonlinear(args)
     elif mode == "nonlinear_vs_elastic":
         nonlinear_vs_elastic(args[0], args[1], option(args, "--tol", 1e-3))
     elif mode == "plastic":

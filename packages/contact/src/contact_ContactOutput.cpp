@@ -158,9 +158,9 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
   const bool friction = !nodes.empty() && nodes.front().frictionState >= 0;
   csv << (dim == 3 ? "x,y,z,lambda,pressure,radius" : "x,y,lambda,pressure,angle")
       << (friction ? ",tangential_force,tangential_traction,slip_increment,state,accumulated_slip,"
-                     "net_slip,node\n"
-                   : "\n")
-      << std::setprecision(12);
+                     "net_slip,node,force_x,force_y"
+                   : "")
+      << (friction && dim == 3 ? ",force_z\n" : "\n") << std::setprecision(12);
   for (const auto& n : nodes) {
     csv << n.x << "," << n.y << ",";
     if (dim == 3) csv << n.z << ",";
@@ -169,6 +169,8 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
       csv << "," << n.tangentialForce << "," << n.tangentialTraction << "," << n.slip << ","
           << frictionStateName(n.frictionState) << "," << n.accumulatedSlip << "," << n.netSlip
           << "," << n.slaveNode;
+    if (friction)
+      for (int c = 0; c < dim; ++c) csv << "," << n.force[c];
     csv << "\n";
   }
 }

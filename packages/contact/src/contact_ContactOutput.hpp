@@ -37,6 +37,11 @@ struct ContactNode {
   // path length, sum |slip| over the steps that ended with the node closed, and its signed sum
   // along the node's tangent (2D; 3D: along the first tangent).
   double accumulatedSlip = 0.0, netSlip = 0.0;
+  // The contact force on the slave node, lambda * normal plus every tangential multiplier times
+  // its tangent (B^T lambda on the node's dofs, negated). Unlike the split into lambda and
+  // tangentialForce it does not depend on the frame: a slave node on a master node where the
+  // master kinks takes either segment's normal, as rounding decides (docs/friction.md).
+  double force[3] = {0.0, 0.0, 0.0};
 };
 
 // How the contact zone's extent is measured. 2D: the half-width along x (a contact centred at

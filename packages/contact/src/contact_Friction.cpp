@@ -169,14 +169,22 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
   for (std::size_t k = 0; k < p.contact.rows.size(); ++k) {
     const ContactRow& row = p.contact.rows[k];
     ContactNode& node = *bySlave.at(row.slaveNode);
+    const std::vector<ContactRow> tangents = tangentialRows(row, dim);
+    std::vector<std::size_t> index;
+    for (const ContactRow& t : tangents) {
+      const auto it = byEntries.find(entryKey(toInequalityRow(t, dofOf)));
+      if (it == byEntries.end())
+        throw std::logic_error("addFrictionResults: no tangential row of slave node " +
+                               std::to_string(row.slaveNode) + " in the solver's rows");
+      index.push_back(it->second);
+    }
+    for (int c = 0; c < 3; ++c) node.force[c] = node.lambda * node.normal[c];
+    for (std::size_t j = 0; j < tangents.size(); ++j)
+      for (int c = 0; c < dim; ++c) node.force[c] += lambdas[index[j]] * tangents[j].normal[c];
     // 2D: the one tangent (3D friction is not built yet: its first tangent only).
-    const ContactRow t = tangentialRows(row, dim)[0];
-    const auto it = byEntries.find(entryKey(toInequalityRow(t, dofOf)));
-    if (it == byEntries.end())
-      throw std::logic_error("addFrictionResults: no tangential row of slave node " +
-                             std::to_string(row.slaveNode) + " in the solver's rows");
-    const tfeti::InequalityRow& r = rows[it->second];
-    node.tangentialForce = lambdas[it->second];
+    const ContactRow& t = tangents[0];
+    const tfeti::InequalityRow& r = rows[index[0]];
+    node.tangentialForce = lambdas[index[0]];
     node.slipBound = r.upperBound;
     node.tangentialTraction = w[k] > 0.0 ? node.tangentialForce / w[k] : 0.0;
     node.slip = step.empty() ? 0.0 : -applyRow(t, dim, step);
@@ -223,6 +231,15 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const Frict
   if (friction.law == FrictionSpec::Law::Coulomb) f["friction_coefficient"] = friction.coefficient;
   f["normal_force"] = normal;
   f["tangential_force"] = force;
+  // The resultant of the contact forces on the slave nodes: unlike the sums above it does not
+  // depend on the frame a node at a master kink takes (ContactNode::force).
+  Json resultant = Json::array();
+  for (int c = 0; c < dim; ++c) {
+    double sum = 0.0;
+    for (const auto& n : nodes) sum += n.force[c];
+    resultant.push(sum);
+  }
+  f["contact_force"] = std::move(resultant);
   f["slip_nodes"] = slip;
   f["stick_nodes"] = stick;
   if (dim == 2) f["stick_half_width"] = stick ? 0.5 * (stickHi - stickLo) : 0.0;
