@@ -19,6 +19,16 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import run_benchmarks as rb  # noqa: E402
 
 
+def face_counts(message):
+    """SMALBE's face phase (FETI/SMALBE/Face solve = pcpg) as its message reports it."""
+    m = re.search(r"face solve: (\d+) face solves, (\d+) face CG steps, (\d+) active-set", message)
+    if not m:
+        return {}
+    return {"face_solves": int(m.group(1)), "face_cg": int(m.group(2)),
+            "active_set_changes": int(m.group(3)),
+            "face_accepted": "(the last a face solve)" in message}
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--build", default="build")
@@ -74,6 +84,7 @@ def main():
                           "outer": q.get("outer_iterations"),
                           "cg": q.get("cg_steps"), "expansion": q.get("expansion_steps"),
                           "proportioning": q.get("proportioning_steps"),
+                          **face_counts(q.get("message", "")),
                           "converged": s["converged"],
                           "p_max_err": err.get("p_max"), "half_width_err": err.get("half_width"),
                           "force": c.get("force"),

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 namespace tfeti {
 
@@ -169,6 +170,64 @@ struct BoundTraits<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     for (std::size_t i = 0; i < b.n && !bad; ++i)
       if (!(b.xv[i] >= b.lv[i]) || b.xv[i] > b.upper(i)) bad = 1;
     return max(x, bad) == 0;
+  }
+
+  // The face of x (the face solve of SMALBE): the global indices of the components at a bound
+  // (x_i == l_i or x_i == u_i exactly, fixed components included), sorted, on every rank. The
+  // order is that of the global indices, so it does not depend on the rank count.
+  static std::vector<long long> activeIndices(const MV& x, const MV& l, const MV* u) {
+    const Bounds b(x, l, u);
+    const auto map = x.getMap();
+    std::vector<long long> mine;
+    for (std::size_t i = 0; i < b.n; ++i)
+      if (!b.isFree(i)) mine.push_back(map->getGlobalElement(static_cast<LO>(i)));
+    const auto& comm = *map->getComm();
+    long long count = static_cast<long long>(mine.size()), most = 0;
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &count, &most);
+    mine.resize(static_cast<std::size_t>(most), -1);  // padded: gatherAll takes equal counts
+    std::vector<long long> all(static_cast<std::size_t>(most) * comm.getSize());
+    if (most > 0)
+      Teuchos::gatherAll(comm, static_cast<int>(most), mine.data(), static_cast<int>(all.size()),
+                         all.data());
+    all.erase(std::remove(all.begin(), all.end(), -1LL), all.end());
+    std::sort(all.begin(), all.end());
+    return all;
+  }
+
+  // v at the sorted global indices idx, on every rank (each index owned by one rank).
+  static std::vector<S> gatherAt(const MV& v, const std::vector<long long>& idx) {
+    std::vector<S> mine(idx.size(), S(0)), all(idx.size(), S(0));
+    auto vv = v.getData(0);
+    const auto map = v.getMap();
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      const LO local = map->getLocalElement(static_cast<GO>(idx[k]));
+      if (local != Teuchos::OrdinalTraits<LO>::invalid()) mine[k] = vv[local];
+    }
+    if (!idx.empty())
+      Teuchos::reduceAll(*map->getComm(), Teuchos::REDUCE_SUM, static_cast<int>(idx.size()),
+                         mine.data(), all.data());
+    return all;
+  }
+
+  // v_{idx[k]} += alpha * values[k] where this rank owns idx[k] (v += alpha E^T values).
+  static void addAt(const std::vector<long long>& idx, const std::vector<S>& values, S alpha,
+                    MV& v) {
+    auto vv = v.getDataNonConst(0);
+    const auto map = v.getMap();
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      const LO local = map->getLocalElement(static_cast<GO>(idx[k]));
+      if (local != Teuchos::OrdinalTraits<LO>::invalid()) vv[local] += alpha * values[k];
+    }
+  }
+
+  // v_{idx[k]} = values[k] where this rank owns idx[k].
+  static void setAt(const std::vector<long long>& idx, const std::vector<S>& values, MV& v) {
+    auto vv = v.getDataNonConst(0);
+    const auto map = v.getMap();
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      const LO local = map->getLocalElement(static_cast<GO>(idx[k]));
+      if (local != Teuchos::OrdinalTraits<LO>::invalid()) vv[local] = values[k];
+    }
   }
 
   // True when some u_i is finite: the problem has upper bounds at all.

@@ -37,6 +37,18 @@
 //  "Norm of A"                 0.0   ||A|| of the unaugmented Hessian; 0: power iterations
 //  "Power iterations"          20    for the estimate of ||A||
 //  "Verbosity"                 0     0 silent, 1 summary, 2 every outer iteration (rank 0)
+//  "Face solve"                "none"  pcpg: once the active set (the components at a bound) is
+//                                    the same after "Face settle iterations" + 1 consecutive
+//                                    outer iterations, minimize on that face (active components
+//                                    held at their bounds, Q x = 0) by projected preconditioned
+//                                    CG with the face's projector (tfeti_FacePcpg.hpp); the
+//                                    result is taken only when it passes the final test below
+//                                    (then it ends the solve); otherwise a primal-dual active-set
+//                                    step (rows that left the box join, active rows whose
+//                                    multiplier has the wrong sign leave) and a new face solve,
+//                                    and when the face does not change or "Maximum face solves"
+//                                    (4) is reached SMALBE goes on from its own iterate.
+//                                    "Face maximum iterations" (1000) limits one face solve.
 //  sublist "MPRGP"                   the inner solver's parameters (MprgpSolMgr); SMALBE replaces
 //                                    its stopping test by the rule above and its "Norm of A" by
 //                                    ||A|| + rho (an upper bound of ||A + rho Q||, no power
@@ -55,11 +67,22 @@
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_RCP.hpp>
 
+#include <vector>
+
 #include "tfeti_QpProblem.hpp"
 #include "tfeti_SolverConventions.hpp"
 #include "tfeti_SolverOutput.hpp"
 
 namespace tfeti {
+
+// What the face phase ("Face solve" = pcpg) did in the last solve.
+struct FaceCounters {
+  long long solves = 0;            // face solves started (active-set corrections included)
+  long long iterations = 0;        // their CG steps (one multiplication each)
+  bool accepted = false;           // the result is a face solve's
+  long long activeSetChanges = 0;  // outer iterations and face corrections whose active set
+                                   // differs from the one before
+};
 
 template <class S, class MV, class OP>
 class SmalbeSolMgr {
@@ -104,6 +127,8 @@ class SmalbeSolMgr {
 
   // Counters summed over all inner solves; history: ||g^P|| / ||b|| per outer iteration.
   const QpCounters& counters() const { return counters_; }
+  // The face phase's counters (its multiplications are in counters() too).
+  const FaceCounters& faceCounters() const { return face_; }
   // The equality multiplier mu (in range(Q)): A x - b + mu is the Lagrangian's gradient.
   Teuchos::RCP<const MV> getMultiplier() const { return mu_; }
   long long projectorApplications() const { return qApplies_; }
@@ -124,11 +149,21 @@ class SmalbeSolMgr {
   Teuchos::RCP<const MV> mu0_;
   Teuchos::RCP<MV> mu_;
   QpCounters counters_;
+  FaceCounters face_;
   long long qApplies_ = 0;
   magnitude_type normA_ = 0, rho_ = 0, M_ = 0;
   magnitude_type achievedTol_ = 0, achievedEqualityTol_ = 0;
   SolverOutput out_;
   Belos::ReturnType solveTimed();
+  // The face phase ("Face solve" = pcpg): PCPG on the face of `active`, then SMALBE's final test
+  // on the result; on failure primal-dual active-set steps within "Maximum face solves". True:
+  // x, the multiplier, gp and qxNorm hold the accepted result; false: all untouched.
+  bool faceSolve(std::vector<long long> active, magnitude_type gTol, magnitude_type eTol,
+                 magnitude_type scale, magnitude_type& gp, magnitude_type& qxNorm);
+  // The face's CG stops at this fraction of SMALBE's tolerance on ||g^P||: the final test is
+  // made on the recomputed gradient, after the projection onto the box, which the recursive
+  // gradient of CG does not see.
+  static constexpr double kFaceTolerance = 0.5;
 };
 
 }  // namespace tfeti

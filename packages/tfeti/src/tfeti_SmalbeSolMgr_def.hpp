@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "tfeti_BoundTraits.hpp"
+#include "tfeti_FacePcpg.hpp"
 #include "tfeti_MprgpSolMgr_def.hpp"
 #include "tfeti_OperatorSum.hpp"
 #include "tfeti_QpChecks.hpp"
@@ -54,6 +55,23 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "values (Warnings 1, IterationDetails 2, FinalSummary 8, TimingDetails 16, "
             "StatusTestDetails 32)",
             strict::intBetween(0, kAllMsgTypes));
+    pl->set("Face solve", "none",
+            "none: SMALBE-M alone; pcpg: once the active set is unchanged over \"Face settle "
+            "iterations\" outer iterations, solve on that face (active rows held at their bounds, "
+            "Q x = 0 by a projector) by projected preconditioned CG and accept the result only "
+            "if it passes SMALBE's final test; otherwise a primal-dual active-set step and a new "
+            "face, and after \"Maximum face solves\" back to SMALBE's own iterate",
+            Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+                Teuchos::tuple<std::string>("none", "pcpg"), "Face solve")));
+    pl->set("Face settle iterations", 1,
+            "a face solve follows an outer iteration whose active set equals that of this many "
+            "outer iterations before it (0: after every outer iteration)",
+            strict::count(0));
+    pl->set("Maximum face solves", 4,
+            "limit on face solves (active-set corrections included) in one SMALBE solve",
+            strict::count());
+    pl->set("Face maximum iterations", 1000, "limit on the CG steps of one face solve",
+            strict::count());
     pl->sublist("MPRGP", false, "inner solver (MPRGP) parameters")
         .setParameters(*MprgpSolMgr<S, MV, OP>::getValidParameters());
   }
@@ -90,6 +108,7 @@ void SmalbeSolMgr<S, MV, OP>::setProblem(const BoundConstrainedQp<S, MV, OP>& qp
 template <class S, class MV, class OP>
 void SmalbeSolMgr<S, MV, OP>::reset(Belos::ResetType) {
   counters_ = QpCounters{};
+  face_ = FaceCounters{};
   mu_ = Teuchos::null;
   qApplies_ = 0;
   achievedTol_ = achievedEqualityTol_ = 0;
@@ -141,6 +160,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
   TEUCHOS_TEST_FOR_EXCEPTION(qp_.A.is_null(), std::invalid_argument,
                              "SMALBE: no problem to solve (setProblem was not called)");
   counters_ = QpCounters{};
+  face_ = FaceCounters{};
   qApplies_ = 0;
   checkQpMaps(qp_, "SMALBE", Q_.get());
   MprgpIteration<S, MV, OP>::checkProblemData(qp_);
@@ -192,6 +212,10 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
   auto innerTest = Teuchos::rcp(new StatusTestSmalbeInner<S, MV, OP>(Q_, M_, eta, gTol, eTol));
   const int maxOuter = params_.get<int>("Maximum outer iterations");
 
+  const bool faceMode = params_.get<std::string>("Face solve") == "pcpg";
+  const int settleRequired = params_.get<int>("Face settle iterations");
+  std::vector<long long> activePrev;
+  int settled = 0;
   S lagrangianPrev = 0;
   magnitude_type noisePrev = 0;
   bool converged = false, innerFailed = false;
@@ -262,6 +286,23 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
       ++k;
       break;
     }
+    // The face phase: once the active set has settled, solve on that face like the tied
+    // problem; accepted only when the result passes the final test above.
+    {
+      std::vector<long long> active = BT::activeIndices(*qp_.x, *qp_.lower, qp_.upper.get());
+      if (k > 0 && active != activePrev) ++face_.activeSetChanges;
+      settled = k > 0 && active == activePrev ? settled + 1 : 0;
+      activePrev = active;
+      if (faceMode && settled >= settleRequired &&
+          face_.solves < params_.get<int>("Maximum face solves")) {
+        if (faceSolve(std::move(active), gTol, eTol, scale, gp, qxNorm)) {
+          converged = true;
+          ++k;
+          break;
+        }
+        settled = 0;
+      }
+    }
     if (reduceM) M_ /= beta;
     if (reuseGradient) {
       // The next inner gradient at the same x: H x - b + mu_{k+1} = g + rho Q x.
@@ -278,7 +319,8 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
   std::ostringstream msg;
   msg << std::scientific << std::setprecision(3);
   if (converged)
-    msg << "converged after " << k << " outer iterations: ||g^P||/||b|| = " << gp / scale
+    msg << "converged after " << k << " outer iterations"
+        << (face_.accepted ? " (the last a face solve)" : "") << ": ||g^P||/||b|| = " << gp / scale
         << ", ||A|| ||Qx||/||b|| = " << normA_ * qxNorm / scale;
   else
     msg << "not converged: the limit of " << maxOuter
@@ -286,6 +328,9 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
         << params_.get<double>("Relative tolerance")
         << "), ||A|| ||Qx||/||b|| = " << normA_ * qxNorm / scale << " (tolerance "
         << params_.get<double>("Equality tolerance") << ")";
+  if (faceMode)
+    msg << "; face solve: " << face_.solves << " face solves, " << face_.iterations
+        << " face CG steps, " << face_.activeSetChanges << " active-set changes";
   if (innerFailed)
     msg << "; some inner MPRGP solves hit their \"Maximum iterations\" before reaching the "
            "inner precision";
@@ -318,6 +363,119 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
     out_.write(line);
   }
   return converged ? Belos::Converged : Belos::Unconverged;
+}
+
+template <class S, class MV, class OP>
+bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude_type gTol,
+                                        magnitude_type eTol, magnitude_type scale,
+                                        magnitude_type& gp, magnitude_type& qxNorm) {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using OPT = Belos::OperatorTraits<S, MV, OP>;
+  using BT = BoundTraits<S, MV>;
+  const bool root = BT::commRank(*qp_.x) == 0;
+  const auto A = TimedOperator<S, MV, OP>::wrap(qp_.A, solverTimer("tfeti: Hessian apply"));
+  const Teuchos::RCP<const OP> M =
+      params_.sublist("MPRGP").get<bool>("Preconditioning in face") ? P_ : Teuchos::null;
+  const MV* upper = qp_.upper.get();
+  auto x = MVT::CloneCopy(*qp_.x);
+  auto g = MVT::Clone(*qp_.x, 1), t = MVT::Clone(*qp_.x, 1), mu = MVT::Clone(*qp_.x, 1);
+  auto phi = MVT::Clone(*qp_.x, 1), chopped = MVT::Clone(*qp_.x, 1);
+  std::vector<magnitude_type> n(1);
+  const S inf = std::numeric_limits<S>::infinity();
+  while (face_.solves < params_.get<int>("Maximum face solves")) {
+    ++face_.solves;
+    FaceProjector<S, MV, OP> face(Q_, active, *x);
+    qApplies_ += face.projectorApplications();
+    if (!face.valid()) {
+      if (out_.wants(Belos::IterationDetails) && root)
+        out_.write(
+            "SMALBE face: the active rows are dependent on the equality rows; no face "
+            "solve\n");
+      break;
+    }
+    // The active rows' bound values: the upper bound where x reached it, else the lower one
+    // (rows that an active-set step added from outside the box go to the bound they crossed).
+    const std::vector<S> xa = BT::gatherAt(*x, active), la = BT::gatherAt(*qp_.lower, active);
+    std::vector<S> ua(active.size(), inf);
+    if (upper != nullptr) ua = BT::gatherAt(*upper, active);
+    std::vector<S> r(active.size());
+    for (std::size_t i = 0; i < active.size(); ++i) r[i] = xa[i] >= ua[i] ? ua[i] : la[i];
+    face.projectAffine(r, *x);
+    OPT::Apply(*A, *x, *g);
+    MVT::MvAddMv(S(1), *g, S(-1), *qp_.b, *g);
+    ++counters_.hessianMultiplications;
+    FacePcpg<S, MV, OP> pcpg(A, M, face, S(kFaceTolerance) * gTol,
+                             params_.get<int>("Face maximum iterations"));
+    const FacePcpgResult<S> res = pcpg.solve(*x, *g);
+    counters_.hessianMultiplications += res.iterations;
+    face_.iterations += res.iterations;
+    // The active components exactly at their bounds (P_F leaves rounding errors there, which
+    // would make them free, with their multiplier counted as a free gradient).
+    BT::setAt(active, r, *x);
+    // The result as SMALBE's: feasible (projected onto the box), the gradient recomputed, the
+    // equality multiplier mu = -Q (g - E_A^T sigma) that leaves g + mu = P_F g + E_A^T sigma
+    // (zero on the free rows up to the tolerance, sigma on the active ones), then the final test.
+    BT::project(*x, *qp_.lower, upper);
+    OPT::Apply(*A, *x, *g);
+    MVT::MvAddMv(S(1), *g, S(-1), *qp_.b, *g);
+    ++counters_.hessianMultiplications;
+    OPT::Apply(*Q_, *x, *t);
+    ++qApplies_;
+    MVT::MvNorm(*t, n);
+    const magnitude_type qx = n[0];
+    const std::vector<S> sigma = face.activeMultipliers(*g);
+    MVT::Assign(*g, *t);
+    BT::addAt(active, sigma, S(-1), *t);
+    OPT::Apply(*Q_, *t, *mu);
+    ++qApplies_;
+    MVT::MvScale(*mu, S(-1));
+    MVT::MvAddMv(S(1), *g, S(1), *mu, *t);  // the Lagrangian's gradient
+    BT::freeGradient(*x, *qp_.lower, upper, *t, *phi);
+    BT::choppedGradient(*x, *qp_.lower, upper, *t, *chopped);
+    MVT::MvAddMv(S(1), *phi, S(1), *chopped, *phi);
+    MVT::MvNorm(*phi, n);
+    const magnitude_type gpFace = n[0];
+    const bool passed = gpFace <= gTol && qx <= eTol;
+    // Primal-dual active-set step for the next face: the rows at a bound now (the face's free
+    // rows that left the box were projected onto it) less the active rows whose multiplier has
+    // the wrong sign (the Lagrangian's gradient pointing into the box).
+    std::vector<long long> next;
+    if (!passed) {
+      const std::vector<long long> now = BT::activeIndices(*x, *qp_.lower, upper);
+      const std::vector<S> gn = BT::gatherAt(*t, now), xn = BT::gatherAt(*x, now),
+                           ln = BT::gatherAt(*qp_.lower, now);
+      std::vector<S> un(now.size(), inf);
+      if (upper != nullptr) un = BT::gatherAt(*upper, now);
+      for (std::size_t i = 0; i < now.size(); ++i) {
+        const bool release = ln[i] < un[i] && (xn[i] <= ln[i] ? gn[i] < S(0) : gn[i] > S(0));
+        if (!release) next.push_back(now[i]);
+      }
+    }
+    if (out_.wants(Belos::IterationDetails) && root) {
+      auto line = SolverOutput::line();
+      line << "SMALBE face " << face_.solves << ": " << active.size() << " active rows, "
+           << res.iterations << " CG steps" << (res.converged ? "" : " (not converged)")
+           << std::scientific << std::setprecision(3) << ", ||g^P||/||b|| = " << gpFace / scale
+           << "  ||A|| ||Qx||/||b|| = " << normA_ * qx / scale
+           << (passed ? ": accepted" : ": rejected");
+      if (!passed) line << ", next face " << next.size() << " active rows";
+      line << "\n";
+      out_.write(line);
+    }
+    if (passed) {
+      MVT::Assign(*x, *qp_.x);
+      MVT::Assign(*mu, *mu_);
+      gp = gpFace;
+      qxNorm = qx;
+      counters_.history.push_back(gp / scale);
+      face_.accepted = true;
+      return true;
+    }
+    if (next == active) break;  // the same face again would give the same result
+    ++face_.activeSetChanges;
+    active = std::move(next);
+  }
+  return false;  // SMALBE goes on from its own iterate (qp_.x and mu_ untouched)
 }
 
 }  // namespace tfeti

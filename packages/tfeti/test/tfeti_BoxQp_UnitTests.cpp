@@ -4,9 +4,10 @@
 // unbounded), solved with every expansion step and with preconditioning in face; a
 // reaction-diffusion problem between two obstacles against projected Gauss-Seidel computed here;
 // the mirror image of a lower-bound problem; upper bounds that change nothing (null, +infinity,
-// far away: the same steps); SMALBE with an equality constraint and a box; bad bounds reported
-// with the component; and identical results on sub-communicators of 1, 2, ... ranks. Every
-// solution is checked by the KKT conditions of both sides (tfeti::qpKkt).
+// far away: the same steps); SMALBE with an equality constraint and a box, also with the face
+// solve (a face accepted, a wrong first face corrected, a rejected face handed back to SMALBE);
+// bad bounds reported with the component; and identical results on sub-communicators of 1, 2, ...
+// ranks. Every solution is checked by the KKT conditions of both sides (tfeti::qpKkt).
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
 
@@ -521,13 +522,119 @@ TEUCHOS_UNIT_TEST(BoxQp, BadBoundsAreReported) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// 6. The rank count does not change the results: the two-obstacle problem (MPRGP) and the box
+// 6. SMALBE's face solve ("Face solve" = pcpg): once MPRGP has found the active set, PCPG on the
+// face with the face's projector; the result is SMALBE's only when it passes the final test.
+
+// SMALBE on the known problem with sum x = 0 and the box, with the face solve.
+struct FaceRun {
+  BoxProblem p;
+  RCP<SpanProjector> Q;
+  Belos::ReturnType result;
+  tfeti::QpCounters c;
+  tfeti::FaceCounters face;
+  RCP<Vector> mu;
+  double normA = 0;
+};
+
+FaceRun faceRun(const RCP<const tfeti::Comm>& comm, const Teuchos::ParameterList& extra, double tol,
+                Teuchos::FancyOStream& out) {
+  FaceRun r{knownBoxProblem(comm, 96, mixedKind, true, 0.7)};
+  r.Q = rcp(new SpanProjector(*vectorOf(r.p.x->getMap(), [](GO) { return 1.0; })));
+  Teuchos::ParameterList params = smalbeParams(tol);
+  params.set("Face solve", "pcpg");
+  params.setParameters(extra);
+  Smalbe solver(r.p.qp(), r.Q, params);
+  r.result = solver.solve();
+  r.c = solver.counters();
+  r.face = solver.faceCounters();
+  r.mu = rcp(new Vector(*solver.getMultiplier()->getVector(0), Teuchos::Copy));
+  r.normA = solver.getNormOfA();
+  out << r.c.message << "; " << r.c.hessianMultiplications << " multiplications, " << r.face.solves
+      << " face solves (" << r.face.iterations << " CG steps), " << r.face.activeSetChanges
+      << " active-set changes, accepted " << r.face.accepted << "\n";
+  return r;
+}
+
+// The KKT conditions of the bound- and equality-constrained problem, and the known x, mu and
+// active sides.
+void expectKnownFaceSolution(const FaceRun& r, double tol, Teuchos::FancyOStream& out,
+                             bool& success) {
+  TEST_EQUALITY(r.result, Belos::Converged);
+  const double bNorm = r.p.b->norm2();
+  const Kkt k = r.p.kkt(r.mu.getRawPtr(), r.Q.get());
+  expectKkt(k, tol * bNorm, out, success);
+  TEST_COMPARE(r.normA * k.equalityResidual, <=, tol * bNorm);
+  TEST_COMPARE(maxAbsDiff(*r.p.x, *r.p.exact), <=, 1e-6 * r.p.exact->normInf());
+  TEST_COMPARE(maxAbsDiff(*r.mu, *r.p.exactMu), <=, 1e-6 * r.p.exactMu->normInf());
+  const ActiveCounts a = activeCounts(r.p);
+  TEST_EQUALITY(a.atLower, 24.0);
+  TEST_EQUALITY(a.atUpper, 24.0);
+  TEST_EQUALITY(a.fixed, 12.0);
+}
+
+TEUCHOS_UNIT_TEST(BoxQp, FaceSolveAfterTheActiveSetSettles) {
+  const FaceRun r = faceRun(world(), Teuchos::ParameterList(), 1e-10, out);
+  expectKnownFaceSolution(r, 1e-10, out, success);
+  // The face solve ended the solve, at its first attempt.
+  TEST_ASSERT(r.face.accepted);
+  TEST_EQUALITY(r.face.solves, 1);
+  TEST_COMPARE(r.face.iterations, >, 0);
+  // Fewer multiplications than SMALBE alone on the same problem.
+  auto p = knownBoxProblem(world(), 96, mixedKind, true, 0.7);
+  auto Q = rcp(new SpanProjector(*vectorOf(p.x->getMap(), [](GO) { return 1.0; })));
+  Smalbe alone(p.qp(), Q, smalbeParams(1e-10));
+  alone.solve();
+  out << "SMALBE alone: " << alone.counters().hessianMultiplications << " multiplications, "
+      << alone.counters().outerIterations << " outer iterations\n";
+  TEST_ASSERT(!alone.faceCounters().accepted);
+  TEST_EQUALITY(alone.faceCounters().solves, 0);
+  TEST_COMPARE(r.c.hessianMultiplications, <, alone.counters().hessianMultiplications);
+}
+
+// A face guessed right after the first outer iteration (before the active set has settled) is
+// wrong: the active-set step has to correct it, or SMALBE goes on.
+Teuchos::ParameterList wrongFirstFace() {
+  Teuchos::ParameterList extra;
+  extra.set("Face settle iterations", 0);
+  return extra;
+}
+
+TEUCHOS_UNIT_TEST(BoxQp, WrongFirstFaceIsCorrected) {
+  const FaceRun r = faceRun(world(), wrongFirstFace(), 1e-10, out);
+  expectKnownFaceSolution(r, 1e-10, out, success);
+  TEST_ASSERT(r.face.accepted);
+  TEST_COMPARE(r.face.solves, >=, 2);  // the first face was rejected
+}
+
+TEUCHOS_UNIT_TEST(BoxQp, RejectedFaceFallsBackToSmalbe) {
+  Teuchos::ParameterList extra = wrongFirstFace();
+  extra.set("Maximum face solves", 1);
+  const FaceRun r = faceRun(world(), extra, 1e-10, out);
+  expectKnownFaceSolution(r, 1e-10, out, success);
+  TEST_EQUALITY(r.face.solves, 1);
+  TEST_ASSERT(!r.face.accepted);  // SMALBE's own iterations converged
+}
+
+TEUCHOS_UNIT_TEST(BoxQp, FaceSolveParametersAreValidated) {
+  auto p = knownBoxProblem(world(), 16, mixedKind, true, 0.7);
+  auto Q = rcp(new SpanProjector(*vectorOf(p.x->getMap(), [](GO) { return 1.0; })));
+  Teuchos::ParameterList params = smalbeParams(1e-8);
+  params.set("Face solve", "newton");
+  TEST_THROW(Smalbe(p.qp(), Q, params), std::exception);
+  params.set("Face solve", "pcpg");
+  params.set("Face settle iterations", -1);
+  TEST_THROW(Smalbe(p.qp(), Q, params), std::exception);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 7. The rank count does not change the results: the two-obstacle problem (MPRGP) and the box
 // problem with an equality constraint (SMALBE) on sub-communicators of 1, 2, ..., P ranks.
 
 struct RankRun {
   std::vector<double> x;
   long long steps[3] = {0, 0, 0};  // CG, expansion, proportioning (summed over SMALBE's inner)
   long long outer = 0;
+  long long face[2] = {0, 0};  // face solves, their CG steps
 };
 
 // fn on the sub-communicator of the first `size` ranks, for size = 1 .. P; rank 0's results
@@ -546,6 +653,7 @@ std::vector<RankRun> onEveryRankCount(const std::function<RankRun(RCP<const tfet
     Teuchos::broadcast(*comm, 0, static_cast<int>(n), r.x.data());
     Teuchos::broadcast(*comm, 0, 3, r.steps);
     Teuchos::broadcast(*comm, 0, &r.outer);
+    Teuchos::broadcast(*comm, 0, 2, r.face);
     runs.push_back(r);
   }
   return runs;
@@ -558,6 +666,7 @@ void expectSameRuns(const std::vector<RankRun>& runs, Teuchos::FancyOStream& out
   for (std::size_t s = 1; s < runs.size(); ++s) {
     for (int k = 0; k < 3; ++k) TEST_EQUALITY(runs[s].steps[k], runs[0].steps[k]);
     TEST_EQUALITY(runs[s].outer, runs[0].outer);
+    for (int k = 0; k < 2; ++k) TEST_EQUALITY(runs[s].face[k], runs[0].face[k]);
     double d = 0.0;
     for (std::size_t i = 0; i < runs[0].x.size(); ++i)
       d = std::max(d, std::abs(runs[s].x[i] - runs[0].x[i]));
@@ -592,6 +701,15 @@ TEUCHOS_UNIT_TEST(BoxQp, SameResultsOnEveryRankCount) {
                    Smalbe s(p.qp(), Q, smalbeParams(1e-10));
                    s.solve();
                    return rankRun(s.counters(), *p.x);
+                 }),
+                 out, success);
+  out << "SMALBE with the face solve, a wrong first face:\n";
+  expectSameRuns(onEveryRankCount([&](RCP<const tfeti::Comm> sub) {
+                   const FaceRun r = faceRun(sub, wrongFirstFace(), 1e-10, out);
+                   RankRun run = rankRun(r.c, *r.p.x);
+                   run.face[0] = r.face.solves;
+                   run.face[1] = r.face.iterations;
+                   return run;
                  }),
                  out, success);
 }

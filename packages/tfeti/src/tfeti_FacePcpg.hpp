@@ -1,0 +1,86 @@
+#pragma once
+// Projected preconditioned CG on one face of SMALBE's feasible set (docs/qp_solvers.md, "Face
+// solve"): min 1/2 x^T A x - b^T x subject to Q x = 0 and x_A = r (the active components held at
+// their bounds, the free ones unconstrained), i.e. PCPG as for the tied problem with the face's
+// projector P_F (tfeti_FaceProjector.hpp) in place of P:
+//   w = P_F g,  z = P_F M w,  p = z + beta p,  x -= alpha p,  g -= alpha A p,
+// from x in the face's affine set (so every iterate stays in it: p is in range(P_F)). M is
+// SMALBE's preconditioner (for FETI P M P + Q / rho, which P_F turns into P_F M P_F), or none.
+// Stops when ||P_F g|| <= tolerance (the free rows' gradient: P_F g is zero on the active
+// rows), or fails after "maximum iterations" or on a direction of non-positive curvature.
+#include <BelosMultiVecTraits.hpp>
+#include <BelosOperatorTraits.hpp>
+#include <Teuchos_RCP.hpp>
+
+#include "tfeti_FaceProjector.hpp"
+
+namespace tfeti {
+
+template <class S>
+struct FacePcpgResult {
+  bool converged = false;
+  int iterations = 0;           // PCPG steps = multiplications by A
+  S projectedGradientNorm = 0;  // final ||P_F g|| (the recursive g)
+};
+
+template <class S, class MV, class OP>
+class FacePcpg {
+ public:
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using OPT = Belos::OperatorTraits<S, MV, OP>;
+
+  FacePcpg(Teuchos::RCP<const OP> A, Teuchos::RCP<const OP> M, const FaceProjector<S, MV, OP>& face,
+           S tolerance, int maxIterations)
+      : A_(std::move(A)), M_(std::move(M)), face_(face), tol_(tolerance), maxIter_(maxIterations) {}
+
+  // x: in the face's affine set on entry, the face's minimizer on exit; g: A x - b on entry,
+  // updated recursively.
+  FacePcpgResult<S> solve(MV& x, MV& g) const {
+    auto w = MVT::Clone(x, 1), z = MVT::Clone(x, 1), p = MVT::Clone(x, 1), q = MVT::Clone(x, 1);
+    FacePcpgResult<S> r;
+    std::vector<S> dot(1), nrm(1);
+    face_.apply(g, *w);
+    MVT::MvNorm(*w, nrm);
+    precondition(*w, *z);
+    MVT::Assign(*z, *p);
+    MVT::MvDot(*w, *z, dot);
+    S wz = dot[0];
+    while (!(nrm[0] <= tol_) && r.iterations < maxIter_) {
+      OPT::Apply(*A_, *p, *q);
+      ++r.iterations;
+      MVT::MvDot(*p, *q, dot);
+      if (!(dot[0] > S(0))) break;  // A not positive definite on the face, or breakdown
+      const S alpha = wz / dot[0];
+      MVT::MvAddMv(S(1), x, -alpha, *p, x);
+      MVT::MvAddMv(S(1), g, -alpha, *q, g);
+      face_.apply(g, *w);
+      MVT::MvNorm(*w, nrm);
+      if (nrm[0] <= tol_) break;
+      precondition(*w, *z);
+      MVT::MvDot(*w, *z, dot);
+      const S wzNew = dot[0];
+      MVT::MvAddMv(S(1), *z, wzNew / wz, *p, *p);
+      wz = wzNew;
+    }
+    r.projectedGradientNorm = nrm[0];
+    r.converged = nrm[0] <= tol_;
+    return r;
+  }
+
+ private:
+  Teuchos::RCP<const OP> A_, M_;
+  const FaceProjector<S, MV, OP>& face_;
+  S tol_;
+  int maxIter_;
+
+  void precondition(const MV& w, MV& z) const {
+    if (M_.is_null()) {
+      MVT::Assign(w, z);
+      return;
+    }
+    OPT::Apply(*M_, w, z);
+    face_.apply(z, z);
+  }
+};
+
+}  // namespace tfeti
