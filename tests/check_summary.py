@@ -512,6 +512,20 @@ def plane_strain(d2, dirs3, tol, u_tol):
               f"{c3['half_width']:.6e} (2D {c2['half_width']:.6e})")
 
 
+def tied_equalities_hold(d, s):
+    """A converged tied run (Contact type = tied) whose gluing and tied rows hold to KKT_TOL of
+    max|u|: with a tied pair the contact rows are equality rows, which equality_residual covers.
+    Returns its contact summary and max|u|."""
+    c = s["contact"]
+    if not s["converged"] or s.get("contact_type") != "tied":
+        fail(f"{d}: converged {s['converged']}, contact type {s.get('contact_type')}")
+    u = s["max_abs_u"]
+    if c["equality_residual"] > KKT_TOL * u:
+        fail(f"{d}: max|B u - c| over the gluing and tied rows = {c['equality_residual']:.3e}"
+             f" > {KKT_TOL} x max|u| = {KKT_TOL * u:.3e}")
+    return c, u
+
+
 def tied(dirs):
     """A tied pair (Contact type = tied): B_I u = gap and the gluing rows to KKT_TOL of max|u|,
     the contact force balancing the load to 1e-6, and the same solution in every run (rank
@@ -519,14 +533,7 @@ def tied(dirs):
     ref = load(dirs[0])
     for d in dirs:
         s = load(d)
-        c = s["contact"]
-        if not s["converged"] or s.get("contact_type") != "tied":
-            fail(f"{d}: converged {s['converged']}, contact type {s.get('contact_type')}")
-        u = s["max_abs_u"]
-        # With a tied pair the contact rows are equality rows: equality_residual covers them.
-        if c["equality_residual"] > KKT_TOL * u:
-            fail(f"{d}: max|B u - c| over the gluing and tied rows = {c['equality_residual']:.3e}"
-                 f" > {KKT_TOL} x max|u| = {KKT_TOL * u:.3e}")
+        c, u = tied_equalities_hold(d, s)
         if c["force_relative_error"] > 1e-6:
             fail(f"{d}: contact force {c['force']} against the applied {c['applied_force']}: "
                  f"{c['force_relative_error']:.1e} relative")
@@ -546,13 +553,7 @@ def bounded_iterations(dirs, max_iterations):
     ref = load(dirs[0])
     for d in dirs:
         s = load(d)
-        c = s["contact"]
-        if not s["converged"] or s.get("contact_type") != "tied":
-            fail(f"{d}: converged {s['converged']}, contact type {s.get('contact_type')}")
-        u = s["max_abs_u"]
-        if c["equality_residual"] > KKT_TOL * u:
-            fail(f"{d}: max|B u - c| over the gluing and tied rows = {c['equality_residual']:.3e}"
-                 f" > {KKT_TOL} x max|u| = {KKT_TOL * u:.3e}")
+        c, u = tied_equalities_hold(d, s)
         if s["iterations"] > max_iterations:
             fail(f"{d}: {s['iterations']} PCPG iterations > {max_iterations} "
                  f"({s['subdomains']} subdomains)")
