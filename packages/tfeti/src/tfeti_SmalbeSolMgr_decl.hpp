@@ -47,7 +47,7 @@
 //                                    step (rows that left the box join, active rows whose
 //                                    multiplier has the wrong sign leave) and a new face solve,
 //                                    and when the face does not change or "Maximum face solves"
-//                                    (4) is reached SMALBE goes on from its own iterate.
+//                                    (10) is reached SMALBE goes on from its own iterate.
 //                                    "Face maximum iterations" (1000) limits one face solve.
 //  sublist "MPRGP"                   the inner solver's parameters (MprgpSolMgr); SMALBE replaces
 //                                    its stopping test by the rule above and its "Norm of A" by

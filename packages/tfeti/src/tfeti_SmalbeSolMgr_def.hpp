@@ -67,7 +67,7 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "a face solve follows an outer iteration whose active set equals that of this many "
             "outer iterations before it (0: after every outer iteration)",
             strict::count(0));
-    pl->set("Maximum face solves", 4,
+    pl->set("Maximum face solves", 10,
             "limit on face solves (active-set corrections included) in one SMALBE solve",
             strict::count());
     pl->set("Face maximum iterations", 1000, "limit on the CG steps of one face solve",
