@@ -181,7 +181,33 @@ struct BoundTraits<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     std::vector<long long> mine;
     for (std::size_t i = 0; i < b.n; ++i)
       if (!b.isFree(i)) mine.push_back(map->getGlobalElement(static_cast<LO>(i)));
-    const auto& comm = *map->getComm();
+    return gatherIndices(*map, std::move(mine));
+  }
+
+  // The global indices of the finite components of v, sorted, on every rank.
+  static std::vector<long long> finiteIndices(const MV& v) {
+    auto vv = v.getData(0);
+    const auto map = v.getMap();
+    std::vector<long long> mine;
+    for (std::size_t i = 0; i < v.getLocalLength(); ++i)
+      if (std::isfinite(vv[i])) mine.push_back(map->getGlobalElement(static_cast<LO>(i)));
+    return gatherIndices(*map, std::move(mine));
+  }
+
+  // The number of components of x outside [l, u].
+  static long long countOutside(const MV& x, const MV& l, const MV* u) {
+    const Bounds b(x, l, u);
+    long long mine = 0, all = 0;
+    for (std::size_t i = 0; i < b.n; ++i)
+      if (b.xv[i] < b.lv[i] || b.xv[i] > b.upper(i)) ++mine;
+    Teuchos::reduceAll(*x.getMap()->getComm(), Teuchos::REDUCE_SUM, 1, &mine, &all);
+    return all;
+  }
+
+ private:
+  template <class Map>
+  static std::vector<long long> gatherIndices(const Map& map, std::vector<long long> mine) {
+    const auto& comm = *map.getComm();
     long long count = static_cast<long long>(mine.size()), most = 0;
     Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &count, &most);
     mine.resize(static_cast<std::size_t>(most), -1);  // padded: gatherAll takes equal counts
@@ -194,6 +220,7 @@ struct BoundTraits<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     return all;
   }
 
+ public:
   // v at the sorted global indices idx, on every rank (each index owned by one rank).
   static std::vector<S> gatherAt(const MV& v, const std::vector<long long>& idx) {
     std::vector<S> mine(idx.size(), S(0)), all(idx.size(), S(0));

@@ -6,7 +6,8 @@
 // projects onto {x : Q x = 0, x_A = 0}. This is the constraint [G; E_A] handled through the
 // existing projector Q plus a small dense Schur complement: S is built from |A| applications of
 // Q to unit vectors, factorized by dense Cholesky and replicated on every rank (|A| is the
-// number of active contact rows, a few hundred at most). One application of P_F costs two of Q.
+// number of active contact rows, a few hundred at most; a FaceGramian shares the applications
+// among the faces of one solve). One application of P_F costs two of Q.
 // S is singular when a combination of active unit vectors lies in range(Q) (the active rows
 // together with the equality rows are dependent); valid() is false then and the face is not used.
 #include <BelosMultiVecTraits.hpp>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "tfeti_BoundTraits.hpp"
+#include "tfeti_FaceGramian.hpp"
 
 namespace tfeti {
 
@@ -28,19 +30,31 @@ class FaceProjector {
   using BT = BoundTraits<S, MV>;
 
   // active: sorted global indices (BoundTraits::activeIndices); like: a vector on the map.
-  FaceProjector(Teuchos::RCP<const OP> Q, std::vector<long long> active, const MV& like)
+  // gramian (optional): the columns of Q shared by the faces of one solve; the result is the same
+  // with or without it.
+  FaceProjector(Teuchos::RCP<const OP> Q, std::vector<long long> active, const MV& like,
+                FaceGramian<S, MV, OP>* gramian = nullptr)
       : Q_(std::move(Q)), active_(std::move(active)), m_(static_cast<int>(active_.size())) {
     t1_ = MVT::Clone(like, 1);
     t2_ = MVT::Clone(like, 1);
     // S = I - E_A Q E_A^T, column by column (each a Q e_j gathered on the active rows).
     L_.assign(static_cast<std::size_t>(m_) * m_, S(0));
-    const std::vector<S> one{S(1)};
-    for (int j = 0; j < m_; ++j) {
-      MVT::MvInit(*t1_, S(0));
-      BT::addAt({active_[j]}, one, S(1), *t1_);
-      applyQ(*t1_, *t2_);
-      const std::vector<S> col = BT::gatherAt(*t2_, active_);
-      for (int i = 0; i < m_; ++i) L_[j * m_ + i] = (i == j ? S(1) : S(0)) - col[i];
+    if (gramian != nullptr && gramian->covers(active_)) {
+      std::vector<std::size_t> at(active_.size());
+      for (int i = 0; i < m_; ++i) at[i] = gramian->position(active_[i]);
+      for (int j = 0; j < m_; ++j) {
+        const std::vector<S>& col = gramian->column(active_[j]);
+        for (int i = 0; i < m_; ++i) L_[j * m_ + i] = (i == j ? S(1) : S(0)) - col[at[i]];
+      }
+    } else {
+      const std::vector<S> one{S(1)};
+      for (int j = 0; j < m_; ++j) {
+        MVT::MvInit(*t1_, S(0));
+        BT::addAt({active_[j]}, one, S(1), *t1_);
+        applyQ(*t1_, *t2_);
+        const std::vector<S> col = BT::gatherAt(*t2_, active_);
+        for (int i = 0; i < m_; ++i) L_[j * m_ + i] = (i == j ? S(1) : S(0)) - col[i];
+      }
     }
     // Symmetrize against rounding, so that Cholesky sees the same matrix on every rank count.
     for (int j = 0; j < m_; ++j)

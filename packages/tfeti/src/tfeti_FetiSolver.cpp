@@ -621,6 +621,19 @@ DualResult FetiSolver::solveQp(const std::string& method) {
       Q->apply(gaps, *nu0);
       solver.setInitialMultiplier(nu0);
     }
+    // The gaps as the levels of SMALBE's "Initial face" = levels (frictionless contact only:
+    // the tangential rows' boxes have no level), not for warm starts, which have their face.
+    if (warmAll != 1 && tearing_.numInequalityRows > 0 && !inequalitiesTied(params_) &&
+        anyUpper != 1) {
+      auto levels = Teuchos::rcp(new Vector(map));
+      auto dst = levels->getDataNonConst();
+      auto c = tearing_.rhs->getData();
+      for (std::size_t i = 0; i < map->getNodeNumElements(); ++i)
+        dst[i] = tearing_.isInequality(map->getGlobalElement(static_cast<LO>(i)))
+                     ? c[i]
+                     : std::numeric_limits<double>::quiet_NaN();
+      solver.setFaceLevels(levels);
+    }
     if (warmAll == 1 && !previousEqualityMultiplier_.is_null()) {
       Vector previous(map);
       {

@@ -354,12 +354,15 @@ void MprgpIteration<S, MV, OP>::proportioningStep() {
 template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::record(const char* kind) {
   counters_.history.push_back(gpNorm_);
-  if (opts_.verbosity >= 2 && root_) {
+  if (opts_.verbosity < 2) return;
+  // Collective: every rank counts, rank 0 prints.
+  const std::size_t active = BoundTraits<S, MV>::activeIndices(*qp_.x, *qp_.lower, upper_).size();
+  if (root_) {
     // Formatted apart: the target stream's precision and flags stay the caller's.
     std::ostringstream os;
     os << "  MPRGP " << std::setw(5) << iter_ + 1 << "  " << std::left << std::setw(28) << kind
        << std::right << " ||g^P||/||b|| = " << std::scientific << std::setprecision(3)
-       << gpNorm_ / opts_.printScale << "\n";
+       << gpNorm_ / opts_.printScale << "  active " << active << "\n";
     (opts_.out != nullptr ? *opts_.out : std::cout) << os.str() << std::flush;
   }
 }

@@ -74,6 +74,11 @@
 #include "tfeti_SolverOutput.hpp"
 
 namespace tfeti {
+template <class S, class MV, class OP>
+class FaceGramian;
+}
+
+namespace tfeti {
 
 // What the face phase ("Face solve" = pcpg) did in the last solve.
 struct FaceCounters {
@@ -82,6 +87,7 @@ struct FaceCounters {
   bool accepted = false;           // the result is a face solve's
   long long activeSetChanges = 0;  // outer iterations and face corrections whose active set
                                    // differs from the one before
+  long long levelSolves = 0;       // the loose face solves of "Initial face" = levels
 };
 
 template <class S, class MV, class OP>
@@ -118,6 +124,10 @@ class SmalbeSolMgr {
   void setAugmentedHessian(Teuchos::RCP<const OP> H) { augmented_ = std::move(H); }
   // Starting multiplier (in range(Q); default zero).
   void setInitialMultiplier(Teuchos::RCP<const MV> mu0) { mu0_ = std::move(mu0); }
+  // Levels of the lower-bounded components for "Initial face" = levels (FETI: the contact rows'
+  // gaps); a non-finite level: not a candidate. The initial face is one of the nested sets
+  // {i : level_i > tau}.
+  void setFaceLevels(Teuchos::RCP<const MV> levels) { levels_ = std::move(levels); }
   // Progress lines of SMALBE and its inner MPRGP (Verbosity >= 1, rank 0) go here, e.g. a
   // Teuchos::FancyOStream; null: std::cout. Its format state is never changed.
   void setOutputStream(Teuchos::RCP<std::ostream> os) { out_.setStream(std::move(os)); }
@@ -158,12 +168,30 @@ class SmalbeSolMgr {
   // The face phase ("Face solve" = pcpg): PCPG on the face of `active`, then SMALBE's final test
   // on the result; on failure primal-dual active-set steps within "Maximum face solves". True:
   // x, the multiplier, gp and qxNorm hold the accepted result; false: all untouched.
+  // start: the first face solve's starting point instead of SMALBE's iterate.
   bool faceSolve(std::vector<long long> active, magnitude_type gTol, magnitude_type eTol,
-                 magnitude_type scale, magnitude_type& gp, magnitude_type& qxNorm);
+                 magnitude_type scale, magnitude_type& gp, magnitude_type& qxNorm,
+                 const MV* start = nullptr);
+  // "Initial face" = levels: bisection over the level sets for the face on which neither a free
+  // component leaves the box nor an active one has a multiplier of the wrong sign, each face
+  // solved to the loose tolerance tol from x (updated). Returns the face found (or the last one
+  // between too many and too few active components); found is false when the levels do not
+  // discriminate (fewer than two distinct values): no initial face then.
+  std::vector<long long> levelFace(magnitude_type tol, MV& x, bool& found);
+  struct FaceVerdict {
+    bool valid = false;       // the face's projector exists (active rows independent of Q's)
+    long long leftBox = 0;    // free components outside the box after the face solve
+    long long wrongSign = 0;  // active components whose multiplier has the wrong sign
+  };
+  FaceVerdict trialFace(const std::vector<long long>& active, magnitude_type tol, MV& x);
+  Teuchos::RCP<const MV> levels_;
+  Teuchos::RCP<FaceGramian<S, MV, OP>> gramian_;  // during a solve with "Face solve" = pcpg
   // The face's CG stops at this fraction of SMALBE's tolerance on ||g^P||: the final test is
   // made on the recomputed gradient, after the projection onto the box, which the recursive
   // gradient of CG does not see.
   static constexpr double kFaceTolerance = 0.5;
+  // The level search's face solves only decide which way to go: 1e-3 of ||b||.
+  static constexpr double kLevelTolerance = 1e-3;
 };
 
 }  // namespace tfeti

@@ -3,10 +3,12 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -67,6 +69,14 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "a face solve follows an outer iteration whose active set equals that of this many "
             "outer iterations before it (0: after every outer iteration)",
             strict::count(0));
+    pl->set("Initial face", "none",
+            "with Face solve = pcpg: none: the first face is the settled active set of the outer "
+            "iterations; levels: before the first outer iteration, a bisection over the level "
+            "sets {i : level_i > tau} of the levels the caller gives (FETI: the contact rows' "
+            "gaps, open rows held at their bounds) for the face whose loose solve neither leaves "
+            "the box nor has multipliers of the wrong sign, then a face solve from it",
+            Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+                Teuchos::tuple<std::string>("none", "levels"), "Initial face")));
     pl->set("Maximum face solves", 10,
             "limit on face solves (active-set corrections included) in one SMALBE solve",
             strict::count());
@@ -213,6 +223,20 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
   const int maxOuter = params_.get<int>("Maximum outer iterations");
 
   const bool faceMode = params_.get<std::string>("Face solve") == "pcpg";
+  // The faces' columns of Q, shared by all faces of this solve (every bound component a
+  // candidate).
+  gramian_ = Teuchos::null;
+  if (faceMode) {
+    std::vector<long long> bounded = BT::finiteIndices(*qp_.lower);
+    if (!qp_.upper.is_null()) {
+      const std::vector<long long> up = BT::finiteIndices(*qp_.upper);
+      std::vector<long long> both;
+      std::set_union(bounded.begin(), bounded.end(), up.begin(), up.end(),
+                     std::back_inserter(both));
+      bounded = std::move(both);
+    }
+    gramian_ = Teuchos::rcp(new FaceGramian<S, MV, OP>(Q_, std::move(bounded), *qp_.x));
+  }
   const int settleRequired = params_.get<int>("Face settle iterations");
   std::vector<long long> activePrev;
   int settled = 0;
@@ -221,7 +245,17 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
   bool converged = false, innerFailed = false;
   magnitude_type gp = 0, qxNorm = 0;
   int k = 0;
-  for (; k < maxOuter; ++k) {
+  if (faceMode && params_.get<std::string>("Initial face") == "levels" && !levels_.is_null()) {
+    // The active set from the levels (for contact: the gap, whose sublevel sets are the contact
+    // zones of smooth convex bodies) instead of from MPRGP's expansion steps, which on fine
+    // meshes open a few rows at a time.
+    BT::project(*qp_.x, *qp_.lower, qp_.upper.get());
+    auto x = MVT::CloneCopy(*qp_.x);
+    bool found = false;
+    std::vector<long long> active = levelFace(kLevelTolerance * scale, *x, found);
+    if (found) converged = faceSolve(std::move(active), gTol, eTol, scale, gp, qxNorm, x.get());
+  }
+  for (; k < maxOuter && !converged; ++k) {
     MVT::MvAddMv(S(1), *qp_.b, S(-1), *mu_, *bInner);  // L's linear term: b - mu
     innerTest->setM(M_);
     MprgpSolMgr<S, MV, OP> mprgp(inner, innerParams, P_);
@@ -312,6 +346,8 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
     noisePrev = noise;
   }
   qApplies_ += innerTest->projectorApplications();
+  if (!gramian_.is_null()) qApplies_ += gramian_->projectorApplications();
+  gramian_ = Teuchos::null;  // its columns belong to this solve's Q
   counters_.outerIterations = k;
   counters_.projectedGradientNorm = gp;
   counters_.equalityResidualNorm = qxNorm;
@@ -331,6 +367,8 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
   if (faceMode)
     msg << "; face solve: " << face_.solves << " face solves, " << face_.iterations
         << " face CG steps, " << face_.activeSetChanges << " active-set changes";
+  if (face_.levelSolves > 0)
+    msg << ", " << face_.levelSolves << " level-search face solves (their CG steps included)";
   if (innerFailed)
     msg << "; some inner MPRGP solves hit their \"Maximum iterations\" before reaching the "
            "inner precision";
@@ -368,7 +406,8 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
 template <class S, class MV, class OP>
 bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude_type gTol,
                                         magnitude_type eTol, magnitude_type scale,
-                                        magnitude_type& gp, magnitude_type& qxNorm) {
+                                        magnitude_type& gp, magnitude_type& qxNorm,
+                                        const MV* start) {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using OPT = Belos::OperatorTraits<S, MV, OP>;
   using BT = BoundTraits<S, MV>;
@@ -377,14 +416,14 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
   const Teuchos::RCP<const OP> M =
       params_.sublist("MPRGP").get<bool>("Preconditioning in face") ? P_ : Teuchos::null;
   const MV* upper = qp_.upper.get();
-  auto x = MVT::CloneCopy(*qp_.x);
+  auto x = MVT::CloneCopy(start != nullptr ? *start : *qp_.x);
   auto g = MVT::Clone(*qp_.x, 1), t = MVT::Clone(*qp_.x, 1), mu = MVT::Clone(*qp_.x, 1);
   auto phi = MVT::Clone(*qp_.x, 1), chopped = MVT::Clone(*qp_.x, 1);
   std::vector<magnitude_type> n(1);
   const S inf = std::numeric_limits<S>::infinity();
   while (face_.solves < params_.get<int>("Maximum face solves")) {
     ++face_.solves;
-    FaceProjector<S, MV, OP> face(Q_, active, *x);
+    FaceProjector<S, MV, OP> face(Q_, active, *x, gramian_.get());
     qApplies_ += face.projectorApplications();
     if (!face.valid()) {
       if (out_.wants(Belos::IterationDetails) && root)
@@ -437,7 +476,7 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
     const magnitude_type gpFace = n[0];
     const bool passed = gpFace <= gTol && qx <= eTol;
     // Primal-dual active-set step for the next face: the rows at a bound now (the face's free
-    // rows that left the box were projected onto it) less the active rows whose multiplier has
+    // rows that left the box were projected onto it) less the face's rows whose multiplier has
     // the wrong sign (the Lagrangian's gradient pointing into the box).
     std::vector<long long> next;
     if (!passed) {
@@ -447,7 +486,12 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
       std::vector<S> un(now.size(), inf);
       if (upper != nullptr) un = BT::gatherAt(*upper, now);
       for (std::size_t i = 0; i < now.size(); ++i) {
-        const bool release = ln[i] < un[i] && (xn[i] <= ln[i] ? gn[i] < S(0) : gn[i] > S(0));
+        // Only the face's own rows are judged by their multiplier; a row that has just left the
+        // box joins whatever its gradient at the projected point (which is not a multiplier:
+        // judging it would undo most of the step, a few rows joining per face).
+        const bool wasActive = std::binary_search(active.begin(), active.end(), now[i]);
+        const bool release =
+            wasActive && ln[i] < un[i] && (xn[i] <= ln[i] ? gn[i] < S(0) : gn[i] > S(0));
         if (!release) next.push_back(now[i]);
       }
     }
@@ -476,6 +520,81 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
     active = std::move(next);
   }
   return false;  // SMALBE goes on from its own iterate (qp_.x and mu_ untouched)
+}
+
+template <class S, class MV, class OP>
+typename SmalbeSolMgr<S, MV, OP>::FaceVerdict SmalbeSolMgr<S, MV, OP>::trialFace(
+    const std::vector<long long>& active, magnitude_type tol, MV& x) {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using OPT = Belos::OperatorTraits<S, MV, OP>;
+  using BT = BoundTraits<S, MV>;
+  FaceVerdict v;
+  ++face_.levelSolves;
+  FaceProjector<S, MV, OP> face(Q_, active, x, gramian_.get());
+  qApplies_ += face.projectorApplications();
+  if (!face.valid()) return v;
+  v.valid = true;
+  face.projectAffine(BT::gatherAt(*qp_.lower, active), x);
+  const auto A = TimedOperator<S, MV, OP>::wrap(qp_.A, solverTimer("tfeti: Hessian apply"));
+  auto g = MVT::Clone(x, 1);
+  OPT::Apply(*A, x, *g);
+  MVT::MvAddMv(S(1), *g, S(-1), *qp_.b, *g);
+  ++counters_.hessianMultiplications;
+  const Teuchos::RCP<const OP> M =
+      params_.sublist("MPRGP").get<bool>("Preconditioning in face") ? P_ : Teuchos::null;
+  FacePcpg<S, MV, OP> pcpg(A, M, face, S(tol), params_.get<int>("Face maximum iterations"));
+  const FacePcpgResult<S> res = pcpg.solve(x, *g);
+  counters_.hessianMultiplications += res.iterations;
+  face_.iterations += res.iterations;
+  BT::setAt(active, BT::gatherAt(*qp_.lower, active), x);
+  v.leftBox = BT::countOutside(x, *qp_.lower, qp_.upper.get());
+  // A lower bound is held by a multiplier pushing x up: sigma >= 0 (g = sigma on the row).
+  for (const S s : face.activeMultipliers(*g))
+    if (s < S(0)) ++v.wrongSign;
+  if (out_.wants(Belos::IterationDetails) && BT::commRank(x) == 0) {
+    auto line = SolverOutput::line();
+    line << "SMALBE level face: " << active.size() << " active rows, " << res.iterations
+         << " CG steps, " << v.leftBox << " free rows outside the box, " << v.wrongSign
+         << " active rows with a multiplier of the wrong sign\n";
+    out_.write(line);
+  }
+  return v;
+}
+
+template <class S, class MV, class OP>
+std::vector<long long> SmalbeSolMgr<S, MV, OP>::levelFace(magnitude_type tol, MV& x, bool& found) {
+  using BT = BoundTraits<S, MV>;
+  // The candidates and their levels, the same on every rank and rank count.
+  const std::vector<long long> rows = BT::finiteIndices(*levels_);
+  const std::vector<S> level = BT::gatherAt(*levels_, rows);
+  std::vector<S> tau = level;
+  std::sort(tau.begin(), tau.end());
+  tau.erase(std::unique(tau.begin(), tau.end()), tau.end());
+  const auto faceAbove = [&](std::size_t k) {
+    std::vector<long long> a;
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      if (level[i] > tau[k]) a.push_back(rows[i]);
+    return a;  // sorted: rows is
+  };
+  // One level (the two membranes: every gap zero) says nothing about the face.
+  found = tau.size() > 1;
+  if (!found) return {};
+  // Level k holds the rows at or below tau[k] free: the larger k, the more free rows. Too many
+  // free rows leave the box (tension on a closed contact row), too few leave active rows with
+  // a multiplier of the wrong sign (penetration): bisect between the two.
+  std::size_t lo = 0, hi = tau.size() - 1;
+  while (lo < hi) {
+    const std::size_t k = lo + (hi - lo) / 2;
+    const FaceVerdict v = trialFace(faceAbove(k), tol, x);
+    if (!v.valid || (v.wrongSign > 0 && v.leftBox == 0)) {
+      lo = k + 1;  // too few free rows (or not enough to carry Q's rows)
+    } else if (v.leftBox > 0 && v.wrongSign == 0) {
+      hi = k;  // too many
+    } else {
+      return faceAbove(k);  // neither (the face) or both (the primal-dual steps go on from it)
+    }
+  }
+  return faceAbove(lo);
 }
 
 }  // namespace tfeti

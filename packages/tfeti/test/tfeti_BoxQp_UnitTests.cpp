@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -712,6 +713,109 @@ TEUCHOS_UNIT_TEST(BoxQp, SameResultsOnEveryRankCount) {
                    return run;
                  }),
                  out, success);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 8. "Initial face" = levels: before the first outer iteration, the face is searched among the
+// level sets {i : level_i > tau} of levels the caller gives (FETI: the contact rows' gaps), by
+// bisection with loose face solves, then solved and corrected like a settled face.
+
+// Lower bounds only, like contact rows: free, at the bound, and unbounded components.
+int lowerKind(GO i) {
+  static const int kinds[] = {kLowerFree, kLowerAtLower, kUnbounded, kLowerAtLower, kLowerFree};
+  return kinds[(3 * i + i / 7) % 5];
+}
+
+// Levels that order the face: every component at its bound above every free one.
+double orderingLevel(GO i) {
+  return lowerKind(i) == kLowerAtLower ? 2.0 + std::sin(1.3 * i) : 0.5 * std::cos(0.7 * i);
+}
+
+FaceRun levelRun(const RCP<const tfeti::Comm>& comm, const std::function<double(GO)>& level,
+                 Teuchos::FancyOStream& out) {
+  FaceRun r{knownBoxProblem(comm, 96, lowerKind, true, 0.7)};
+  r.Q = rcp(new SpanProjector(*vectorOf(r.p.x->getMap(), [](GO) { return 1.0; })));
+  Teuchos::ParameterList params = smalbeParams(1e-10);
+  params.set("Face solve", "pcpg");
+  params.set("Initial face", "levels");
+  Smalbe solver(r.p.qp(), r.Q, params);
+  // The unbounded components have no level.
+  solver.setFaceLevels(vectorOf(r.p.x->getMap(), [&](GO i) {
+    return lowerKind(i) == kUnbounded ? std::numeric_limits<double>::quiet_NaN() : level(i);
+  }));
+  r.result = solver.solve();
+  r.c = solver.counters();
+  r.face = solver.faceCounters();
+  r.mu = rcp(new Vector(*solver.getMultiplier()->getVector(0), Teuchos::Copy));
+  r.normA = solver.getNormOfA();
+  out << r.c.message << "; " << r.c.hessianMultiplications << " multiplications, "
+      << r.c.outerIterations << " outer iterations\n";
+  return r;
+}
+
+// KKT, the known x and mu, and the known active set (every kLowerAtLower component at its bound).
+void expectKnownLowerSolution(const FaceRun& r, Teuchos::FancyOStream& out, bool& success) {
+  TEST_EQUALITY(r.result, Belos::Converged);
+  const double bNorm = r.p.b->norm2();
+  const Kkt k = r.p.kkt(r.mu.getRawPtr(), r.Q.get());
+  expectKkt(k, 1e-10 * bNorm, out, success);
+  TEST_COMPARE(r.normA * k.equalityResidual, <=, 1e-10 * bNorm);
+  TEST_COMPARE(maxAbsDiff(*r.p.x, *r.p.exact), <=, 1e-6 * r.p.exact->normInf());
+  TEST_COMPARE(maxAbsDiff(*r.mu, *r.p.exactMu), <=, 1e-6 * r.p.exactMu->normInf());
+  double expected = 0;
+  for (GO i = 0; i < 96; ++i) expected += lowerKind(i) == kLowerAtLower ? 1 : 0;
+  TEST_EQUALITY(activeCounts(r.p).atLower, expected);
+}
+
+TEUCHOS_UNIT_TEST(BoxQp, LevelsThatOrderTheFaceGiveItBeforeAnyOuterIteration) {
+  const FaceRun r = levelRun(world(), orderingLevel, out);
+  expectKnownLowerSolution(r, out, success);
+  TEST_ASSERT(r.face.accepted);
+  TEST_EQUALITY(r.c.outerIterations, 0);  // no MPRGP step at all
+  TEST_EQUALITY(r.c.cgSteps + r.c.expansionSteps + r.c.proportioningSteps, 0);
+  TEST_COMPARE(r.face.levelSolves, >, 0);
+  TEST_EQUALITY(r.face.solves, 1);  // the face the bisection found was the solution's
+  // (On this 1D Laplacian without a preconditioner the face CG needs more steps than SMALBE's
+  // inner solves; the counts on contact problems are in docs/qp_solvers.md.)
+}
+
+TEUCHOS_UNIT_TEST(BoxQp, MisleadingLevelsStillConverge) {
+  // Levels unrelated to the face: the bisection ends somewhere, the active-set steps and then
+  // SMALBE's own iterations finish the solve.
+  const FaceRun r = levelRun(
+      world(), [](GO i) { return std::sin(1.7 * i); }, out);
+  expectKnownLowerSolution(r, out, success);
+  TEST_COMPARE(r.face.levelSolves, >, 0);
+}
+
+TEUCHOS_UNIT_TEST(BoxQp, OneLevelSearchesNothing) {
+  // Every level equal (the two membranes: every gap zero): no information, no level search.
+  const FaceRun r = levelRun(
+      world(), [](GO) { return 0.0; }, out);
+  expectKnownLowerSolution(r, out, success);
+  TEST_EQUALITY(r.face.levelSolves, 0);
+  TEST_COMPARE(r.c.outerIterations, >, 0);
+}
+
+TEUCHOS_UNIT_TEST(BoxQp, InitialFaceParameterIsValidated) {
+  auto p = knownBoxProblem(world(), 16, lowerKind, true, 0.7);
+  auto Q = rcp(new SpanProjector(*vectorOf(p.x->getMap(), [](GO) { return 1.0; })));
+  Teuchos::ParameterList params = smalbeParams(1e-8);
+  params.set("Initial face", "gaps");
+  TEST_THROW(Smalbe(p.qp(), Q, params), std::exception);
+}
+
+TEUCHOS_UNIT_TEST(BoxQp, LevelSearchGivesTheSameResultsOnEveryRankCount) {
+  for (auto level : {std::function<double(GO)>(orderingLevel),
+                     std::function<double(GO)>([](GO i) { return std::sin(1.7 * i); })})
+    expectSameRuns(onEveryRankCount([&](RCP<const tfeti::Comm> sub) {
+                     const FaceRun r = levelRun(sub, level, out);
+                     RankRun run = rankRun(r.c, *r.p.x);
+                     run.face[0] = r.face.solves + 1000 * r.face.levelSolves;
+                     run.face[1] = r.face.iterations;
+                     return run;
+                   }),
+                   out, success);
 }
 
 }  // namespace
