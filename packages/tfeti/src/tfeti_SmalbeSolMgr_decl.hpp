@@ -37,7 +37,7 @@
 //  "Norm of A"                 0.0   ||A|| of the unaugmented Hessian; 0: power iterations
 //  "Power iterations"          20    for the estimate of ||A||
 //  "Verbosity"                 0     0 silent, 1 summary, 2 every outer iteration (rank 0)
-//  "Face solve"                "none"  pcpg: once the active set (the components at a bound) is
+//  "Face solve"                "pcpg"  once the active set (the components at a bound) is
 //                                    the same after "Face settle iterations" + 1 consecutive
 //                                    outer iterations, minimize on that face (active components
 //                                    held at their bounds, Q x = 0) by projected preconditioned
@@ -48,7 +48,9 @@
 //                                    multiplier has the wrong sign leave) and a new face solve,
 //                                    and when the face does not change or "Maximum face solves"
 //                                    (10) is reached SMALBE goes on from its own iterate.
-//                                    "Face maximum iterations" (1000) limits one face solve.
+//                                    "Face maximum iterations" (1000) limits one face solve;
+//                                    it stops at ||P_F g|| <= "Face relative tolerance" (0.01)
+//                                    * tol * ||b||, in (0, 1]. "none": SMALBE-M alone.
 //  sublist "MPRGP"                   the inner solver's parameters (MprgpSolMgr); SMALBE replaces
 //                                    its stopping test by the rule above and its "Norm of A" by
 //                                    ||A|| + rho (an upper bound of ||A + rho Q||, no power
@@ -160,10 +162,11 @@ class SmalbeSolMgr {
   // x, the multiplier, gp and qxNorm hold the accepted result; false: all untouched.
   bool faceSolve(std::vector<long long> active, magnitude_type gTol, magnitude_type eTol,
                  magnitude_type scale, magnitude_type& gp, magnitude_type& qxNorm);
-  // The face's CG stops at this fraction of SMALBE's tolerance on ||g^P||: the final test is
-  // made on the recomputed gradient, after the projection onto the box, which the recursive
-  // gradient of CG does not see.
-  static constexpr double kFaceTolerance = 0.5;
+  // "Face relative tolerance"'s default (docs/qp_solvers.md, "Face solve"): the face CG's
+  // ||P_F g|| is the residual of the rows that hold with equality (for FETI, B u - c over the
+  // gluing rows and the contact rows in contact), which SMALBE alone ends one to two orders
+  // below its tolerance; stopping at half the tolerance left 10-100 times its primal residual.
+  static constexpr double kFaceRelativeTolerance = 0.01;
 };
 
 }  // namespace tfeti

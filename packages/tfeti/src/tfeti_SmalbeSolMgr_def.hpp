@@ -55,12 +55,13 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "values (Warnings 1, IterationDetails 2, FinalSummary 8, TimingDetails 16, "
             "StatusTestDetails 32)",
             strict::intBetween(0, kAllMsgTypes));
-    pl->set("Face solve", "none",
-            "none: SMALBE-M alone; pcpg: once the active set is unchanged over \"Face settle "
+    pl->set("Face solve", "pcpg",
+            "pcpg (default): once the active set is unchanged over \"Face settle "
             "iterations\" outer iterations, solve on that face (active rows held at their bounds, "
             "Q x = 0 by a projector) by projected preconditioned CG and accept the result only "
             "if it passes SMALBE's final test; otherwise a primal-dual active-set step and a new "
-            "face, and after \"Maximum face solves\" back to SMALBE's own iterate",
+            "face, and after \"Maximum face solves\" back to SMALBE's own iterate; none: "
+            "SMALBE-M alone",
             Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
                 Teuchos::tuple<std::string>("none", "pcpg"), "Face solve")));
     pl->set("Face settle iterations", 1,
@@ -72,6 +73,11 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             strict::count());
     pl->set("Face maximum iterations", 1000, "limit on the CG steps of one face solve",
             strict::count());
+    pl->set("Face relative tolerance", kFaceRelativeTolerance,
+            "the face CG stops at ||P_F g|| <= value * \"Relative tolerance\" * ||b||; ||P_F g|| "
+            "is the residual of the rows that hold with equality (for FETI ||B u - c|| over the "
+            "gluing and contact rows), which SMALBE alone ends well below its tolerance",
+            strict::between(0.0, 1.0, true, false));
     pl->sublist("MPRGP", false, "inner solver (MPRGP) parameters")
         .setParameters(*MprgpSolMgr<S, MV, OP>::getValidParameters());
   }
@@ -404,7 +410,7 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
     OPT::Apply(*A, *x, *g);
     MVT::MvAddMv(S(1), *g, S(-1), *qp_.b, *g);
     ++counters_.hessianMultiplications;
-    FacePcpg<S, MV, OP> pcpg(A, M, face, S(kFaceTolerance) * gTol,
+    FacePcpg<S, MV, OP> pcpg(A, M, face, S(params_.get<double>("Face relative tolerance")) * gTol,
                              params_.get<int>("Face maximum iterations"));
     const FacePcpgResult<S> res = pcpg.solve(*x, *g);
     counters_.hessianMultiplications += res.iterations;
