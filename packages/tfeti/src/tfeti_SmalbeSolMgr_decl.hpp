@@ -37,7 +37,7 @@
 //  "Norm of A"                 0.0   ||A|| of the unaugmented Hessian; 0: power iterations
 //  "Power iterations"          20    for the estimate of ||A||
 //  "Verbosity"                 0     0 silent, 1 summary, 2 every outer iteration (rank 0)
-//  "Face solve"                "pcpg"  once the active set (the components at a bound) is
+//  "Face solve"                "none"  pcpg: once the active set (the components at a bound) is
 //                                    the same after "Face settle iterations" + 1 consecutive
 //                                    outer iterations, minimize on that face (active components
 //                                    held at their bounds, Q x = 0) by projected preconditioned
@@ -50,7 +50,7 @@
 //                                    (10) is reached SMALBE goes on from its own iterate.
 //                                    "Face maximum iterations" (1000) limits one face solve;
 //                                    it stops at ||P_F g|| <= "Face relative tolerance" (0.01)
-//                                    * tol * ||b||, in (0, 1]. "none": SMALBE-M alone.
+//                                    * tol * ||b||, in (0, 1].
 //  sublist "MPRGP"                   the inner solver's parameters (MprgpSolMgr); SMALBE replaces
 //                                    its stopping test by the rule above and its "Norm of A" by
 //                                    ||A|| + rho (an upper bound of ||A + rho Q||, no power

@@ -55,13 +55,12 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "values (Warnings 1, IterationDetails 2, FinalSummary 8, TimingDetails 16, "
             "StatusTestDetails 32)",
             strict::intBetween(0, kAllMsgTypes));
-    pl->set("Face solve", "pcpg",
-            "pcpg (default): once the active set is unchanged over \"Face settle "
+    pl->set("Face solve", "none",
+            "none: SMALBE-M alone; pcpg: once the active set is unchanged over \"Face settle "
             "iterations\" outer iterations, solve on that face (active rows held at their bounds, "
             "Q x = 0 by a projector) by projected preconditioned CG and accept the result only "
             "if it passes SMALBE's final test; otherwise a primal-dual active-set step and a new "
-            "face, and after \"Maximum face solves\" back to SMALBE's own iterate; none: "
-            "SMALBE-M alone",
+            "face, and after \"Maximum face solves\" back to SMALBE's own iterate",
             Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
                 Teuchos::tuple<std::string>("none", "pcpg"), "Face solve")));
     pl->set("Face settle iterations", 1,

@@ -512,7 +512,7 @@ TEUCHOS_UNIT_TEST(Smalbe, KnownSolutionWithEqualityConstraint) {
   TEST_ASSERT(c.converged);
   TEST_COMPARE(c.outerIterations, >=, 1);
   TEST_COMPARE(c.hessianMultiplications, >=, c.cgSteps + c.expansionSteps + c.proportioningSteps);
-  // One entry per outer iteration, and one for the face solve that ended it (the default).
+  // One entry per outer iteration, and one for a face solve that ended it.
   const tfeti::FaceCounters& face = solver.faceCounters();
   TEST_COMPARE(c.history.size(), ==,
                static_cast<std::size_t>(c.outerIterations) + (face.accepted ? 1 : 0));
@@ -581,7 +581,7 @@ TEUCHOS_UNIT_TEST(Smalbe, ObstacleWithZeroMeanMatchesPenalty) {
 
 // SMALBE's variants: the Lagrangian test (Dostal / shifted), the reuse of the inner gradient and
 // the expansion step change the path, not the solution (SMALBE's own outer loop: "Face solve" =
-// none, the face solve last). With the gradient reused, every outer
+// none, set explicitly; the face solve last). With the gradient reused, every outer
 // iteration after the first saves the initial multiplication of MPRGP. The published test
 // reduces M less often than the shifted one.
 TEUCHOS_UNIT_TEST(Smalbe, VariantsReachTheSameSolution) {
@@ -638,7 +638,7 @@ TEUCHOS_UNIT_TEST(Smalbe, VariantsReachTheSameSolution) {
   same(run("Dostal", true, "projected CG", 1.0));
   same(run("Dostal", true, "projected CG", 100.0));
   same(run("shifted", false, "fixed", 100.0));
-  // The face solve (the default) ends at the same solution; its multiplications are its CG
+  // The face solve ends at the same solution; its multiplications are its CG
   // steps and two gradients per face solve on top of SMALBE's own.
   const Run face = run("Dostal", true, "fixed", 1.0, "pcpg");
   same(face);
@@ -662,6 +662,7 @@ TEUCHOS_UNIT_TEST(Smalbe, FaceToleranceBoundsTheFreeGradient) {
   std::vector<tfeti::FaceCounters> face;
   for (double fraction : {0.5, 0.01}) {
     Teuchos::ParameterList p = smalbeParams(tol);
+    p.set("Face solve", "pcpg");
     p.set("Face relative tolerance", fraction);
     o.x->putScalar(0.0);
     Smalbe solver(o.qp(), Q, p);
