@@ -48,7 +48,9 @@
 //                                    multiplier has the wrong sign leave) and a new face solve,
 //                                    and when the face does not change or "Maximum face solves"
 //                                    (10) is reached SMALBE goes on from its own iterate.
-//                                    "Face maximum iterations" (1000) limits one face solve.
+//                                    "Face maximum iterations" (1000) limits one face solve;
+//                                    it stops at ||P_F g|| <= "Face relative tolerance" (0.01)
+//                                    * tol * ||b||, in (0, 1].
 //  sublist "MPRGP"                   the inner solver's parameters (MprgpSolMgr); SMALBE replaces
 //                                    its stopping test by the rule above and its "Norm of A" by
 //                                    ||A|| + rho (an upper bound of ||A + rho Q||, no power
@@ -186,10 +188,11 @@ class SmalbeSolMgr {
   FaceVerdict trialFace(const std::vector<long long>& active, magnitude_type tol, MV& x);
   Teuchos::RCP<const MV> levels_;
   Teuchos::RCP<FaceGramian<S, MV, OP>> gramian_;  // during a solve with "Face solve" = pcpg
-  // The face's CG stops at this fraction of SMALBE's tolerance on ||g^P||: the final test is
-  // made on the recomputed gradient, after the projection onto the box, which the recursive
-  // gradient of CG does not see.
-  static constexpr double kFaceTolerance = 0.5;
+  // "Face relative tolerance"'s default (docs/qp_solvers.md, "Face solve"): the face CG's
+  // ||P_F g|| is the residual of the rows that hold with equality (for FETI, B u - c over the
+  // gluing rows and the contact rows in contact), which SMALBE alone ends one to two orders
+  // below its tolerance; stopping at half the tolerance left 10-100 times its primal residual.
+  static constexpr double kFaceRelativeTolerance = 0.01;
   // The level search's face solves only decide which way to go: 1e-3 of ||b||.
   static constexpr double kLevelTolerance = 1e-3;
 };

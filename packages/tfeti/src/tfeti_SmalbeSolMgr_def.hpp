@@ -82,6 +82,11 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             strict::count());
     pl->set("Face maximum iterations", 1000, "limit on the CG steps of one face solve",
             strict::count());
+    pl->set("Face relative tolerance", kFaceRelativeTolerance,
+            "the face CG stops at ||P_F g|| <= value * \"Relative tolerance\" * ||b||; ||P_F g|| "
+            "is the residual of the rows that hold with equality (for FETI ||B u - c|| over the "
+            "gluing and contact rows), which SMALBE alone ends well below its tolerance",
+            strict::between(0.0, 1.0, true, false));
     pl->sublist("MPRGP", false, "inner solver (MPRGP) parameters")
         .setParameters(*MprgpSolMgr<S, MV, OP>::getValidParameters());
   }
@@ -443,7 +448,7 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
     OPT::Apply(*A, *x, *g);
     MVT::MvAddMv(S(1), *g, S(-1), *qp_.b, *g);
     ++counters_.hessianMultiplications;
-    FacePcpg<S, MV, OP> pcpg(A, M, face, S(kFaceTolerance) * gTol,
+    FacePcpg<S, MV, OP> pcpg(A, M, face, S(params_.get<double>("Face relative tolerance")) * gTol,
                              params_.get<int>("Face maximum iterations"));
     const FacePcpgResult<S> res = pcpg.solve(*x, *g);
     counters_.hessianMultiplications += res.iterations;

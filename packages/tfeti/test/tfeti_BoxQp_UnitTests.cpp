@@ -583,7 +583,9 @@ TEUCHOS_UNIT_TEST(BoxQp, FaceSolveAfterTheActiveSetSettles) {
   // Fewer multiplications than SMALBE alone on the same problem.
   auto p = knownBoxProblem(world(), 96, mixedKind, true, 0.7);
   auto Q = rcp(new SpanProjector(*vectorOf(p.x->getMap(), [](GO) { return 1.0; })));
-  Smalbe alone(p.qp(), Q, smalbeParams(1e-10));
+  Teuchos::ParameterList aloneParams = smalbeParams(1e-10);
+  aloneParams.set("Face solve", "none");
+  Smalbe alone(p.qp(), Q, aloneParams);
   alone.solve();
   out << "SMALBE alone: " << alone.counters().hessianMultiplications << " multiplications, "
       << alone.counters().outerIterations << " outer iterations\n";
@@ -625,6 +627,16 @@ TEUCHOS_UNIT_TEST(BoxQp, FaceSolveParametersAreValidated) {
   params.set("Face solve", "pcpg");
   params.set("Face settle iterations", -1);
   TEST_THROW(Smalbe(p.qp(), Q, params), std::exception);
+  params.set("Face settle iterations", 1);
+  for (double bad : {0.0, -0.1, 1.5}) {
+    params.set("Face relative tolerance", bad);
+    TEST_THROW(Smalbe(p.qp(), Q, params), std::exception);
+  }
+  // SMALBE alone is the default (the face CG's multiplier drifts along dependent rows,
+  // docs/qp_solvers.md); the face CG stops two orders below SMALBE's tolerance.
+  const Teuchos::ParameterList& valid = *Smalbe::getValidParameters();
+  TEST_EQUALITY(valid.get<std::string>("Face solve"), "none");
+  TEST_EQUALITY(valid.get<double>("Face relative tolerance"), 0.01);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -512,7 +512,17 @@ TEUCHOS_UNIT_TEST(Smalbe, KnownSolutionWithEqualityConstraint) {
   TEST_ASSERT(c.converged);
   TEST_COMPARE(c.outerIterations, >=, 1);
   TEST_COMPARE(c.hessianMultiplications, >=, c.cgSteps + c.expansionSteps + c.proportioningSteps);
-  TEST_COMPARE(c.history.size(), ==, static_cast<std::size_t>(c.outerIterations));
+  // One entry per outer iteration, and one for a face solve that ended it.
+  const tfeti::FaceCounters& face = solver.faceCounters();
+  TEST_COMPARE(c.history.size(), ==,
+               static_cast<std::size_t>(c.outerIterations) + (face.accepted ? 1 : 0));
+  TEST_COMPARE(c.history.back(), <=, 1e-10);
+  // Every multiplication accounted for: the 20 power iterations, the first inner gradient (the
+  // later ones reused), one per CG and proportioning step and two per (fixed) expansion step,
+  // and per face solve its CG steps plus the gradients at its start and at its final test.
+  TEST_EQUALITY(c.hessianMultiplications, 20 + 1 + c.cgSteps + 2 * c.expansionSteps +
+                                              c.proportioningSteps + face.iterations +
+                                              2 * face.solves);
   // Solution and multiplier: cond(A) ~ 3e3, both tolerances 1e-10 relative.
   const double xScale = p.exact->normInf();
   TEST_COMPARE(maxAbsDiff(*p.x, *p.exact), <=, 1e-6 * xScale);
@@ -570,7 +580,8 @@ TEUCHOS_UNIT_TEST(Smalbe, ObstacleWithZeroMeanMatchesPenalty) {
 }
 
 // SMALBE's variants: the Lagrangian test (Dostal / shifted), the reuse of the inner gradient and
-// the expansion step change the path, not the solution. With the gradient reused, every outer
+// the expansion step change the path, not the solution (SMALBE's own outer loop: "Face solve" =
+// none, set explicitly; the face solve last). With the gradient reused, every outer
 // iteration after the first saves the initial multiplication of MPRGP. The published test
 // reduces M less often than the shifted one.
 TEUCHOS_UNIT_TEST(Smalbe, VariantsReachTheSameSolution) {
@@ -581,10 +592,12 @@ TEUCHOS_UNIT_TEST(Smalbe, VariantsReachTheSameSolution) {
     std::vector<double> u;
     tfeti::QpCounters c;
     double M;
+    tfeti::FaceCounters face;
   };
-  auto run = [&](const std::string& test, bool reuse, const std::string& expansion,
-                 double penalty) {
+  auto run = [&](const std::string& test, bool reuse, const std::string& expansion, double penalty,
+                 const std::string& face = "none") {
     Teuchos::ParameterList p = smalbeParams(1e-9);
+    p.set("Face solve", face);
     p.set("Lagrangian test", test);
     p.set("Reuse gradient", reuse);
     p.set("Penalty", penalty);
@@ -600,7 +613,7 @@ TEUCHOS_UNIT_TEST(Smalbe, VariantsReachTheSameSolution) {
         << solver.getM() / solver.getNormOfA() << "\n";
     TEST_EQUALITY(result, Belos::Converged);
     expectKkt(k, 1e-8 * o.b->norm2(), out, success);
-    return Run{gatherAll(*o.x), solver.counters(), solver.getM()};
+    return Run{gatherAll(*o.x), solver.counters(), solver.getM(), solver.faceCounters()};
   };
   const Run ref = run("Dostal", true, "fixed", 1.0);
   const double scale = tfeti_test::maxAbs(ref.u);
@@ -625,6 +638,49 @@ TEUCHOS_UNIT_TEST(Smalbe, VariantsReachTheSameSolution) {
   same(run("Dostal", true, "projected CG", 1.0));
   same(run("Dostal", true, "projected CG", 100.0));
   same(run("shifted", false, "fixed", 100.0));
+  // The face solve ends at the same solution; its multiplications are its CG
+  // steps and two gradients per face solve on top of SMALBE's own.
+  const Run face = run("Dostal", true, "fixed", 1.0, "pcpg");
+  same(face);
+  TEST_ASSERT(face.face.accepted);
+  TEST_EQUALITY(face.c.hessianMultiplications,
+                steps(face.c) + 1 + face.face.iterations + 2 * face.face.solves);
+  TEST_COMPARE(face.c.outerIterations, <, ref.c.outerIterations);
+}
+
+// The face solve's stopping rule ("Face relative tolerance") on the obstacle problem with zero
+// mean: the face CG's ||P_F g|| is the gradient of the Lagrangian on the free components (what
+// FETI's primal residual B u - c is on the rows that hold with equality), so its largest entry
+// is below the fraction of SMALBE's tolerance that the parameter sets; a tighter fraction costs
+// more face CG steps from the same SMALBE iterate, not outer iterations.
+TEUCHOS_UNIT_TEST(Smalbe, FaceToleranceBoundsTheFreeGradient) {
+  auto o = obstacle(world(), 15, [](double x, double) { return 60.0 * (x - 0.65); });
+  auto ones = vectorOf(o.x->getMap(), [](GO) { return 1.0; });
+  auto Q = rcp(new SpanProjector(*ones));
+  const double tol = 1e-8, bNorm = o.b->norm2();
+  std::vector<tfeti::QpCounters> c;
+  std::vector<tfeti::FaceCounters> face;
+  for (double fraction : {0.5, 0.01}) {
+    Teuchos::ParameterList p = smalbeParams(tol);
+    p.set("Face solve", "pcpg");
+    p.set("Face relative tolerance", fraction);
+    o.x->putScalar(0.0);
+    Smalbe solver(o.qp(), Q, p);
+    const Belos::ReturnType result = solver.solve();
+    c.push_back(solver.counters());
+    face.push_back(solver.faceCounters());
+    out << "fraction " << fraction << ": " << c.back().message << "\n";
+    TEST_EQUALITY(result, Belos::Converged);
+    TEST_ASSERT(face.back().accepted);
+    const auto muView = solver.getMultiplier()->getVector(0);
+    const Kkt k = checkKkt(*o.A, *o.b, *o.lower, *o.x, muView.getRawPtr(), Q.get());
+    // The CG's recursive gradient met the bound; the recomputed one differs by rounding.
+    expectKkt(k, fraction * tol * bNorm * (1 + 1e-6) + 1e-14 * bNorm, out, success);
+    TEST_COMPARE(c.back().history.back(), <=, fraction * tol * (1 + 1e-6) + 1e-14);
+  }
+  TEST_COMPARE(face[1].iterations, >, face[0].iterations);
+  TEST_EQUALITY(c[1].outerIterations, c[0].outerIterations);
+  TEST_COMPARE(c[1].history.back(), <, c[0].history.back());
 }
 
 // ---------------------------------------------------------------------------------------------
