@@ -44,6 +44,15 @@ enum class EndPolicy {
          // (plane) is extended past its end (the gap is the distance to it, not to the point)
 };
 
+// At a master corner (2D: two segments; 3D: a vertex or an edge) a slave node outside the
+// normal cone gets the closest-point normal d / |d|, d = x_s - x_m, which keeps the row exactly
+// invariant under rigid rotations. A node closer to the corner than this fraction of the facet's
+// size takes the averaged normal instead: there d can be the solver's noise (a symmetry plane
+// through the corner holds both nodes only to the tolerance), and d / |d| would point anywhere,
+// e.g. along the plane, making the row nearly a combination of the symmetry rows so that its
+// multiplier drifts. The gap changes by at most this fraction of the size at the switch.
+inline constexpr double kCornerSnap = 1e-4;
+
 struct ContactSearchOptions {
   // A slave node whose closest point on the master is farther than this gets no row, so every
   // row has |gap| <= searchRadius. Must be positive; keep it below half the master body's

@@ -543,8 +543,9 @@ ContactRowsResult computeNodeToFace(const std::vector<double>& coords,
           sum = n + faces[g].normal(q[0], q[1]);
         }
         const Vec avg = norm(sum) > 1e-12 ? unit(sum) : n;
+        // d / |d| outside the corner's cone, unless d may be noise (kCornerSnap).
         const double dist = norm(d);
-        n = (dist > 1e-12 * F.size && dot(d, avg) > 0.0) ? (1.0 / dist) * d : avg;
+        n = (dist > kCornerSnap * F.size && dot(d, avg) > 0.0) ? (1.0 / dist) * d : avg;
         kind = bp.corner >= 0 ? ProjectionKind::Corner : ProjectionKind::Edge;
       }
     }

@@ -323,8 +323,9 @@ NodeToSegmentResult computeNodeToSegment(const std::vector<double>& coords,
         const Vec sum = n + n2;
         // A fold back onto itself (n2 = -n) has no average direction: keep this segment's.
         const Vec avg = norm(sum) > 1e-12 ? (1.0 / norm(sum)) * sum : n;
+        // d / |d| outside the corner's cone, unless d may be noise (kCornerSnap).
         const double dist = norm(d);
-        n = (dist > 1e-12 * g.chord() && dot(d, avg) > 0.0) ? (1.0 / dist) * d : avg;
+        n = (dist > kCornerSnap * g.chord() && dot(d, avg) > 0.0) ? (1.0 / dist) * d : avg;
       } else if (bestP.clamped) {
         const Vec outward = bestP.xi * g.tangent(bestP.xi);
         const double beyond = dot(d, outward) / norm(outward);

@@ -142,7 +142,9 @@ TEUCHOS_UNIT_TEST(ContactSolver, TwoCylindersAgainstHertzAndExecutable) {
   // QP counters and the one-step history of the elastic run.
   TEST_EQUALITY_CONST(r.qp.method, "SMALBE");
   TEST_ASSERT(r.qp.qp.hessianMultiplications > 0);
-  TEST_ASSERT(r.qp.qp.outerIterations > 0);
+  // The face found from the gaps may end the solve before any outer iteration (FETI's defaults
+  // "Face solve" = pcpg, "Initial face" = levels).
+  TEST_ASSERT(r.qp.converged);
   TEST_EQUALITY(static_cast<int>(r.history.steps.size()), 1);
   TEST_EQUALITY(r.history.steps[0].loadFactor, 1.0);
   TEST_EQUALITY(r.history.steps[0].outerIterations, 1);
@@ -244,11 +246,12 @@ TEUCHOS_UNIT_TEST(ContactSolver, NonlinearStepsThroughTheObject) {
   TEST_ASSERT(std::abs(c.extent - e.contact.extent) / e.contact.extent < 5e-3);
 }
 
-// A QP that cannot converge in one SMALBE outer iteration: reported by the result (and the exit
-// code the executable returns), its last state kept.
+// A QP that cannot converge in one SMALBE outer iteration, its face solves limited to one CG
+// step: reported by the result (and the exit code the executable returns), its last state kept.
 TEUCHOS_UNIT_TEST(ContactSolver, NonConvergenceIsReported) {
   ParameterList p = twoCylinders();
   p.sublist("FETI").sublist("SMALBE").set("Maximum outer iterations", 1);
+  p.sublist("FETI").sublist("SMALBE").set("Face maximum iterations", 1);
   contact::ContactSolver solver(comm());
   solver.setParameters(p);
   const contact::ContactResult r = solver.solve();

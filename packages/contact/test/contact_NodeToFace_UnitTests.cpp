@@ -315,6 +315,32 @@ TEUCHOS_UNIT_TEST(NodeToFace, EdgesCornersAndFreeEdges) {
   TEST_EQUALITY(v.rows.size(), 1u);
   TEST_EQUALITY(static_cast<int>(v.rows[0].kind), static_cast<int>(ProjectionKind::Corner));
   TEST_COMPARE(std::abs(v.rows[0].gap - std::sqrt(0.01 + 0.0025 + 0.09)), <, 1e-13);
+
+  // A node clearly off the apex, inside its cone, gets the direction to it.
+  p.insert(p.end(), {1e-4, 0.0, 1.0 + 3e-4});
+  const ContactRowsResult off = contact::computeNodeToFace(p, {6}, pyr, radius(0.5));
+  TEST_EQUALITY(off.rows.size(), 1u);
+  if (off.rows.size() == 1) {
+    const double dist = std::hypot(1e-4, 3e-4);
+    TEST_EQUALITY(static_cast<int>(off.rows[0].kind), static_cast<int>(ProjectionKind::Corner));
+    TEST_COMPARE(std::abs(off.rows[0].normal[0] - 1e-4 / dist), <, 1e-12);
+    TEST_COMPARE(std::abs(off.rows[0].gap - dist), <, 1e-15);
+  }
+  // The corner of a flat master cut by two symmetry planes (the nonlinear Hertz sphere's axis
+  // node): the slave node sits on it up to the solver's noise, held on the planes to 1e-12. d is
+  // then mostly sideways, and d / |d| would make the row nearly a combination of the symmetry
+  // rows, whose multiplier then drifts. Below kCornerSnap * size the averaged normal is kept.
+  std::vector<double> q{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, -1e-12, -5e-12, 1e-12};
+  MasterFaceSurface flat;
+  flat.type = ElementType::Quad4;
+  flat.faces = {0, 1, 2, 3};
+  const ContactRowsResult noisy = contact::computeNodeToFace(q, {4}, flat, radius(0.5));
+  TEST_EQUALITY(noisy.rows.size(), 1u);
+  if (noisy.rows.size() == 1) {
+    TEST_EQUALITY(static_cast<int>(noisy.rows[0].kind), static_cast<int>(ProjectionKind::Corner));
+    TEST_COMPARE(std::abs(noisy.rows[0].normal[2] - 1.0), <, 1e-14);
+    TEST_COMPARE(std::abs(noisy.rows[0].gap - 1e-12), <, 1e-20);
+  }
 }
 
 TEUCHOS_UNIT_TEST(NodeToFace, GridSearchEqualsBruteForceAndStaysNearLinear) {

@@ -325,6 +325,16 @@ TEUCHOS_UNIT_TEST(NodeToSegment, CornersConvexAndConcave) {
     TEST_FLOATING_EQUALITY(r.rows[3].gap, -0.02, 1e-12);
     TEST_COMPARE(std::abs(r.rows[3].normal[1] - 1.0), <, 1e-14);
   }
+  // On the corner up to noise (1e-12 along the right side): the average normal, not the
+  // direction of the noise (kCornerSnap), so that the row does not turn into a symmetry row.
+  const int noisy = s.add(1.0 + 1e-13, 1.0 + 1e-12);
+  const NodeToSegmentResult rn = computeNodeToSegment(s.coords, {noisy}, s.master, radius(0.3));
+  TEST_EQUALITY(rn.rows.size(), 1u);
+  if (rn.rows.size() == 1) {
+    TEST_EQUALITY(static_cast<int>(rn.rows[0].kind), static_cast<int>(ProjectionKind::Corner));
+    TEST_FLOATING_EQUALITY(rn.rows[0].normal[0], std::sqrt(0.5), 1e-14);
+    TEST_FLOATING_EQUALITY(rn.rows[0].normal[1], std::sqrt(0.5), 1e-14);
+  }
   // Concave: the re-entrant corner (1, 1) of the L = (0,2)x(0,1) u (0,1)x(0,2), walked leftwards
   // along y = 1 and then up x = 1.
   Setup l;

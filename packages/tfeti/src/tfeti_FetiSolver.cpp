@@ -167,6 +167,15 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
     // about log2(rows) loose face solves where MPRGP's expansion steps open a row or two each
     // (docs/qp_solvers.md: two cylinders at 1M unknowns, 765 -> 143 multiplications). Used only
     // with "Face solve" = pcpg, and only for frictionless contact without a warm start.
+    // Once the active set settles, the face PCPG replaces the tail of SMALBE's outer iterations
+    // (docs/qp_solvers.md: two cylinders 101k-4M unknowns, 112-232 multiplications with the
+    // level search against 223-1421 for SMALBE alone); the result is accepted only by SMALBE's
+    // final test, so SMALBE alone remains the fallback.
+    {
+      auto& entry = smalbe.getEntry("Face solve");
+      entry.setValue<std::string>("pcpg", false,
+                                  "FETI default: pcpg (the component's: none)", entry.validator());
+    }
     {
       auto& entry = smalbe.getEntry("Initial face");
       entry.setValue<std::string>("levels", false,
