@@ -173,8 +173,8 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
     // final test, so SMALBE alone remains the fallback.
     {
       auto& entry = smalbe.getEntry("Face solve");
-      entry.setValue<std::string>("pcpg", false,
-                                  "FETI default: pcpg (the component's: none)", entry.validator());
+      entry.setValue<std::string>("pcpg", false, "FETI default: pcpg (the component's: none)",
+                                  entry.validator());
     }
     {
       auto& entry = smalbe.getEntry("Initial face");

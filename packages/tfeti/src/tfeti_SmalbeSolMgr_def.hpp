@@ -448,6 +448,36 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
   auto phi = MVT::Clone(*qp_.x, 1), chopped = MVT::Clone(*qp_.x, 1);
   std::vector<magnitude_type> n(1);
   const S inf = std::numeric_limits<S>::infinity();
+  // The primal-dual active-set step: the rows at a bound of the projected iterate xp, less the
+  // face's own rows whose multiplier sigma has the wrong sign (a lower bound is held by sigma
+  // >= 0, an upper one by sigma <= 0). A row that has just left the box joins whatever its
+  // gradient at the projected point (which is not a multiplier: judging it would undo most of
+  // the step, a few rows joining per face).
+  const auto pdasStep = [&](const MV& xp, const std::vector<long long>& face,
+                            const std::vector<S>& sigma) {
+    const std::vector<long long> now = BT::activeIndices(xp, *qp_.lower, upper);
+    const std::vector<S> xn = BT::gatherAt(xp, now), ln = BT::gatherAt(*qp_.lower, now);
+    std::vector<S> un(now.size(), inf);
+    if (upper != nullptr) un = BT::gatherAt(*upper, now);
+    std::vector<long long> next;
+    for (std::size_t i = 0; i < now.size(); ++i) {
+      const auto it = std::lower_bound(face.begin(), face.end(), now[i]);
+      bool release = false;
+      if (it != face.end() && *it == now[i] && ln[i] < un[i]) {
+        const S si = sigma[static_cast<std::size_t>(it - face.begin())];
+        release = xn[i] <= ln[i] ? si < S(0) : si > S(0);
+      }
+      if (!release) next.push_back(now[i]);
+    }
+    return next;
+  };
+  // Faces whose loose verdict already moved the active set: a verdict that leads back to one of
+  // them (rows near a bound judged by a loose solution) is settled by the tight solve instead.
+  std::vector<std::vector<long long>> visited;
+  const S tightTol = S(params_.get<double>("Face relative tolerance")) * gTol;
+  const S looseTol =
+      std::max(tightTol, std::min(S(kFaceVerdictFactor) * gTol, S(kLevelTolerance) * scale));
+  const int maxIterations = params_.get<int>("Face maximum iterations");
   while (face_.solves < params_.get<int>("Maximum face solves")) {
     ++face_.solves;
     FaceProjector<S, MV, OP> face(Q_, active, *x, gramian_.get());
@@ -470,9 +500,39 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
     OPT::Apply(*A, *x, *g);
     MVT::MvAddMv(S(1), *g, S(-1), *qp_.b, *g);
     ++counters_.hessianMultiplications;
-    FacePcpg<S, MV, OP> pcpg(A, M, face, S(params_.get<double>("Face relative tolerance")) * gTol,
-                             params_.get<int>("Face maximum iterations"));
+    // First to a loose tolerance (kFaceVerdictFactor): enough to tell whether the face holds (no
+    // free row leaves the box, no active row pulls). Only a face that holds is solved to the
+    // tight tolerance, from there; the active-set corrections before it cost loose solves only.
+    int steps = 0;
+    if (looseTol > tightTol) {
+      FacePcpg<S, MV, OP> loose(A, M, face, looseTol, maxIterations);
+      const FacePcpgResult<S> lr = loose.solve(*x, *g);
+      steps += lr.iterations;
+      counters_.hessianMultiplications += lr.iterations;
+      face_.iterations += lr.iterations;
+      auto xp = MVT::CloneCopy(*x);
+      BT::setAt(active, r, *xp);
+      BT::project(*xp, *qp_.lower, upper);
+      std::vector<long long> next = pdasStep(*xp, active, face.activeMultipliers(*g));
+      const bool seen = std::find(visited.begin(), visited.end(), next) != visited.end();
+      if (next != active && !seen) {
+        if (out_.wants(Belos::IterationDetails) && root) {
+          auto line = SolverOutput::line();
+          line << "SMALBE face " << face_.solves << ": " << active.size() << " active rows, "
+               << lr.iterations << " CG steps to the loose tolerance, next face " << next.size()
+               << " active rows\n";
+          out_.write(line);
+        }
+        visited.push_back(active);
+        ++face_.activeSetChanges;
+        active = std::move(next);
+        MVT::Assign(*xp, *x);
+        continue;
+      }
+    }
+    FacePcpg<S, MV, OP> pcpg(A, M, face, tightTol, maxIterations);
     const FacePcpgResult<S> res = pcpg.solve(*x, *g);
+    steps += res.iterations;
     counters_.hessianMultiplications += res.iterations;
     face_.iterations += res.iterations;
     // The active components exactly at their bounds (P_F leaves rounding errors there, which
@@ -502,31 +562,13 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
     MVT::MvNorm(*phi, n);
     const magnitude_type gpFace = n[0];
     const bool passed = gpFace <= gTol && qx <= eTol;
-    // Primal-dual active-set step for the next face: the rows at a bound now (the face's free
-    // rows that left the box were projected onto it) less the face's rows whose multiplier has
-    // the wrong sign (the Lagrangian's gradient pointing into the box).
     std::vector<long long> next;
-    if (!passed) {
-      const std::vector<long long> now = BT::activeIndices(*x, *qp_.lower, upper);
-      const std::vector<S> gn = BT::gatherAt(*t, now), xn = BT::gatherAt(*x, now),
-                           ln = BT::gatherAt(*qp_.lower, now);
-      std::vector<S> un(now.size(), inf);
-      if (upper != nullptr) un = BT::gatherAt(*upper, now);
-      for (std::size_t i = 0; i < now.size(); ++i) {
-        // Only the face's own rows are judged by their multiplier; a row that has just left the
-        // box joins whatever its gradient at the projected point (which is not a multiplier:
-        // judging it would undo most of the step, a few rows joining per face).
-        const bool wasActive = std::binary_search(active.begin(), active.end(), now[i]);
-        const bool release =
-            wasActive && ln[i] < un[i] && (xn[i] <= ln[i] ? gn[i] < S(0) : gn[i] > S(0));
-        if (!release) next.push_back(now[i]);
-      }
-    }
+    if (!passed) next = pdasStep(*x, active, sigma);
     if (out_.wants(Belos::IterationDetails) && root) {
       auto line = SolverOutput::line();
-      line << "SMALBE face " << face_.solves << ": " << active.size() << " active rows, "
-           << res.iterations << " CG steps" << (res.converged ? "" : " (not converged)")
-           << std::scientific << std::setprecision(3) << ", ||g^P||/||b|| = " << gpFace / scale
+      line << "SMALBE face " << face_.solves << ": " << active.size() << " active rows, " << steps
+           << " CG steps" << (res.converged ? "" : " (not converged)") << std::scientific
+           << std::setprecision(3) << ", ||g^P||/||b|| = " << gpFace / scale
            << "  ||A|| ||Qx||/||b|| = " << normA_ * qx / scale
            << (passed ? ": accepted" : ": rejected");
       if (!passed) line << ", next face " << next.size() << " active rows";
@@ -543,6 +585,7 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
       return true;
     }
     if (next == active) break;  // the same face again would give the same result
+    visited.push_back(active);
     ++face_.activeSetChanges;
     active = std::move(next);
   }
