@@ -199,8 +199,8 @@ class SmalbeSolMgr {
   // ||b|| and takes the active-set step from there when its verdict changes the face; only a face
   // that holds is solved to "Face relative tolerance" * tol. Looser verdicts misjudge the rows at
   // the edge of the contact zone, whose multipliers are small, and the faces then wander
-  // (docs/qp_solvers.md, "Loose verdicts": two cylinders at 0.5M unknowns, 206 multiplications
-  // with tight faces, 167 / 139 / 134 / 122 / 116 at 1, 10, 100, 300, 1000 tol, 1e-3: 458).
+  // (docs/qp_solvers.md, "Loose verdicts": two cylinders at 0.5M unknowns, 226 multiplications
+  // with tight faces, 167 / 139 / 134 / 122 / 116 at 1, 10, 100, 300, 1000 tol, 1e-3: 478).
   static constexpr double kFaceVerdictFactor = 300;
 };
 
