@@ -515,7 +515,8 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
       BT::project(*xp, *qp_.lower, upper);
       std::vector<long long> next = pdasStep(*xp, active, face.activeMultipliers(*g));
       const bool seen = std::find(visited.begin(), visited.end(), next) != visited.end();
-      if (next != active && !seen) {
+      // An unconverged loose solve gives no verdict; the tight one below judges the face.
+      if (lr.converged && next != active && !seen) {
         if (out_.wants(Belos::IterationDetails) && root) {
           auto line = SolverOutput::line();
           line << "SMALBE face " << face_.solves << ": " << active.size() << " active rows, "
@@ -530,7 +531,8 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
         continue;
       }
     }
-    FacePcpg<S, MV, OP> pcpg(A, M, face, tightTol, maxIterations);
+    // "Face maximum iterations" limits the face's loose and tight steps together.
+    FacePcpg<S, MV, OP> pcpg(A, M, face, tightTol, maxIterations - steps);
     const FacePcpgResult<S> res = pcpg.solve(*x, *g);
     steps += res.iterations;
     counters_.hessianMultiplications += res.iterations;
