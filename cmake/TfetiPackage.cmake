@@ -12,8 +12,20 @@ function(tfeti_package)
   cmake_parse_arguments(P "" "NAME" "SOURCES;DEPENDS;PACKAGE_DEPENDS;CONFIG_INCLUDES" ${ARGN})
   add_library(${P_NAME} ${P_SOURCES})
   add_library(${P_NAME}::${P_NAME} ALIAS ${P_NAME})
+  # Sources live in one sub-folder of src/ per area (each with a README.md); headers are
+  # included by their file name alone (#include "tfeti_FetiSolver.hpp"), so every sub-folder is
+  # on the include path, and they install flat into include/<name>/ as before.
+  file(GLOB areas LIST_DIRECTORIES true ${CMAKE_CURRENT_SOURCE_DIR}/src/*)
+  set(area_dirs ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  foreach(area ${areas})
+    if(IS_DIRECTORY ${area})
+      list(APPEND area_dirs ${area})
+    endif()
+  endforeach()
+  foreach(dir ${area_dirs})
+    target_include_directories(${P_NAME} PUBLIC $<BUILD_INTERFACE:${dir}>)
+  endforeach()
   target_include_directories(${P_NAME} PUBLIC
-    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/src>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/${P_NAME}>)
   target_link_libraries(${P_NAME} PUBLIC ${P_DEPENDS})
   target_compile_features(${P_NAME} PUBLIC cxx_std_17)
@@ -31,7 +43,7 @@ function(tfeti_package)
     set_target_properties(${P_NAME} PROPERTIES OUTPUT_NAME tfeti)
   endif()
 
-  file(GLOB headers ${CMAKE_CURRENT_SOURCE_DIR}/src/*.hpp)
+  file(GLOB_RECURSE headers ${CMAKE_CURRENT_SOURCE_DIR}/src/*.hpp)
   install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${P_NAME})
   install(TARGETS ${P_NAME} EXPORT ${P_NAME}Targets
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
