@@ -236,178 +236,234 @@ const std::vector<plasticity::StressField>& ContactSolver::stresses() const {
   return run_->stresses;
 }
 
+// The state of solve()'s load steps: the iteration that solves a step, the output of the
+// converged ones, the step control, and how the loop ended.
+struct ContactSolver::LoadSteps {
+  LoadSteps(const Teuchos::RCP<const tfeti::Comm>& comm, Run& r, const std::string& dir)
+      : iteration(comm, *r.model, *r.solver, r.options, r.spec.slave, r.spec.master,
+                  r.spec.obstacle ? &*r.spec.obstacle : nullptr, r.loadNorm),
+        output(comm, *r.model, *r.solver, r.options, dir),
+        control(r.history, r.options.steps, r.options.maxCutbacks, r.options.stopAfter) {}
+
+  LoadStepIteration iteration;
+  NonlinearStepOutput output;
+  LoadStepControl control;
+  std::vector<FixedPointStep> fixedPointSteps;  // Coulomb, per converged step
+  tfeti::DualResult lastQp;
+  bool failed = false, stopped = false, qpFailed = false;
+  std::string failure;
+};
+
 ContactResult ContactSolver::solve() {
   if (!run_) setup();
   if (run_->solved) throw std::logic_error("ContactSolver::solve: once per setup()");
-  Run& r = *run_;
-  r.solved = true;
-  const bool root = comm_->getRank() == 0;
-  const bool files = !dir_.empty();
-  NonlinearModel& model = *r.model;
-  ElasticContactProblem& problem = model.problem;
-  tfeti::FetiSolver& solver = *r.solver;
-  const NonlinearOptions& opt = r.options;
-  const int dim = problem.dim();
-  NonlinearHistory& history = r.history;
+  run_->solved = true;
+  LoadSteps steps(comm_, *run_, dir_);
+  prepareLoadSteps(steps);
+  runLoadSteps(steps);
+  evaluateFinalState(steps);
+  ContactResult res = fillResult(steps);
+  measureContact(res, steps);
+  measureFinalState(res, steps);
+  writeResultFiles(res, steps);
+  reportResult(res, steps);
+  return res;
+}
 
-  LoadStepIteration iteration(comm_, model, solver, opt, r.spec.slave, r.spec.master,
-                              r.spec.obstacle ? &*r.spec.obstacle : nullptr, r.loadNorm);
+void ContactSolver::prepareLoadSteps(LoadSteps& s) {
+  Run& r = *run_;
   // Friction (nonlinear_contact only): tangential rows beside the contact rows of every iteration.
-  iteration.friction = r.friction;
+  s.iteration.friction = r.friction;
   // A restart continues the friction state of the step it starts from.
-  iteration.frictionBounds = r.frictionHistory.bounds;
-  if (root && r.verbosity > 1 && !r.linear)
-    iteration.onIteration = [&](const IterationRecord& rec) {
+  s.iteration.frictionBounds = r.frictionHistory.bounds;
+  if (comm_->getRank() == 0 && r.verbosity > 1 && !r.linear)
+    s.iteration.onIteration = [&r](const IterationRecord& rec) {
       std::cout << "  step " << rec.step << " (t = " << rec.loadFactor << ") iteration "
                 << rec.iteration << ": ||res||/||f|| = " << rec.relativeResidual
                 << ", ||du||/||u|| = " << rec.relativeIncrement << ", "
                 << rec.hessianMultiplications << " Hessian multiplications [" << r.elapsed()
                 << "]\n";
     };
-  NonlinearStepOutput output(comm_, model, solver, opt, dir_);
-  output.friction = iteration.friction;
-  output.accumulatedSlip = r.frictionHistory.slip;
-  std::vector<FixedPointStep> fixedPointSteps;  // Coulomb, per converged step
-  const std::string restartDir = dir_ + "/restart";
-  const auto writeTables = [&]() {
-    if (!root || !files || r.linear) return;
-    writeIterationsCsv(dir_ + "/iterations.csv", history);
-    writeStepsCsv(dir_ + "/steps.csv", history);
-  };
-  // The one-step case's evaluation of its solution: the stresses of the linear laws and the
-  // contact nodes on the reference geometry, as the elastic problem reports them.
-  tfeti::DualResult lastQp;
-  const auto evaluateLinear = [&](StepRecord& rec) {
-    Field solution;
-    for (std::size_t i = 0; i < problem.local.size(); ++i) solution.push_back(solver.solution(i));
-    r.nodes =
-        contactNodes(problem, solver, opt.rule, {}, model.surfaceDisplacement(*comm_, solution));
-    double vm = 0.0;
-    r.stresses.clear();
-    for (std::size_t i = 0; i < problem.local.size(); ++i) {
-      r.stresses.push_back(
-          plasticity::recoverStresses(problem.localElements[i], *model.laws[i], model.u[i]));
-      const auto& st = r.stresses.back();
-      for (int e = 0; e < problem.localElements[i].numElements(); ++e)
-        for (int q = 0; q < st.gaussPointsPerElement; ++q)
-          vm = std::max(vm, st.atGaussPoint(e, q, plasticity::kVonMises));
-    }
-    rec.pMax = maxPressure(r.nodes);
-    rec.contactExtent = contactExtent(r.nodes, opt.rule, dim);
-    rec.maxVonMises = globalMax(*comm_, vm);
-    // The elastic problem's contact force: the sum of the multipliers (forces along each row's
-    // normal), the figure its summary has always reported.
-    rec.contactForce = 0.0;
-    for (const auto& n : r.nodes) rec.contactForce += n.lambda;
-  };
+  s.output.friction = s.iteration.friction;
+  s.output.accumulatedSlip = r.frictionHistory.slip;
+}
 
-  // The load steps: attempt, then accept (commit, report, save) or cut back.
-  LoadStepControl control(history, opt.steps, opt.maxCutbacks, opt.stopAfter);
-  bool failed = false, stopped = false, qpFailed = false;
-  std::string failure;
-  while (!control.finished()) {
-    if (control.stopRequested()) {
-      stopped = true;
+void ContactSolver::writeTables() const {
+  if (comm_->getRank() != 0 || dir_.empty() || run_->linear) return;
+  writeIterationsCsv(dir_ + "/iterations.csv", run_->history);
+  writeStepsCsv(dir_ + "/steps.csv", run_->history);
+}
+
+// The load steps: attempt, then accept (commit, report, save) or cut back.
+void ContactSolver::runLoadSteps(LoadSteps& s) {
+  Run& r = *run_;
+  NonlinearHistory& history = r.history;
+  while (!s.control.finished()) {
+    if (s.control.stopRequested()) {
+      s.stopped = true;
       break;
     }
-    const double t = control.nextLoadFactor();
-    const int step = control.nextStep();
+    const double t = s.control.nextLoadFactor();
+    const int step = s.control.nextStep();
     FixedPointRecord fixedPoint;
-    StepOutcome out =
-        attemptFrictionalStep(iteration, solver, problem, opt.rule, step, t, fixedPoint);
-    lastQp = out.qp;
+    StepOutcome out = attemptFrictionalStep(s.iteration, *r.solver, r.model->problem,
+                                            r.options.rule, step, t, fixedPoint);
+    s.lastQp = out.qp;
     // The one-step case keeps the state of a QP that did not converge (reported, not retried).
     if (r.linear && !out.converged) {
-      qpFailed = true;
-      failure = out.reason;
+      s.qpFailed = true;
+      s.failure = out.reason;
     }
     for (auto& it : out.iterations) it.accepted = out.converged || r.linear;
     history.iterations.insert(history.iterations.end(), out.iterations.begin(),
                               out.iterations.end());
     if (!out.converged && !r.linear) {
-      model.revert();
-      if (root && r.verbosity > 0)
-        std::cout << "nonlinear_contact: step " << step << " at load factor " << t
-                  << " rejected: " << out.reason << " [" << r.elapsed() << "]\n";
-      const int cutbacks = control.cutbacks();
-      if (!control.reject()) {
-        failed = true;
-        std::ostringstream s;
-        s << "load step " << step << " (load factor " << t << ") did not converge after "
-          << cutbacks << " cut-backs: " << out.reason;
-        failure = s.str();
-        break;
-      }
-      writeTables();
+      if (!rejectStep(s, step, t, out.reason)) break;
       continue;
     }
-    if (!r.linear) output.evaluate(out.u);
-    model.commit();
-    model.u = std::move(out.u);
-    StepRecord rec;
-    rec.step = step;
-    rec.loadFactor = t;
-    rec.outerIterations = static_cast<int>(out.iterations.size());
-    rec.cutbacks = control.cutbacks();
-    for (const auto& it : out.iterations) {
-      rec.mprgpIterations += it.mprgpIterations;
-      rec.hessianMultiplications += it.hessianMultiplications;
-      rec.residuals.push_back(it.relativeResidual);
-      rec.increments.push_back(it.relativeIncrement);
-    }
-    if (r.linear)
-      evaluateLinear(rec);
-    else
-      output.fill(rec, r.loadDirection);
-    if (iteration.friction.law == FrictionSpec::Law::Coulomb)
-      fixedPointSteps.push_back({step, fixedPoint.iterations, fixedPoint.change});
-    history.steps.push_back(rec);
-    control.accept();
+    acceptStep(s, step, t, out, fixedPoint);
     if (r.linear) break;
-    const std::string base = stepBaseName(step);
-    if (files && opt.vtuEveryStep) {
-      output.writeVtu(base, model.u);
-      if (root) writePvd(dir_ + "/steps.pvd", stepCollection(history));
-    }
-    if (files) output.writeContactCsv(dir_ + "/contact_pressure_" + base + ".csv");
-    writeTables();
-    if (r.friction.active()) {
-      output.commitSlip();
-      r.frictionHistory = {output.accumulatedSlip, iteration.frictionBounds};
-    }
-    if (files)
-      saveRestart(*comm_, restartDir, history, model,
-                  r.friction.active() ? &r.frictionHistory : nullptr);
-    if (root && r.verbosity > 0)
-      std::cout << "nonlinear_contact: step " << step << " converged at load factor " << t << " in "
-                << rec.outerIterations << " iterations (" << rec.hessianMultiplications
-                << " Hessian multiplications); p_max " << rec.pMax << ", contact extent "
-                << rec.contactExtent << ", max von Mises " << rec.maxVonMises
-                << ", max plastic strain " << rec.maxPlasticStrain << ", contact force "
-                << rec.contactForce
-                << (fixedPointSteps.empty() || fixedPointSteps.back().step != step
-                        ? std::string()
-                        : ", " + std::to_string(fixedPointSteps.back().iterations) +
-                              " Coulomb fixed-point iterations")
-                << " [" << r.elapsed() << "]\n";
+    saveStep(s, history.steps.back());
   }
+}
 
-  const bool haveStep = !history.steps.empty();
-  if (!r.linear && haveStep && !output.evaluated()) {
-    // The final state is the last converged step; its contact rows and multipliers need one
-    // solve at its load factor when this run converged no step (a restart that stops at once or
-    // fails at its first step).
-    const StepOutcome again = iteration.attempt(history.step, history.loadFactor);
-    model.revert();
-    if (again.converged) output.evaluate(again.u);
+// A step that did not converge: revert it and cut back; false when no cut-back is left.
+bool ContactSolver::rejectStep(LoadSteps& s, int step, double t, const std::string& reason) {
+  Run& r = *run_;
+  r.model->revert();
+  if (comm_->getRank() == 0 && r.verbosity > 0)
+    std::cout << "nonlinear_contact: step " << step << " at load factor " << t
+              << " rejected: " << reason << " [" << r.elapsed() << "]\n";
+  const int cutbacks = s.control.cutbacks();
+  if (!s.control.reject()) {
+    s.failed = true;
+    std::ostringstream msg;
+    msg << "load step " << step << " (load factor " << t << ") did not converge after " << cutbacks
+        << " cut-backs: " << reason;
+    s.failure = msg.str();
+    return false;
   }
+  writeTables();
+  return true;
+}
 
+// A converged step: commit the state and record the step's figures.
+void ContactSolver::acceptStep(LoadSteps& s, int step, double t, StepOutcome& out,
+                               const FixedPointRecord& fixedPoint) {
+  Run& r = *run_;
+  NonlinearModel& model = *r.model;
+  if (!r.linear) s.output.evaluate(out.u);
+  model.commit();
+  model.u = std::move(out.u);
+  StepRecord rec;
+  rec.step = step;
+  rec.loadFactor = t;
+  rec.outerIterations = static_cast<int>(out.iterations.size());
+  rec.cutbacks = s.control.cutbacks();
+  for (const auto& it : out.iterations) {
+    rec.mprgpIterations += it.mprgpIterations;
+    rec.hessianMultiplications += it.hessianMultiplications;
+    rec.residuals.push_back(it.relativeResidual);
+    rec.increments.push_back(it.relativeIncrement);
+  }
+  if (r.linear)
+    evaluateLinearSolution(rec);
+  else
+    s.output.fill(rec, r.loadDirection);
+  if (s.iteration.friction.law == FrictionSpec::Law::Coulomb)
+    s.fixedPointSteps.push_back({step, fixedPoint.iterations, fixedPoint.change});
+  r.history.steps.push_back(rec);
+  s.control.accept();
+}
+
+// The one-step case's evaluation of its solution: the stresses of the linear laws and the
+// contact nodes on the reference geometry, as the elastic problem reports them.
+void ContactSolver::evaluateLinearSolution(StepRecord& rec) {
+  Run& r = *run_;
+  NonlinearModel& model = *r.model;
+  const ElasticContactProblem& problem = model.problem;
+  const tfeti::FetiSolver& solver = *r.solver;
+  Field solution;
+  for (std::size_t i = 0; i < problem.local.size(); ++i) solution.push_back(solver.solution(i));
+  r.nodes = contactNodes(problem, solver, r.options.rule, {},
+                         model.surfaceDisplacement(*comm_, solution));
+  double vm = 0.0;
+  r.stresses.clear();
+  for (std::size_t i = 0; i < problem.local.size(); ++i) {
+    r.stresses.push_back(
+        plasticity::recoverStresses(problem.localElements[i], *model.laws[i], model.u[i]));
+    const auto& st = r.stresses.back();
+    for (int e = 0; e < problem.localElements[i].numElements(); ++e)
+      for (int q = 0; q < st.gaussPointsPerElement; ++q)
+        vm = std::max(vm, st.atGaussPoint(e, q, plasticity::kVonMises));
+  }
+  rec.pMax = maxPressure(r.nodes);
+  rec.contactExtent = contactExtent(r.nodes, r.options.rule, problem.dim());
+  rec.maxVonMises = globalMax(*comm_, vm);
+  // The elastic problem's contact force: the sum of the multipliers (forces along each row's
+  // normal), the figure its summary has always reported.
+  rec.contactForce = 0.0;
+  for (const auto& n : r.nodes) rec.contactForce += n.lambda;
+}
+
+// A converged nonlinear step's files (VTU, contact CSV, tables, restart) and progress line.
+void ContactSolver::saveStep(LoadSteps& s, const StepRecord& rec) {
+  Run& r = *run_;
+  const bool files = !dir_.empty();
+  const int step = rec.step;
+  const std::string base = stepBaseName(step);
+  if (files && r.options.vtuEveryStep) {
+    s.output.writeVtu(base, r.model->u);
+    if (comm_->getRank() == 0) writePvd(dir_ + "/steps.pvd", stepCollection(r.history));
+  }
+  if (files) s.output.writeContactCsv(dir_ + "/contact_pressure_" + base + ".csv");
+  writeTables();
+  if (r.friction.active()) {
+    s.output.commitSlip();
+    r.frictionHistory = {s.output.accumulatedSlip, s.iteration.frictionBounds};
+  }
+  if (files)
+    saveRestart(*comm_, dir_ + "/restart", r.history, *r.model,
+                r.friction.active() ? &r.frictionHistory : nullptr);
+  if (comm_->getRank() == 0 && r.verbosity > 0)
+    std::cout << "nonlinear_contact: step " << step << " converged at load factor "
+              << rec.loadFactor << " in " << rec.outerIterations << " iterations ("
+              << rec.hessianMultiplications << " Hessian multiplications); p_max " << rec.pMax
+              << ", contact extent " << rec.contactExtent << ", max von Mises " << rec.maxVonMises
+              << ", max plastic strain " << rec.maxPlasticStrain << ", contact force "
+              << rec.contactForce
+              << (s.fixedPointSteps.empty() || s.fixedPointSteps.back().step != step
+                      ? std::string()
+                      : ", " + std::to_string(s.fixedPointSteps.back().iterations) +
+                            " Coulomb fixed-point iterations")
+              << " [" << r.elapsed() << "]\n";
+}
+
+// The final state is the last converged step; its contact rows and multipliers need one solve
+// at its load factor when this run converged no step (a restart that stops at once or fails at
+// its first step).
+void ContactSolver::evaluateFinalState(LoadSteps& s) {
+  Run& r = *run_;
+  if (!r.linear && !r.history.steps.empty() && !s.output.evaluated()) {
+    const StepOutcome again = s.iteration.attempt(r.history.step, r.history.loadFactor);
+    r.model->revert();
+    if (again.converged) s.output.evaluate(again.u);
+  }
+}
+
+// The run's description: the problem, the FETI dimensions, the last QP, the history and how
+// the run ended.
+ContactResult ContactSolver::fillResult(const LoadSteps& s) const {
+  const Run& r = *run_;
+  const ElasticContactProblem& problem = r.model->problem;
+  const tfeti::FetiSolver& solver = *r.solver;
+  const NonlinearOptions& opt = r.options;
   ContactResult res;
   res.problem = r.linear ? "elastic_contact" : "nonlinear_contact";
   res.ranks = comm_->getSize();
   res.subdomains = problem.numSubdomains();
   res.nodes = problem.mesh.numNodes();
-  res.dimension = dim;
+  res.dimension = problem.dim();
   res.feti.formulation = r.feti.get<std::string>("Formulation");
   res.feti.preconditioner = r.feti.get<std::string>("Preconditioner");
   res.feti.localSolver = r.feti.get<std::string>("Local solver");
@@ -420,32 +476,42 @@ ContactResult ContactSolver::solve() {
   res.feti.largestScalingGroup = static_cast<long long>(solver.largestScalingGroup());
   res.feti.dualOperatorApplies = static_cast<long long>(solver.dualOperatorApplies());
   res.feti.factorBytes = static_cast<unsigned long long>(solver.globalFactorBytes());
-  res.qp = lastQp;
+  res.qp = s.lastQp;
   res.contactType = r.spec.bonded ? "bonded" : r.spec.tied ? "tied" : "frictionless";
-  res.history = history;
-  res.converged = r.linear ? !qpFailed : !failed && !stopped;
-  res.exitCode = failed ? 3 : qpFailed ? 2 : 0;
-  res.message = failure;
-  if (stopped && res.message.empty())
-    res.message = "stopped after step " + std::to_string(history.step) + " (Stop after step)";
+  res.history = r.history;
+  res.converged = r.linear ? !s.qpFailed : !s.failed && !s.stopped;
+  res.exitCode = s.failed ? 3 : s.qpFailed ? 2 : 0;
+  res.message = s.failure;
+  if (s.stopped && res.message.empty())
+    res.message = "stopped after step " + std::to_string(r.history.step) + " (Stop after step)";
   const NonlinearOutcome o{opt.kinematics == plasticity::Kinematics::TotalLagrangian,
                            opt.stiffness,
                            opt.eta1,
                            opt.eta2,
-                           stopped,
+                           s.stopped,
                            opt.restart};
   res.nonlinear = o;
   res.materials = r.spec.bodies;
-  res.friction = iteration.friction;
-  res.fixedPoint = fixedPointSteps;
+  res.friction = s.iteration.friction;
+  res.fixedPoint = s.fixedPointSteps;
+  return res;
+}
 
-  // The contact zone of the final state.
+// The contact zone of the final state: p_max, extent, force against the applied load and the
+// supports' reaction, Hertz where it applies.
+void ContactSolver::measureContact(ContactResult& res, const LoadSteps& s) const {
+  const Run& r = *run_;
+  const ElasticContactProblem& problem = r.model->problem;
+  const NonlinearOptions& opt = r.options;
+  const NonlinearHistory& history = r.history;
+  const int dim = problem.dim();
+  const bool haveStep = !history.steps.empty();
   ContactMeasures& c = res.contact;
-  const std::vector<ContactNode>& nodes = r.linear ? r.nodes : output.nodes();
-  res.haveContact = haveStep && (r.linear || output.evaluated());
+  const std::vector<ContactNode>& nodes = r.linear ? r.nodes : s.output.nodes();
+  res.haveContact = haveStep && (r.linear || s.output.evaluated());
   if (haveStep) {
     const StepRecord& last = history.steps.back();
-    c.constraints = solver.constraintReport();
+    c.constraints = r.solver->constraintReport();
     c.pMax = last.pMax;
     c.extent = last.contactExtent;
     c.extentKey = dim == 3 && !opt.rule.line ? "contact_radius"
@@ -469,23 +535,31 @@ ContactResult ContactSolver::solve() {
       c.hertz = hertzReference(params_, c.pMax, c.extent, dim, contactBodyLaws(r.spec, problem));
     if (!r.linear) {
       // The reaction of the fixed boundaries balances the contact force (and the load).
-      c.supportForce = supportForce(*comm_, solver, problem, r.loadDirection);
+      c.supportForce = supportForce(*comm_, *r.solver, problem, r.loadDirection);
       c.supportRelativeError =
           last.contactForce != 0.0
               ? std::abs(c.supportForce - last.contactForce) / last.contactForce
               : 0.0;
-      c.lastMaxAbsIncrement = maxAbsSolution(*comm_, solver);
+      c.lastMaxAbsIncrement = maxAbsSolution(*comm_, *r.solver);
     }
     res.maxVonMises = last.maxVonMises;
     res.maxPlasticStrain = last.maxPlasticStrain;
   }
   res.contactNodes = nodes;
-  if (!r.linear && output.evaluated()) {
-    // The stresses of the final state.
+}
+
+// The final state's stresses and largest displacement, the reactions of the prescribed entries
+// and the coupled boundaries' common values, the solver's timings.
+void ContactSolver::measureFinalState(ContactResult& res, const LoadSteps& s) {
+  Run& r = *run_;
+  const NonlinearModel& model = *r.model;
+  const ElasticContactProblem& problem = model.problem;
+  const bool haveStep = !r.history.steps.empty();
+  if (!r.linear && s.output.evaluated()) {
     r.stresses.clear();
     for (std::size_t i = 0; i < model.u.size(); ++i)
       r.stresses.push_back(plasticity::cauchyStress(problem.localElements[i], *model.laws[i],
-                                                    model.u[i], opt.kinematics));
+                                                    model.u[i], r.options.kinematics));
   }
   {
     double mx = 0.0;
@@ -497,39 +571,44 @@ ContactResult ContactSolver::solve() {
     const auto ids = boundaryNodeIds(problem.mesh, name);
     return std::vector<long long>(ids.begin(), ids.end());
   };
-  // The reactions of the prescribed entries (the multipliers of the last solve are the total
-  // constraint forces, also in the nonlinear loop) and the coupled boundaries' common values.
-  if (!r.spec.prescribed.empty() && (r.linear || output.evaluated())) {
+  // The multipliers of the last solve are the total constraint forces, also in the nonlinear
+  // loop.
+  if (!r.spec.prescribed.empty() && (r.linear || s.output.evaluated())) {
     res.prescribedRows =
-        static_cast<long long>(solver.userEqualityRows()) - problem.couplingRowCount;
-    res.prescribed = prescribedSummary(solver, r.spec.prescribed, nodesOfBoundary);
+        static_cast<long long>(r.solver->userEqualityRows()) - problem.couplingRowCount;
+    res.prescribed = prescribedSummary(*r.solver, r.spec.prescribed, nodesOfBoundary);
   }
   if (!r.spec.couplings.empty() && haveStep) {
     res.couplingRows = problem.couplingRowCount;
     res.couplings =
         couplingSummary(*comm_, r.spec.couplings, problem.local, model.u, nodesOfBoundary);
   }
-  res.timings = solver.timings();
+  res.timings = r.solver->timings();
+}
 
-  // The files: the contact pressure and VTU of the final state, the tables, summary.json.
+// The files of the final state: the contact pressure and VTU, the tables, summary.json.
+void ContactSolver::writeResultFiles(ContactResult& res, LoadSteps& s) {
+  Run& r = *run_;
+  const ElasticContactProblem& problem = r.model->problem;
+  const bool files = !dir_.empty();
   if (files) {
     res.contactCsv = dir_ + "/contact_pressure.csv";
     if (r.linear) {
-      writeContactCsv(*comm_, res.contactCsv, nodes, dim);
+      writeContactCsv(*comm_, res.contactCsv, res.contactNodes, problem.dim());
       if (params_.sublist("Output").get<bool>("VTU")) {
         std::vector<SubdomainFields> fields;
         for (std::size_t i = 0; i < problem.local.size(); ++i)
           fields.push_back({&problem.localElements[i],
                             problem.local[i].mesh.id,
-                            &model.u[i],
+                            &r.model->u[i],
                             &r.stresses[i],
                             {}});
         res.vtu = writeVtu(*comm_, dir_, "solution", stressPiece(fields));
       }
     } else {
-      if (haveStep && output.evaluated()) {
-        output.writeContactCsv(res.contactCsv);
-        if (params_.sublist("Output").get<bool>("VTU")) output.writeVtu("solution", model.u);
+      if (!r.history.steps.empty() && s.output.evaluated()) {
+        s.output.writeContactCsv(res.contactCsv);
+        if (params_.sublist("Output").get<bool>("VTU")) s.output.writeVtu("solution", r.model->u);
       }
       res.iterationsCsv = dir_ + "/iterations.csv";
       res.stepsCsv = dir_ + "/steps.csv";
@@ -541,25 +620,29 @@ ContactResult ContactSolver::solve() {
     writeTables();
     writeSummary(*comm_, dir_, summaryJson(res), params_);
   }
+}
 
-  if (root && r.verbosity > 0) {
-    if (r.linear) {
-      std::cout << "elastic_contact: " << problem.numSubdomains() << " subdomains, primal "
-                << res.feti.primal << ", dual " << res.feti.dual << " (" << res.feti.contactRows
-                << " contact rows), " << res.qp.method << ": " << res.qp.qp.hessianMultiplications
-                << " Hessian multiplications (" << (res.converged ? "converged" : "NOT CONVERGED")
-                << "); p_max " << c.pMax << (opt.rule.line ? ", half-width " : ", contact radius ")
-                << c.extent << ", force " << c.force << " (applied " << c.appliedForce
-                << "), max von Mises " << res.maxVonMises << "\n";
-    } else if (!failed) {
-      const IterationTotals totals = iterationTotals(history);
-      std::cout << "nonlinear_contact: " << (stopped ? "stopped after" : "finished") << " step "
-                << history.step << " at load factor " << history.loadFactor << ", "
-                << totals.iterations << " iterations, " << totals.hessianMultiplications
-                << " Hessian multiplications [" << r.elapsed() << "]\n";
-    }
+// The run's last line on rank 0.
+void ContactSolver::reportResult(const ContactResult& res, const LoadSteps& s) const {
+  const Run& r = *run_;
+  if (comm_->getRank() != 0 || r.verbosity <= 0) return;
+  const ContactMeasures& c = res.contact;
+  if (r.linear) {
+    std::cout << "elastic_contact: " << r.model->problem.numSubdomains() << " subdomains, primal "
+              << res.feti.primal << ", dual " << res.feti.dual << " (" << res.feti.contactRows
+              << " contact rows), " << res.qp.method << ": " << res.qp.qp.hessianMultiplications
+              << " Hessian multiplications (" << (res.converged ? "converged" : "NOT CONVERGED")
+              << "); p_max " << c.pMax
+              << (r.options.rule.line ? ", half-width " : ", contact radius ") << c.extent
+              << ", force " << c.force << " (applied " << c.appliedForce << "), max von Mises "
+              << res.maxVonMises << "\n";
+  } else if (!s.failed) {
+    const IterationTotals totals = iterationTotals(r.history);
+    std::cout << "nonlinear_contact: " << (s.stopped ? "stopped after" : "finished") << " step "
+              << r.history.step << " at load factor " << r.history.loadFactor << ", "
+              << totals.iterations << " iterations, " << totals.hessianMultiplications
+              << " Hessian multiplications [" << r.elapsed() << "]\n";
   }
-  return res;
 }
 
 int runContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,

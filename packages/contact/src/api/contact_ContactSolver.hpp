@@ -29,6 +29,9 @@
 
 namespace contact {
 
+struct StepOutcome;       // contact_NonlinearIteration.hpp
+struct FixedPointRecord;  // contact_FrictionStep.hpp
+
 class ContactSolver {
  public:
   explicit ContactSolver(Teuchos::RCP<const tfeti::Comm> comm);
@@ -70,7 +73,24 @@ class ContactSolver {
   const std::vector<plasticity::StressField>& stresses() const;
 
  private:
-  struct Run;
+  struct Run;        // the state of a set-up run
+  struct LoadSteps;  // the state of solve()'s load-step loop
+  // solve(), as its named steps (contact_ContactSolver.cpp).
+  void prepareLoadSteps(LoadSteps& s);
+  void runLoadSteps(LoadSteps& s);
+  bool rejectStep(LoadSteps& s, int step, double t, const std::string& reason);
+  void acceptStep(LoadSteps& s, int step, double t, StepOutcome& out,
+                  const FixedPointRecord& fixedPoint);
+  void evaluateLinearSolution(StepRecord& rec);
+  void saveStep(LoadSteps& s, const StepRecord& rec);
+  void evaluateFinalState(LoadSteps& s);
+  ContactResult fillResult(const LoadSteps& s) const;
+  void measureContact(ContactResult& res, const LoadSteps& s) const;
+  void measureFinalState(ContactResult& res, const LoadSteps& s);
+  void writeResultFiles(ContactResult& res, LoadSteps& s);
+  void reportResult(const ContactResult& res, const LoadSteps& s) const;
+  void writeTables() const;
+
   Teuchos::RCP<const tfeti::Comm> comm_;
   Teuchos::ParameterList params_;
   std::string source_, dir_;
