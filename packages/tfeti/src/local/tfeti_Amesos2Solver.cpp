@@ -1,6 +1,8 @@
 // Amesos2's KLU2 and Tacho behind the LocalSolver interface. The matrix is a Tpetra matrix on a
 // serial communicator: a subdomain matrix never spans ranks, which also keeps KLU2 on its
 // transposed solve path (its non-transposed solve is miscompiled by GCC 12, see the README).
+#include "tfeti_Amesos2Solver.hpp"
+
 #include <Amesos2.hpp>
 #include <Teuchos_DefaultSerialComm.hpp>
 

@@ -1,4 +1,6 @@
 // CHOLMOD (SuiteSparse) sparse Cholesky behind the LocalSolver interface.
+#include "tfeti_CholmodSolver.hpp"
+
 #include <cholmod.h>
 #include <dlfcn.h>
 

@@ -2,10 +2,10 @@
 
 #include <stdexcept>
 
-namespace tfeti {
+#include "tfeti_Amesos2Solver.hpp"
+#include "tfeti_CholmodSolver.hpp"
 
-std::unique_ptr<LocalSolver> createCholmodSolver(const std::string& kind);
-std::unique_ptr<LocalSolver> createAmesos2Solver(const std::string& type);
+namespace tfeti {
 
 const std::vector<std::string>& localSolverTypes() {
   static const std::vector<std::string> types{"cholmod", "cholmod-simplicial", "cholmod-supernodal",

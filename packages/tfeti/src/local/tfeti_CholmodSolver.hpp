@@ -1,0 +1,16 @@
+#pragma once
+// CHOLMOD (SuiteSparse) sparse Cholesky behind the LocalSolver interface. Reached through
+// createLocalSolver ("cholmod", "cholmod-simplicial", "cholmod-supernodal"); cholmod.h stays in
+// the .cpp, so this header needs no SuiteSparse headers.
+#include <memory>
+#include <string>
+
+#include "tfeti_LocalSolver.hpp"
+
+namespace tfeti {
+
+// kind: "simplicial" or "supernodal" forces CHOLMOD's factorization kind; anything else lets
+// CHOLMOD choose per matrix.
+std::unique_ptr<LocalSolver> createCholmodSolver(const std::string& kind);
+
+}  // namespace tfeti
