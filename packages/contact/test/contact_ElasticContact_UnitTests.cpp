@@ -61,21 +61,11 @@ contact::ElasticContactSpec specOf(const Case& c) {
 // ---------------------------------------------------------------------------------------------
 // Reference: the whole bodies, numbered like the GmshMesh (2 dofs per node, interleaved).
 
-// Own mapping rather than contact::toPlasticityType, so a wrong element type there is not shared.
+// The mesh's element type is plasticity's (one catalogue); the reference takes the 2D ones.
 plasticity::ElementType elementTypeOf(contact::ElementType t) {
-  switch (t) {
-    case contact::ElementType::Tri3:
-      return plasticity::ElementType::Tri3;
-    case contact::ElementType::Quad4:
-      return plasticity::ElementType::Quad4;
-    case contact::ElementType::Tri6:
-      return plasticity::ElementType::Tri6;
-    case contact::ElementType::Quad9:
-      return plasticity::ElementType::Quad9;
-    default:
-      break;
-  }
-  throw std::logic_error("not a 2D body element type");
+  if (plasticity::spatialDimension(t) != 2 || !plasticity::elementInfo(t).complete)
+    throw std::logic_error("not a 2D body element type");
+  return t;
 }
 
 struct Reference {

@@ -148,7 +148,7 @@ TEUCHOS_UNIT_TEST(GmshMesh3D, TetrahedraOfTheUnitCube) {
     TEST_EQUALITY(m.coords.size(), 3 * m.gmshNodes.size());
     TEST_EQUALITY(m.bodies.size(), 1u);
     const contact::GmshBody& b = m.body("cube");
-    TEST_EQUALITY(static_cast<int>(b.type), order == 1 ? 4 : 11);
+    TEST_EQUALITY(plasticity::gmshType(b.type), order == 1 ? 4 : 11);
     double volume = 0.0, smallest = 1.0;
     for (int e = 0; e < b.numElements(); ++e) {
       const double v = straightVolume(m, b.type, &b.connectivity[e * b.nodesPerElement()]);
@@ -164,7 +164,7 @@ TEUCHOS_UNIT_TEST(GmshMesh3D, TetrahedraOfTheUnitCube) {
     const double xmin = checkPlanarBoundary(out, success, m, "xmin", {-1, 0, 0});
     const double ymax = checkPlanarBoundary(out, success, m, "ymax", {0, 1, 0});
     for (double a : {top, bottom, xmin, ymax}) TEST_COMPARE(std::abs(a - 1.0), <, 1e-10);
-    TEST_EQUALITY(static_cast<int>(m.boundary("top").type), order == 1 ? 2 : 9);
+    TEST_EQUALITY(plasticity::gmshType(m.boundary("top").type), order == 1 ? 2 : 9);
   }
 }
 
@@ -179,7 +179,7 @@ TEUCHOS_UNIT_TEST(GmshMesh3D, HexahedraOfABox) {
     const GmshMesh m = loadMesh(meshFile(c.file), opts(c.order));
     TEST_EQUALITY(m.dim, 3);
     const contact::GmshBody& b = m.body("box");
-    TEST_EQUALITY(static_cast<int>(b.type), c.type);
+    TEST_EQUALITY(plasticity::gmshType(b.type), c.type);
     TEST_EQUALITY(b.numElements(), 8);
     double volume = 0.0;
     for (int e = 0; e < b.numElements(); ++e) {
@@ -189,7 +189,7 @@ TEUCHOS_UNIT_TEST(GmshMesh3D, HexahedraOfABox) {
     }
     TEST_COMPARE(std::abs(volume - 2.0), <, 1e-10);
     TEST_EQUALITY(checkFacets(out, success, m, b, true), 6 * 8);
-    TEST_EQUALITY(static_cast<int>(m.boundary("top").type), c.faceType);
+    TEST_EQUALITY(plasticity::gmshType(m.boundary("top").type), c.faceType);
     TEST_COMPARE(std::abs(checkPlanarBoundary(out, success, m, "top", {0, 0, 1}) - 2.0), <, 1e-10);
     TEST_COMPARE(std::abs(checkPlanarBoundary(out, success, m, "bottom", {0, 0, -1}) - 2.0), <,
                  1e-12);

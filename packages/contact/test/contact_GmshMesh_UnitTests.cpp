@@ -476,7 +476,7 @@ TEUCHOS_UNIT_TEST(GmshMesh, ClockwiseSurfaceIsReoriented) {
       const contact::GmshMesh m = loadMesh(meshFile("clockwise_square.geo"), opts(order, quads));
       const contact::GmshBody& b = m.body("square");
       TEST_EQUALITY(b.reoriented, b.numElements());  // every element, and counted
-      const plasticity::ElementMesh em{contact::toPlasticityType(b.type), m.coords, b.connectivity};
+      const plasticity::ElementMesh em{contact::checkedBodyType(b.type), m.coords, b.connectivity};
       // assembleStiffness rejects an element with a non-positive Jacobian, naming it.
       TEST_NOTHROW(plasticity::assembleStiffness(em, plasticity::ElasticLaw(1.0, 0.3)));
       const int npe = b.nodesPerElement(), corners = (npe == 3 || npe == 6) ? 3 : 4;

@@ -56,7 +56,7 @@ int checkCells(const std::string& geo, int order, int expectedVtkType, Teuchos::
   const contact::GmshMesh mesh =
       contact::loadMesh(std::string(CONTACT_TEST_MESH_DIR) + "/" + geo, opt);
   const contact::GmshBody& body = mesh.bodies.front();
-  const plasticity::ElementMesh em{contact::toPlasticityType(body.type), mesh.coords,
+  const plasticity::ElementMesh em{contact::checkedBodyType(body.type), mesh.coords,
                                    body.connectivity};
   const std::vector<double> u(3 * em.numNodes(), 0.0);
   const plasticity::LinearElasticMaterial law(plasticity::ElasticLaw(1.0, 0.25));
@@ -113,14 +113,15 @@ TEUCHOS_UNIT_TEST(VtkCells3D, HexahedraInVtkOrder) {
 // (Tet10 nodes 8 and 9, Hex27 edges and faces differ), so the test above can fail.
 TEUCHOS_UNIT_TEST(VtkCells3D, OrdersArePermutations) {
   for (auto t : {plasticity::ElementType::Tet4, plasticity::ElementType::Tet10,
-                 plasticity::ElementType::Hex8, plasticity::ElementType::Hex27}) {
-    std::vector<int> o = contact::vtkNodeOrder(t);
+                 plasticity::ElementType::Hex8, plasticity::ElementType::Hex20,
+                 plasticity::ElementType::Hex27}) {
+    std::vector<int> o = plasticity::vtkNodeOrder(t);
     TEST_EQUALITY(static_cast<int>(o.size()), plasticity::nodesPerElement(t));
     std::sort(o.begin(), o.end());
     for (std::size_t k = 0; k < o.size(); ++k) TEST_EQUALITY(o[k], static_cast<int>(k));
   }
-  TEST_INEQUALITY(contact::vtkNodeOrder(plasticity::ElementType::Tet10)[8], 8);
-  TEST_INEQUALITY(contact::vtkNodeOrder(plasticity::ElementType::Hex27)[9], 9);
+  TEST_INEQUALITY(plasticity::vtkNodeOrder(plasticity::ElementType::Tet10)[8], 8);
+  TEST_INEQUALITY(plasticity::vtkNodeOrder(plasticity::ElementType::Hex27)[9], 9);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -426,4 +427,38 @@ TEUCHOS_UNIT_TEST(Elements, ConnectivityOutOfRangeThrowsNamingIt) {
     m.connectivity.pop_back();
     TEST_THROW(plasticity::assembleStiffness(m, ElasticLaw()), std::invalid_argument);
   }
+}
+
+// The catalogue's tables agree with its counts: codes map back to their type, facet node lists
+// have their facet type's node count and distinct nodes, the VTK order and the reversal are
+// permutations (the reversal an involution that keeps corner 0).
+TEUCHOS_UNIT_TEST(ElementCatalogue, TablesAreConsistent) {
+  for (plasticity::ElementType t : plasticity::allElementTypes()) {
+    const plasticity::ElementInfo info = plasticity::elementInfo(t);
+    out << plasticity::elementTypeName(t) << " (" << plasticity::elementLongName(t) << ")\n";
+    plasticity::ElementType back = plasticity::ElementType::Line2;
+    TEST_ASSERT(plasticity::elementTypeOfGmsh(info.gmshType, back) && back == t);
+    TEST_ASSERT(plasticity::elementTypeOfVtk(info.vtkType, back) && back == t);
+    auto isPermutation = [&](std::vector<int> p) {
+      std::sort(p.begin(), p.end());
+      for (int k = 0; k < static_cast<int>(p.size()); ++k)
+        if (p[k] != k) return false;
+      return static_cast<int>(p.size()) == info.nodes;
+    };
+    TEST_ASSERT(isPermutation(plasticity::vtkNodeOrder(t)));
+    if (info.dim == 2) {
+      const std::vector<int>& r = plasticity::reversedNodes(t);
+      TEST_ASSERT(isPermutation(r));
+      TEST_EQUALITY(r[0], 0);
+      for (int k = 0; k < info.nodes; ++k) TEST_EQUALITY(r[r[k]], k);
+    }
+    if (info.dim < 2) continue;
+    for (int f = 0; f < plasticity::facesPerElement(t); ++f) {
+      const std::vector<int>& nodes = plasticity::facetNodes(t, f);
+      TEST_EQUALITY(static_cast<int>(nodes.size()), plasticity::nodesPerElement(info.face));
+      TEST_EQUALITY(std::set<int>(nodes.begin(), nodes.end()).size(), nodes.size());
+    }
+    TEST_THROW(plasticity::facetNodes(t, plasticity::facesPerElement(t)), std::out_of_range);
+  }
+  TEST_THROW(plasticity::facetNodes(plasticity::ElementType::Line3, 0), std::invalid_argument);
 }

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
-#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -19,206 +18,40 @@
 
 namespace contact {
 
+int numFacets(ElementType type) {
+  if (elementDimension(type) < 2)
+    throw std::invalid_argument(std::string("numFacets: a ") + elementTypeName(type) +
+                                " is not a 2D or 3D element");
+  return plasticity::facesPerElement(type);
+}
+
 namespace {
-
-// Gmsh's reference coordinates of the nodes of the largest element of each family; the smaller
-// ones of the family are prefixes (Tet4 of Tet10, Hex8 and Hex20 of Hex27). They define which
-// nodes lie on which facet.
-const double kTetRef[10][3] = {{0, 0, 0},     {1, 0, 0},     {0, 1, 0},   {0, 0, 1},
-                               {0.5, 0, 0},   {0.5, 0.5, 0}, {0, 0.5, 0}, {0, 0, 0.5},
-                               {0, 0.5, 0.5}, {0.5, 0, 0.5}};
-const double kHexRef[27][3] = {
-    {-1, -1, -1}, {1, -1, -1}, {1, 1, -1},  {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1},
-    {-1, 1, 1},   {0, -1, -1}, {-1, 0, -1}, {-1, -1, 0}, {1, 0, -1},  {1, -1, 0}, {0, 1, -1},
-    {1, 1, 0},    {-1, 1, 0},  {0, -1, 1},  {-1, 0, 1},  {1, 0, 1},   {0, 1, 1},  {0, 0, -1},
-    {0, -1, 0},   {-1, 0, 0},  {1, 0, 0},   {0, 1, 0},   {0, 0, 1},   {0, 0, 0}};
-// Facet corners, counter-clockwise seen from outside the reference element.
-const int kTetFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-const int kHexFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                             {1, 2, 6, 5}, {2, 3, 7, 6}, {0, 4, 7, 3}};
-
-// The local node of a 3D element at reference point p (among nodes from..npe-1).
-int nodeAt(ElementType type, const double p[3], int from) {
-  const bool tet = numCorners(type) == 4;
-  for (int k = from; k < numNodes(type); ++k) {
-    const double* r = tet ? kTetRef[k] : kHexRef[k];
-    if (std::abs(r[0] - p[0]) + std::abs(r[1] - p[1]) + std::abs(r[2] - p[2]) < 1e-12) return k;
-  }
-  throw std::logic_error("elementFacetNodes: no node at a facet's reference point");
+void requireBody(const char* who, ElementType type) {
+  if (!plasticity::elementInfo(type).meshBody)
+    throw std::invalid_argument(std::string(who) + ": a " + elementTypeName(type) +
+                                " is not a body element");
 }
-
-std::vector<int> solidFacetNodes(ElementType type, int facet) {
-  const bool tet = numCorners(type) == 4;
-  const int nfc = tet ? 3 : 4, nc = numCorners(type);
-  std::vector<int> nodes(tet ? kTetFaces[facet] : kHexFaces[facet],
-                         (tet ? kTetFaces[facet] : kHexFaces[facet]) + nfc);
-  if (numNodes(type) == nc) return nodes;
-  auto ref = [&](int k) { return tet ? kTetRef[k] : kHexRef[k]; };
-  double centre[3] = {0, 0, 0};
-  for (int j = 0; j < nfc; ++j) {
-    const double *a = ref(nodes[j]), *b = ref(nodes[(j + 1) % nfc]);
-    const double mid[3] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
-    nodes.push_back(nodeAt(type, mid, nc));
-    for (int i = 0; i < 3; ++i) centre[i] += a[i] / nfc;
-  }
-  if (type == ElementType::Hex27) nodes.push_back(nodeAt(type, centre, nc));
-  return nodes;
-}
-
 }  // namespace
 
-int numNodes(ElementType type) {
-  switch (type) {
-    case ElementType::Line2:
-      return 2;
-    case ElementType::Tri3:
-    case ElementType::Line3:
-      return 3;
-    case ElementType::Quad4:
-    case ElementType::Tet4:
-      return 4;
-    case ElementType::Tri6:
-      return 6;
-    case ElementType::Hex8:
-    case ElementType::Quad8:
-      return 8;
-    case ElementType::Quad9:
-      return 9;
-    case ElementType::Tet10:
-      return 10;
-    case ElementType::Hex20:
-      return 20;
-    case ElementType::Hex27:
-      return 27;
-  }
-  throw std::logic_error("numNodes: invalid element type");
-}
-
-int numCorners(ElementType type) {
-  switch (type) {
-    case ElementType::Line2:
-    case ElementType::Line3:
-      return 2;
-    case ElementType::Tri3:
-    case ElementType::Tri6:
-      return 3;
-    case ElementType::Hex8:
-    case ElementType::Hex20:
-    case ElementType::Hex27:
-      return 8;
-    default:
-      return 4;  // quadrangles and tetrahedra
-  }
-}
-
-int elementDimension(ElementType type) {
-  switch (type) {
-    case ElementType::Line2:
-    case ElementType::Line3:
-      return 1;
-    case ElementType::Tet4:
-    case ElementType::Tet10:
-    case ElementType::Hex8:
-    case ElementType::Hex20:
-    case ElementType::Hex27:
-      return 3;
-    default:
-      return 2;
-  }
-}
-
-const char* elementTypeName(ElementType type) {
-  switch (type) {
-    case ElementType::Line2:
-      return "2-node line";
-    case ElementType::Line3:
-      return "3-node line";
-    case ElementType::Tri3:
-      return "3-node triangle";
-    case ElementType::Quad4:
-      return "4-node quadrangle";
-    case ElementType::Tri6:
-      return "6-node triangle";
-    case ElementType::Quad8:
-      return "8-node quadrangle";
-    case ElementType::Quad9:
-      return "9-node quadrangle";
-    case ElementType::Tet4:
-      return "4-node tetrahedron";
-    case ElementType::Tet10:
-      return "10-node tetrahedron";
-    case ElementType::Hex8:
-      return "8-node hexahedron";
-    case ElementType::Hex20:
-      return "20-node hexahedron";
-    case ElementType::Hex27:
-      return "27-node hexahedron";
-  }
-  return "invalid element type";
-}
-
-int numFacets(ElementType type) {
-  const int dim = elementDimension(type);
-  if (dim == 2) return numCorners(type);
-  if (dim == 3) return numCorners(type) == 4 ? 4 : 6;
-  throw std::invalid_argument(std::string("numFacets: a ") + elementTypeName(type) +
-                              " is not a 2D or 3D element");
-}
-
 ElementType facetType(ElementType type) {
-  switch (type) {
-    case ElementType::Tri3:
-    case ElementType::Quad4:
-      return ElementType::Line2;
-    case ElementType::Tri6:
-    case ElementType::Quad9:
-      return ElementType::Line3;
-    case ElementType::Tet4:
-      return ElementType::Tri3;
-    case ElementType::Tet10:
-      return ElementType::Tri6;
-    case ElementType::Hex8:
-      return ElementType::Quad4;
-    case ElementType::Hex20:
-      return ElementType::Quad8;
-    case ElementType::Hex27:
-      return ElementType::Quad9;
-    default:
-      throw std::invalid_argument(std::string("facetType: a ") + elementTypeName(type) +
-                                  " is not a body element");
-  }
+  requireBody("facetType", type);
+  return plasticity::faceType(type);
 }
 
 const std::vector<int>& elementFacetNodes(ElementType type, int facet) {
-  // Built once per type: the table is derived from the reference coordinates.
-  static const std::map<ElementType, std::vector<std::vector<int>>> tables = [] {
-    std::map<ElementType, std::vector<std::vector<int>>> t;
-    for (ElementType e : {ElementType::Tri3, ElementType::Quad4, ElementType::Tri6,
-                          ElementType::Quad9, ElementType::Tet4, ElementType::Tet10,
-                          ElementType::Hex8, ElementType::Hex20, ElementType::Hex27})
-      for (int f = 0; f < numFacets(e); ++f)
-        t[e].push_back(elementDimension(e) == 2 ? elementEdgeNodes(e, f) : solidFacetNodes(e, f));
-    return t;
-  }();
-  const auto it = tables.find(type);
-  if (it == tables.end())
-    throw std::invalid_argument(std::string("elementFacetNodes: a ") + elementTypeName(type) +
-                                " is not a body element");
-  if (facet < 0 || facet >= static_cast<int>(it->second.size()))
+  requireBody("elementFacetNodes", type);
+  if (facet < 0 || facet >= numFacets(type))
     throw std::out_of_range("elementFacetNodes: no such facet");
-  return it->second[facet];
+  return plasticity::facetNodes(type, facet);
 }
 
 std::vector<int> elementEdgeNodes(ElementType type, int edge) {
   if (elementDimension(type) != 2)
     throw std::invalid_argument(std::string("elementEdgeNodes: a ") + elementTypeName(type) +
                                 " is not a 2D element");
-  const int nc = numCorners(type);
-  if (edge < 0 || edge >= nc) throw std::out_of_range("elementEdgeNodes: no such edge");
-  std::vector<int> nodes{edge, (edge + 1) % nc};
-  // Gmsh numbers the midside nodes after the corners, in the order of the edges.
-  if (numNodes(type) > nc) nodes.push_back(nc + edge);
-  return nodes;
+  if (edge < 0 || edge >= numCorners(type))
+    throw std::out_of_range("elementEdgeNodes: no such edge");
+  return plasticity::facetNodes(type, edge);
 }
 
 const GmshBody& GmshMesh::body(const std::string& name) const {
@@ -408,13 +241,36 @@ std::vector<NamedGroup> selectGroups(const std::string& path, const std::vector<
 // The elements of a physical group: all its entities' elements, each entity in the order Gmsh
 // lists them, so that the numbering is reproducible.
 struct GroupElements {
-  int type = -1;
+  int gmshType = -1;  // Gmsh's code of `type`, -1 before the first element
+  ElementType type = ElementType::Tri3;
   std::vector<std::size_t> tags;
   std::vector<std::size_t> nodes;
 };
 
+// The element types the reader takes: bodies of the mesh's dimension, or (boundary) their facet
+// types, in the catalogue's order.
+std::vector<ElementType> supportedTypes(int meshDim, bool boundary) {
+  std::vector<ElementType> types;
+  for (ElementType t : plasticity::allElementTypes()) {
+    const plasticity::ElementInfo info = plasticity::elementInfo(t);
+    if (!info.meshBody || info.dim != meshDim) continue;
+    const ElementType s = boundary ? info.face : t;
+    if (std::find(types.begin(), types.end(), s) == types.end()) types.push_back(s);
+  }
+  return types;
+}
+
+// "3-node triangle (2), 4-node quadrangle (3)": names and Gmsh codes, for messages.
+std::string typeList(const std::vector<ElementType>& types) {
+  std::string s;
+  for (ElementType t : types)
+    s += std::string(s.empty() ? "" : ", ") + elementTypeName(t) + " (" +
+         std::to_string(plasticity::gmshType(t)) + ")";
+  return s;
+}
+
 GroupElements groupElements(const std::string& path, int dim, const NamedGroup& group,
-                            const std::vector<int>& supported, const char* supportedNames) {
+                            const std::vector<ElementType>& supported) {
   std::vector<int> entities;
   gmsh::model::getEntitiesForPhysicalGroup(dim, group.tag, entities);
   GroupElements out;
@@ -429,20 +285,23 @@ GroupElements groupElements(const std::string& path, int dim, const NamedGroup& 
       std::vector<double> refCoords;
       gmsh::model::mesh::getElementProperties(types[t], typeName, typeDim, typeOrder, typeNodes,
                                               refCoords, typeCorners);
-      if (std::find(supported.begin(), supported.end(), types[t]) == supported.end())
+      ElementType type = ElementType::Tri3;
+      if (!plasticity::elementTypeOfGmsh(types[t], type) ||
+          std::find(supported.begin(), supported.end(), type) == supported.end())
         throw std::runtime_error(path + ": physical group \"" + group.name + "\" has elements of " +
                                  "Gmsh type " + std::to_string(types[t]) + " (" + typeName +
-                                 "), which is not supported; supported: " + supportedNames);
-      if (out.type >= 0 && out.type != types[t]) {
+                                 "), which is not supported; supported: " + typeList(supported));
+      if (out.gmshType >= 0 && out.gmshType != types[t]) {
         std::string firstName;
         int d, o, n, c;
-        gmsh::model::mesh::getElementProperties(out.type, firstName, d, o, n, refCoords, c);
+        gmsh::model::mesh::getElementProperties(out.gmshType, firstName, d, o, n, refCoords, c);
         throw std::runtime_error(path + ": physical group \"" + group.name +
                                  "\" mixes element types " + firstName + " and " + typeName +
                                  "; one type per group is required (recombined next to " +
                                  "unrecombined surfaces, or triangles left by recombination)");
       }
-      out.type = types[t];
+      out.gmshType = types[t];
+      out.type = type;
       out.tags.insert(out.tags.end(), tags[t].begin(), tags[t].end());
       out.nodes.insert(out.nodes.end(), nodes[t].begin(), nodes[t].end());
     }
@@ -460,13 +319,8 @@ GroupElements groupElements(const std::string& path, int dim, const NamedGroup& 
 // non-convex quadrilateral is an error naming the file and its Gmsh tag.
 int orientCounterClockwise(GmshBody& body, const std::vector<double>& coords,
                            const std::string& path) {
-  static const int tri3[] = {0, 2, 1}, tri6[] = {0, 2, 1, 5, 4, 3}, quad4[] = {0, 3, 2, 1},
-                   quad9[] = {0, 3, 2, 1, 7, 6, 5, 4, 8};
   const ElementType type = body.type;
-  const int* perm = type == ElementType::Tri3    ? tri3
-                    : type == ElementType::Tri6  ? tri6
-                    : type == ElementType::Quad4 ? quad4
-                                                 : quad9;
+  const std::vector<int>& perm = plasticity::reversedNodes(type);
   const int npe = numNodes(type), corners = numCorners(type);
   auto x = [&](int node, int c) { return coords[2 * node + c]; };
   std::vector<int> old(npe);
@@ -533,7 +387,7 @@ void checkSolidElements(const std::string& path, const GmshBody& body, const Nam
   std::string name;
   int d = 0, o = 0, n = 0, c = 0;
   std::vector<double> ref;
-  gmsh::model::mesh::getElementProperties(static_cast<int>(body.type), name, d, o, n, ref, c);
+  gmsh::model::mesh::getElementProperties(plasticity::gmshType(body.type), name, d, o, n, ref, c);
   std::unordered_map<std::size_t, int> indexOf;
   for (int e = 0; e < body.numElements(); ++e) indexOf[body.gmshTags[e]] = e;
   std::vector<int> entities;
@@ -541,10 +395,10 @@ void checkSolidElements(const std::string& path, const GmshBody& body, const Nam
   const int npe = body.nodesPerElement();
   for (int entity : entities) {
     std::vector<std::size_t> tags, nodeTags;
-    gmsh::model::mesh::getElementsByType(static_cast<int>(body.type), tags, nodeTags, entity);
+    gmsh::model::mesh::getElementsByType(plasticity::gmshType(body.type), tags, nodeTags, entity);
     if (tags.empty()) continue;
     std::vector<double> jac, det, xyz;
-    gmsh::model::mesh::getJacobians(static_cast<int>(body.type), ref, jac, det, xyz, entity);
+    gmsh::model::mesh::getJacobians(plasticity::gmshType(body.type), ref, jac, det, xyz, entity);
     if (det.size() != tags.size() * static_cast<std::size_t>(n))
       throw std::runtime_error(path + ": Gmsh returned " + std::to_string(det.size()) +
                                " Jacobians for " + std::to_string(tags.size()) + " elements");
@@ -628,21 +482,9 @@ GmshMesh extract(const std::string& path, const MeshOptions& options, int dim) {
 
   std::vector<GroupElements> bodyElements, boundaryElements;
   for (const NamedGroup& g : bodyGroups)
-    bodyElements.push_back(
-        dim == 2 ? groupElements(path, 2, g, {2, 3, 9, 10},
-                                 "3-node triangle (2), 4-node quadrangle (3), 6-node "
-                                 "triangle (9), 9-node quadrangle (10)")
-                 : groupElements(path, 3, g, {4, 11, 5, 17, 12},
-                                 "4-node tetrahedron (4), 10-node tetrahedron (11), 8-node "
-                                 "hexahedron (5), 20-node hexahedron (17), 27-node "
-                                 "hexahedron (12)"));
+    bodyElements.push_back(groupElements(path, dim, g, supportedTypes(dim, false)));
   for (const NamedGroup& g : boundaryGroups)
-    boundaryElements.push_back(
-        dim == 2 ? groupElements(path, 1, g, {1, 8}, "2-node line (1), 3-node line (8)")
-                 : groupElements(path, 2, g, {2, 9, 3, 16, 10},
-                                 "3-node triangle (2), 6-node triangle (9), 4-node "
-                                 "quadrangle (3), 8-node quadrangle (16), 9-node "
-                                 "quadrangle (10)"));
+    boundaryElements.push_back(groupElements(path, dim - 1, g, supportedTypes(dim, true)));
 
   // Compact numbering by increasing Gmsh tag: independent of the order groups are visited in.
   GmshMesh mesh;
@@ -695,7 +537,7 @@ GmshMesh extract(const std::string& path, const MeshOptions& options, int dim) {
     GmshBody body;
     body.name = bodyGroups[g].name;
     body.physicalTag = bodyGroups[g].tag;
-    body.type = static_cast<ElementType>(bodyElements[g].type);
+    body.type = bodyElements[g].type;
     body.connectivity = toCompact(bodyElements[g].nodes);
     body.gmshTags = std::move(bodyElements[g].tags);
     if (dim == 2)
@@ -714,7 +556,7 @@ GmshMesh extract(const std::string& path, const MeshOptions& options, int dim) {
     GmshBoundary boundary;
     boundary.name = boundaryGroups[g].name;
     boundary.physicalTag = boundaryGroups[g].tag;
-    boundary.type = static_cast<ElementType>(boundaryElements[g].type);
+    boundary.type = boundaryElements[g].type;
     boundary.nodesPerEdge = numNodes(boundary.type);
     boundary.edges = toCompact(boundaryElements[g].nodes);
     mesh.boundaries.push_back(std::move(boundary));

@@ -12,46 +12,46 @@
 #include <string>
 #include <vector>
 
+#include "plasticity_ElementTypes.hpp"
+
 namespace contact {
 
-// Values are Gmsh's element type codes, so that an unsupported code in a file can be reported
-// as Gmsh names it. Bodies: Tri3, Quad4, Tri6, Quad9 (2D); Tet4, Tet10, Hex8, Hex20, Hex27 (3D).
-// Boundary elements: Line2, Line3 (2D); Tri3, Tri6, Quad4, Quad8, Quad9 (3D).
-enum class ElementType {
-  Line2 = 1,
-  Tri3 = 2,
-  Quad4 = 3,
-  Tet4 = 4,
-  Hex8 = 5,
-  Line3 = 8,
-  Tri6 = 9,
-  Quad9 = 10,
-  Tet10 = 11,
-  Hex27 = 12,
-  Quad8 = 16,
-  Hex20 = 17
-};
+// Element types are plasticity's catalogue (plasticity_ElementTypes.hpp), which knows every fact
+// about a type: node count, corners, facets, Gmsh code. The reader takes bodies of the types the
+// catalogue marks meshBody -- Tri3, Quad4, Tri6, Quad9 (2D); Tet4, Tet10, Hex8, Hex20, Hex27 (3D)
+// -- and boundary elements of their facet types: Line2, Line3 (2D); Tri3, Tri6, Quad4, Quad8,
+// Quad9 (3D). The functions below are the mesh code's names for the catalogue's answers.
+using ElementType = plasticity::ElementType;
 
-int numNodes(ElementType type);          // 2, 3, 4, 4, 8, 3, 6, 9, 10, 27, 8, 20
-int numCorners(ElementType type);        // vertices: 2 (lines), 3, 4 (faces, tets), 8 (hexahedra)
-int elementDimension(ElementType type);  // 1, 2 or 3
-const char* elementTypeName(ElementType type);
+inline int numNodes(ElementType type) {
+  return plasticity::nodesPerElement(type);
+}
+// Vertices: 2 (lines), 3, 4 (faces, tets), 8 (hexahedra).
+inline int numCorners(ElementType type) {
+  return plasticity::cornersPerElement(type);
+}
+inline int elementDimension(ElementType type) {  // 1, 2 or 3
+  return plasticity::spatialDimension(type);
+}
+// Gmsh's description ("3-node triangle"), for messages.
+inline const char* elementTypeName(ElementType type) {
+  return plasticity::elementLongName(type);
+}
 
 // Facets are the (dimension - 1)-dimensional sides of an element: the edges of a triangle or
-// quadrangle, the faces of a tetrahedron (4) or hexahedron (6).
+// quadrangle, the faces of a tetrahedron (4) or hexahedron (6). Throws for a line.
 int numFacets(ElementType type);
-// The type of an element's facets: Line2/Line3 for 2D elements; Tri3 (Tet4), Tri6 (Tet10), Quad4
-// (Hex8), Quad8 (Hex20), Quad9 (Hex27).
+// The type of a body element's facets: Line2/Line3 for 2D elements; Tri3 (Tet4), Tri6 (Tet10),
+// Quad4 (Hex8), Quad8 (Hex20), Quad9 (Hex27). Throws std::invalid_argument for a type that is
+// not a body.
 ElementType facetType(ElementType type);
-// Local nodes of facet `facet` (0 .. numFacets-1) of an element, in the node order of a Gmsh
-// element of facetType(type), oriented so that the facet's normal by the right-hand rule (2D:
-// the edge's direction turned clockwise) points out of the element. 2D: elementEdgeNodes.
-// 3D: corners first (counter-clockwise seen from outside), then the midside nodes of the
-// facet's edges in the facet's edge order, then the face centre (Hex27).
+// Local nodes of facet `facet` (0 .. numFacets-1) of a body element, oriented outward:
+// plasticity::facetNodes, which says the order. Throws std::invalid_argument for a type that is
+// not a body, std::out_of_range for no such facet.
 const std::vector<int>& elementFacetNodes(ElementType type, int facet);
 
-// Local nodes of edge `edge` (0 .. numCorners-1) of an element in Gmsh's node order: the edge runs
-// from corner `edge` to corner `edge+1` (cyclically); second-order elements add the edge's
+// Local nodes of edge `edge` (0 .. numCorners-1) of a 2D element in Gmsh's node order: the edge
+// runs from corner `edge` to corner `edge+1` (cyclically); second-order elements add the edge's
 // midside node as third entry, so the result has the node order of a Gmsh 2- or 3-node line.
 std::vector<int> elementEdgeNodes(ElementType type, int edge);
 

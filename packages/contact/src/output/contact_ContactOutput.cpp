@@ -252,49 +252,6 @@ void addHertzComparison(Json& c, const HertzReference& hertz) {
   c["relative_error"] = std::move(err);
 }
 
-int vtkCellType(plasticity::ElementType type) {
-  switch (type) {
-    case plasticity::ElementType::Tri3:
-      return kVtkTriangle;
-    case plasticity::ElementType::Quad4:
-      return kVtkQuad;
-    case plasticity::ElementType::Tri6:
-      return kVtkQuadraticTriangle;
-    case plasticity::ElementType::Quad9:
-      return kVtkBiquadraticQuad;
-    case plasticity::ElementType::Tet4:
-      return kVtkTetra;
-    case plasticity::ElementType::Tet10:
-      return kVtkQuadraticTetra;
-    case plasticity::ElementType::Hex8:
-      return kVtkHexahedron;
-    case plasticity::ElementType::Hex27:
-      return kVtkTriquadraticHexahedron;
-    default:
-      break;
-  }
-  throw std::invalid_argument("vtkCellType: no VTK cell for " + plasticity::elementTypeName(type));
-}
-
-const std::vector<int>& vtkNodeOrder(plasticity::ElementType type) {
-  // Gmsh's Tet10 has the midside nodes of edges 3-2 and 3-1 at 8 and 9, VTK's quadratic tetra
-  // those of 1-3 and 2-3. Gmsh's Hex27 numbers the edges 0-1, 0-3, 0-4, 1-2, 1-5, 2-3, 2-6,
-  // 3-7, 4-5, 4-7, 5-6, 6-7 and the faces z-, y-, x-, x+, y+, z+; VTK's triquadratic hexahedron
-  // the edges 0-1, 1-2, 2-3, 3-0, 4-5, 5-6, 6-7, 7-4, 0-4, 1-5, 2-6, 3-7 and the faces x-, x+,
-  // y-, y+, z-, z+. Corners and the centre agree.
-  static const std::vector<int> tet10{0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
-  static const std::vector<int> hex27{0,  1,  2,  3,  4,  5,  6,  7,  8,  11, 13, 9,  16, 18,
-                                      19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20, 25, 26};
-  static std::vector<std::vector<int>> identity(plasticity::kMaxElementNodes + 1);
-  if (type == plasticity::ElementType::Tet10) return tet10;
-  if (type == plasticity::ElementType::Hex27) return hex27;
-  const int n = plasticity::nodesPerElement(type);
-  auto& id = identity[n];
-  if (id.empty())
-    for (int k = 0; k < n; ++k) id.push_back(k);
-  return id;
-}
-
 VtuPiece stressPiece(const std::vector<SubdomainFields>& subdomains,
                      const std::vector<std::string>& extraNames) {
   VtuPiece piece;
@@ -327,8 +284,8 @@ VtuPiece stressPiece(const std::vector<SubdomainFields>& subdomains,
     const auto& u = *s.displacement;
     const int base = static_cast<int>(piece.points.size() / dim);
     piece.points.insert(piece.points.end(), em.coords.begin(), em.coords.end());
-    piece.cellTypes.insert(piece.cellTypes.end(), em.numElements(), vtkCellType(em.type));
-    const std::vector<int>& order = vtkNodeOrder(em.type);
+    piece.cellTypes.insert(piece.cellTypes.end(), em.numElements(), plasticity::vtkType(em.type));
+    const std::vector<int>& order = plasticity::vtkNodeOrder(em.type);
     const int npe = plasticity::nodesPerElement(em.type);
     for (int e = 0; e < em.numElements(); ++e)
       for (int k = 0; k < npe; ++k)

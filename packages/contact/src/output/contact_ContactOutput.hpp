@@ -121,14 +121,10 @@ std::optional<HertzReference> hertzReference(
 // {p_max, half_width | contact_radius}.
 void addHertzComparison(Json& c, const HertzReference& hertz);
 
-// The VTK cell type of an element; vtkNodeOrder(type)[k] is the element's local node at VTK's
-// position k (the identity but for Tet10 and Hex27, whose Gmsh order differs from VTK's).
-int vtkCellType(plasticity::ElementType type);
-const std::vector<int>& vtkNodeOrder(plasticity::ElementType type);
-
-// One VTU piece for this rank's subdomains: displacement, the stress components (2D: sxx, syy,
-// sxy; 3D: sxx, syy, szz, syz, sxz, sxy) and von Mises (from the nodal fields of `stress`), extra
-// nodal fields, and the subdomain id per cell.
+// One VTU piece for this rank's subdomains (cells of the catalogue's VTK type, nodes in its VTK
+// order: plasticity::vtkType, plasticity::vtkNodeOrder): displacement, the stress components (2D:
+// sxx, syy, sxy; 3D: sxx, syy, szz, syz, sxz, sxy) and von Mises (from the nodal fields of
+// `stress`), extra nodal fields, and the subdomain id per cell.
 struct SubdomainFields {
   const plasticity::ElementMesh* mesh;
   int id;

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "plasticity_ElementTypes.hpp"
+
 namespace contact {
 
 namespace {
@@ -26,25 +28,10 @@ void declareArrays(std::ofstream& out, const std::vector<VtuField>& fields) {
 }  // namespace
 
 int vtkCellSize(int vtkType) {
-  switch (vtkType) {
-    case kVtkTriangle:
-      return 3;
-    case kVtkQuad:
-      return 4;
-    case kVtkQuadraticTriangle:
-      return 6;
-    case kVtkBiquadraticQuad:
-      return 9;
-    case kVtkTetra:
-      return 4;
-    case kVtkHexahedron:
-      return 8;
-    case kVtkQuadraticTetra:
-      return 10;
-    case kVtkTriquadraticHexahedron:
-      return 27;
-  }
-  throw std::invalid_argument("VTU output: unsupported VTK cell type " + std::to_string(vtkType));
+  plasticity::ElementType type = plasticity::ElementType::Tri3;
+  if (!plasticity::elementTypeOfVtk(vtkType, type))
+    throw std::invalid_argument("VTU output: unsupported VTK cell type " + std::to_string(vtkType));
+  return plasticity::nodesPerElement(type);
 }
 
 std::string writeVtu(const tfeti::Comm& comm, const std::string& directory,

@@ -15,9 +15,10 @@ struct VtuField {
   std::vector<double> values;  // components per point (or per cell)
 };
 
-// VTK cell types. The plane ones have Gmsh's node order (corners counter-clockwise, then the
-// edge midpoints from edge 0-1, then the centre); quadratic tetrahedra and triquadratic
-// hexahedra do not (contact_ContactOutput's vtkNodeOrder permutes them).
+// Names for some VTK cell types (the element catalogue, plasticity_ElementTypes.hpp, holds each
+// element type's VTK type and node order). The plane ones have Gmsh's node order (corners
+// counter-clockwise, then the edge midpoints from edge 0-1, then the centre); quadratic
+// tetrahedra and triquadratic hexahedra do not (plasticity::vtkNodeOrder permutes them).
 enum VtkCellType {
   kVtkTriangle = 5,
   kVtkQuad = 9,
@@ -28,7 +29,7 @@ enum VtkCellType {
   kVtkBiquadraticQuad = 28,
   kVtkTriquadraticHexahedron = 29
 };
-int vtkCellSize(int vtkType);  // points per cell; throws for other types
+int vtkCellSize(int vtkType);  // points per cell (the catalogue's); throws for other types
 
 struct VtuPiece {
   int dim = 2;                 // coordinates per point in `points`

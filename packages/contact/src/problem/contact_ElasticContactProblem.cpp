@@ -17,30 +17,18 @@
 
 namespace contact {
 
-plasticity::ElementType toPlasticityType(ElementType type) {
-  switch (type) {
-    case ElementType::Tri3:
-      return plasticity::ElementType::Tri3;
-    case ElementType::Quad4:
-      return plasticity::ElementType::Quad4;
-    case ElementType::Tri6:
-      return plasticity::ElementType::Tri6;
-    case ElementType::Quad9:
-      return plasticity::ElementType::Quad9;
-    case ElementType::Tet4:
-      return plasticity::ElementType::Tet4;
-    case ElementType::Tet10:
-      return plasticity::ElementType::Tet10;
-    case ElementType::Hex8:
-      return plasticity::ElementType::Hex8;
-    case ElementType::Hex27:
-      return plasticity::ElementType::Hex27;
-    default:
-      break;
-  }
+plasticity::ElementType checkedBodyType(ElementType type) {
+  if (plasticity::elementInfo(type).meshBody && plasticity::elementInfo(type).complete) return type;
+  // The assembled body types, from the catalogue: "Tri3, Quad4, ... or Hex27".
+  std::vector<std::string> names;
+  for (ElementType t : plasticity::allElementTypes())
+    if (plasticity::elementInfo(t).meshBody && plasticity::elementInfo(t).complete)
+      names.push_back(plasticity::elementTypeName(t));
+  std::string list;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    list += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
   throw std::invalid_argument(std::string("elastic contact: ") + elementTypeName(type) +
-                              " bodies are not supported (Tri3, Quad4, Tri6, Quad9, Tet4, Tet10, "
-                              "Hex8 or Hex27)");
+                              " bodies are not supported (" + list + ")");
 }
 
 namespace {
@@ -101,10 +89,6 @@ void requireEveryBodyHeld(const GmshMesh& mesh, const ElasticContactSpec& spec,
   }
 }
 
-}  // namespace
-
-namespace {
-
 // The body (index into spec.bodies) that most of a boundary's edges (faces) lie on, or -1.
 int bodyOfBoundary(const GmshMesh& mesh, const ElasticContactSpec& spec, const GmshBoundary& b) {
   std::map<int, int> count;
@@ -134,24 +118,28 @@ std::vector<int> boundaryNodeIds(const GmshMesh& mesh, const std::string& name) 
   return std::vector<int>(nodes.begin(), nodes.end());
 }
 
-ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
-                                                 const tfeti::Comm& comm) {
-  ElasticContactProblem p;
-  // The problem's dimension is the mesh's (spec.meshOptions.dimension may demand one).
-  p.mesh = loadMesh(spec.meshFile, spec.meshOptions);
-  const GmshMesh& mesh = p.mesh;
+namespace {
+
+// The steps of buildElasticContactProblem, in the order it runs them.
+
+// Says which bodies were reoriented (clockwise in the file) and checks the loads' component
+// counts and the contact zone against the mesh's dimension.
+void checkSpecAgainstMesh(const ElasticContactSpec& spec, const GmshMesh& mesh,
+                          const tfeti::Comm& comm) {
   for (const GmshBody& b : mesh.bodies)  // clockwise in the file: reoriented, said once
     if (b.reoriented > 0 && comm.getRank() == 0)
       std::cout << mesh.source << ": body \"" << b.name << "\": " << b.reoriented << " of "
                 << b.numElements() << " elements were clockwise and are reoriented\n";
-  const int dim = mesh.dim;
   checkComponents(spec.tractions, "Tractions", "traction boundary", mesh);
   checkComponents(spec.bodyLoads, "Body loads", "body", mesh);
-  if (spec.contactZone == "point" && dim == 2)
+  if (spec.contactZone == "point" && mesh.dim == 2)
     throw std::invalid_argument("Contact problem: \"Contact zone\" = point needs a 3D mesh; " +
                                 mesh.source + " is 2D (a 2D contact is a line contact)");
+}
 
-  // Subdomains, body by body, numbered consecutively.
+// Subdomains, body by body, numbered consecutively.
+void partitionBodies(const ElasticContactSpec& spec, ElasticContactProblem& p) {
+  const GmshMesh& mesh = p.mesh;
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
     const auto& body = spec.bodies[b];
     if (body.subdomains < 1)
@@ -183,20 +171,31 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
       p.bodyOfSubdomain.push_back(static_cast<int>(b));
     }
   }
+}
 
-  // Every untorn node's first copy (lowest subdomain id): where a contact row acts on it.
-  std::vector<std::pair<int, int>>& copyOf = p.copyOf;
-  copyOf.assign(mesh.numNodes(), {-1, -1});
+// Every untorn node's first copy (lowest subdomain id): where a contact row acts on it.
+void findFirstCopies(ElasticContactProblem& p) {
+  p.copyOf.assign(p.mesh.numNodes(), {-1, -1});
   for (const auto& s : p.subdomains)
     for (int n = 0; n < s.numNodes(); ++n)
-      if (copyOf[s.globalNode[n]].first < 0) copyOf[s.globalNode[n]] = {s.id, n};
+      if (p.copyOf[s.globalNode[n]].first < 0) p.copyOf[s.globalNode[n]] = {s.id, n};
+}
 
+// The Dirichlet conditions by mesh node: fixed nodes and (node, component) symmetry pairs.
+struct Supports {
   std::set<int> fixedNodes;
+  std::set<std::pair<int, int>> fixedComponents;
+};
+
+// The fixed and symmetry boundaries' nodes and p.prescribed; every body must be held.
+Supports dirichletConditions(const ElasticContactSpec& spec, ElasticContactProblem& p) {
+  const GmshMesh& mesh = p.mesh;
+  const int dim = mesh.dim;
+  Supports h;
   for (const auto& name : spec.fixed) {
     const auto nodes = nodesOf(boundaryNamed(mesh, name, "Fixed boundaries"));
-    fixedNodes.insert(nodes.begin(), nodes.end());
+    h.fixedNodes.insert(nodes.begin(), nodes.end());
   }
-  std::set<std::pair<int, int>> fixedComponents;
   for (const auto& [name, c] : spec.symmetry) {
     if (c < 0 || c >= dim)
       throw std::invalid_argument("Symmetry components: " + std::to_string(c) + " for boundary \"" +
@@ -204,9 +203,8 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
                                   (dim == 3 ? "0 (x), 1 (y) or 2 (z)" : "0 (x) or 1 (y)") + " (a " +
                                   std::to_string(dim) + "D mesh)");
     for (int n : nodesOf(boundaryNamed(mesh, name, "Symmetry boundaries")))
-      fixedComponents.insert({n, c});
+      h.fixedComponents.insert({n, c});
   }
-
   p.prescribed = prescribedValues(
       spec.prescribed, dim,
       [&](const std::string& name) {
@@ -214,48 +212,56 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
         return std::vector<long long>(nodes.begin(), nodes.end());
       },
       spec.fixed, spec.symmetry);
-  requireEveryBodyHeld(mesh, spec, fixedNodes, fixedComponents, p.prescribed);
-  {
-    CouplingContext context;
-    context.dim = dim;
-    context.nodesOf = [&](const std::string& name) {
-      const auto nodes = nodesOf(boundaryNamed(mesh, name, "Coupled boundaries"));
-      return std::vector<long long>(nodes.begin(), nodes.end());
-    };
-    context.firstCopy = [&](long long n) { return copyOf[n]; };
-    context.heldBy = [&](long long n, int c) -> std::string {
-      const int node = static_cast<int>(n);
-      if (fixedNodes.count(node)) return "fixed boundaries (Fixed boundaries)";
-      if (fixedComponents.count({node, c})) return "symmetry boundaries (Symmetry boundaries)";
-      if (p.prescribed.count({n, c})) return "prescribed displacements (Prescribed boundaries)";
-      return "";
-    };
-    p.couplingRows = kinematicCouplingRows(spec.couplings, context);
-    p.couplingRowCount = static_cast<long long>(p.couplingRows.size());
-    if (comm.getRank() != 0) p.couplingRows.clear();  // each row is passed by one rank
-  }
+  requireEveryBodyHeld(mesh, spec, h.fixedNodes, h.fixedComponents, p.prescribed);
+  return h;
+}
 
-  // Subdomains to ranks: balance the dofs and keep neighbours together (Zoltan2 on the graph
-  // whose edges join subdomains sharing interface nodes, weighted by their number).
-  {
-    std::vector<std::vector<int>> holders(mesh.numNodes());
-    for (const auto& s : p.subdomains)
-      for (long long g : s.globalNode) holders[g].push_back(s.id);
-    std::map<std::pair<int, int>, double> shared;
-    for (const auto& h : holders)
-      for (std::size_t i = 0; i < h.size(); ++i)
-        for (std::size_t j = i + 1; j < h.size(); ++j)
-          shared[{std::min(h[i], h[j]), std::max(h[i], h[j])}] += 1.0;
-    std::vector<tfeti::SubdomainEdge> edges;
-    for (const auto& [ab, w] : shared) edges.push_back({ab.first, ab.second, w});
-    std::vector<double> weights;
-    for (const auto& s : p.subdomains) weights.push_back(static_cast<double>(dim) * s.numNodes());
-    p.ownerOfSubdomain =
-        tfeti::distributeSubdomains(comm, tfeti::makeSubdomainGraph(weights, edges),
-                                    tfeti::distributionMethodFromString(spec.distribution));
-  }
+// The kinematic couplings' rows (rank 0 keeps them).
+void addCouplings(const ElasticContactSpec& spec, const Supports& h, const tfeti::Comm& comm,
+                  ElasticContactProblem& p) {
+  const GmshMesh& mesh = p.mesh;
+  CouplingContext context;
+  context.dim = mesh.dim;
+  context.nodesOf = [&](const std::string& name) {
+    const auto nodes = nodesOf(boundaryNamed(mesh, name, "Coupled boundaries"));
+    return std::vector<long long>(nodes.begin(), nodes.end());
+  };
+  context.firstCopy = [&](long long n) { return p.copyOf[n]; };
+  context.heldBy = [&](long long n, int c) -> std::string {
+    const int node = static_cast<int>(n);
+    if (h.fixedNodes.count(node)) return "fixed boundaries (Fixed boundaries)";
+    if (h.fixedComponents.count({node, c})) return "symmetry boundaries (Symmetry boundaries)";
+    if (p.prescribed.count({n, c})) return "prescribed displacements (Prescribed boundaries)";
+    return "";
+  };
+  p.couplingRows = kinematicCouplingRows(spec.couplings, context);
+  p.couplingRowCount = static_cast<long long>(p.couplingRows.size());
+  if (comm.getRank() != 0) p.couplingRows.clear();  // each row is passed by one rank
+}
 
-  // The areas of the bodies with a body load (every rank meshes all of them: no reduction).
+// Subdomains to ranks: balance the dofs and keep neighbours together (Zoltan2 on the graph
+// whose edges join subdomains sharing interface nodes, weighted by their number).
+void distributeToRanks(const ElasticContactSpec& spec, const tfeti::Comm& comm,
+                       ElasticContactProblem& p) {
+  std::vector<std::vector<int>> holders(p.mesh.numNodes());
+  for (const auto& s : p.subdomains)
+    for (long long g : s.globalNode) holders[g].push_back(s.id);
+  std::map<std::pair<int, int>, double> shared;
+  for (const auto& h : holders)
+    for (std::size_t i = 0; i < h.size(); ++i)
+      for (std::size_t j = i + 1; j < h.size(); ++j)
+        shared[{std::min(h[i], h[j]), std::max(h[i], h[j])}] += 1.0;
+  std::vector<tfeti::SubdomainEdge> edges;
+  for (const auto& [ab, w] : shared) edges.push_back({ab.first, ab.second, w});
+  std::vector<double> weights;
+  for (const auto& s : p.subdomains) weights.push_back(static_cast<double>(p.dim()) * s.numNodes());
+  p.ownerOfSubdomain =
+      tfeti::distributeSubdomains(comm, tfeti::makeSubdomainGraph(weights, edges),
+                                  tfeti::distributionMethodFromString(spec.distribution));
+}
+
+// The areas of the bodies with a body load (every rank meshes all of them: no reduction).
+std::map<std::string, double> bodyLoadAreas(const ElasticContactSpec& spec, const GmshMesh& mesh) {
   std::map<std::string, double> bodyArea;
   for (const auto& [name, total] : spec.bodyLoads) {
     const auto it = std::find_if(spec.bodies.begin(), spec.bodies.end(),
@@ -263,105 +269,139 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     if (it == spec.bodies.end())
       throw std::invalid_argument("Body load bodies: \"" + name + "\" is not one of \"Bodies\"");
     const GmshBody& gb = mesh.body(name);
-    const plasticity::ElementMesh whole{toPlasticityType(gb.type), mesh.coords, gb.connectivity};
+    const plasticity::ElementMesh whole{checkedBodyType(gb.type), mesh.coords, gb.connectivity};
     const double unit[3] = {1.0, 0.0, 0.0};
     const auto fe = plasticity::assembleBodyForce(whole, unit);
     double area = 0.0;  // the volume in 3D
-    for (std::size_t i = 0; i < fe.size(); i += dim) area += fe[i];
+    for (std::size_t i = 0; i < fe.size(); i += mesh.dim) area += fe[i];
     bodyArea[name] = area;
   }
+  return bodyArea;
+}
 
-  // Tractions with a ramp other than {0, 1}: their loads apart (one part per such traction).
+// Tractions with a ramp other than {0, 1}: their loads apart (one part per such traction).
+struct LoadParts {
   std::vector<ElasticContactProblem::RampedLoad> ramped;
-  std::vector<int> rampOf(spec.tractions.size(), -1);
+  std::vector<int> rampOf;            // per traction: its index in `ramped`, or -1
+  double force[3] = {0.0, 0.0, 0.0};  // this rank's resultant of every load
+};
+
+LoadParts rampedTractionParts(const ElasticContactSpec& spec) {
+  LoadParts parts;
+  parts.rampOf.assign(spec.tractions.size(), -1);
   for (std::size_t k = 0; k < spec.tractionRamps.size(); ++k)
     if (!spec.tractionRamps[k].isDefault()) {
-      rampOf[k] = static_cast<int>(ramped.size());
-      ramped.push_back({spec.tractionRamps[k], {}, {0.0, 0.0, 0.0}});
+      parts.rampOf[k] = static_cast<int>(parts.ramped.size());
+      parts.ramped.push_back({spec.tractionRamps[k], {}, {0.0, 0.0, 0.0}});
     }
+  return parts;
+}
 
-  // This rank's subdomains: meshes for the tearing, stiffness and traction loads.
-  double force[3] = {0.0, 0.0, 0.0};
+// The tearing mesh of subdomain s: elements, coordinates, interface candidates and its
+// Dirichlet nodes and components.
+tfeti::SubdomainData subdomainData(const UnstructuredSubdomain& s, int dim, const Supports& h) {
+  tfeti::SubdomainData sd;
+  sd.dofsPerNode = dim;
+  sd.mesh.id = s.id;
+  sd.mesh.dim = dim;
+  const int npe = s.nodesPerElement();
+  for (int e = 0; e < s.numElements(); ++e)
+    sd.mesh.elements.add(
+        std::vector<int>(s.connectivity.begin() + e * npe, s.connectivity.begin() + (e + 1) * npe));
+  sd.mesh.coords = s.coords;
+  sd.mesh.globalNode.assign(s.globalNode.begin(), s.globalNode.end());
+  sd.mesh.interfaceCandidates = s.boundaryNodes();
+  for (int n = 0; n < s.numNodes(); ++n) {
+    if (h.fixedNodes.count(static_cast<int>(s.globalNode[n]))) sd.mesh.dirichletNodes.push_back(n);
+    for (int c = 0; c < dim; ++c)
+      if (h.fixedComponents.count({static_cast<int>(s.globalNode[n]), c}))
+        sd.mesh.fixedComponents.push_back({n, c});
+  }
+  return sd;
+}
+
+// The tractions on subdomain s's faces (edges) and the body loads of its body, added to sd.f,
+// to `proportional` or their ramped part, and to the resultants.
+void addLoads(const ElasticContactSpec& spec, const ElasticContactProblem& p,
+              const UnstructuredSubdomain& s, int b, const plasticity::ElementMesh& em,
+              const std::map<std::string, double>& bodyArea, tfeti::SubdomainData& sd,
+              std::vector<double>& proportional, LoadParts& parts) {
+  const GmshMesh& mesh = p.mesh;
+  const int dim = mesh.dim;
+  auto& ramped = parts.ramped;
+  const int bodyIndex = mesh.bodyIndex(spec.bodies[b].name);
+  for (std::size_t k = 0; k < spec.tractions.size(); ++k) {
+    const auto& [name, t] = spec.tractions[k];
+    const GmshBoundary& gb = boundaryNamed(mesh, name, "Traction boundaries");
+    std::vector<int> edges;
+    for (int e = 0; e < gb.numEdges(); ++e) {
+      if (gb.edgeBody[e] != bodyIndex ||
+          !std::binary_search(s.elements.begin(), s.elements.end(), gb.edgeElement[e]))
+        continue;
+      for (int k = 0; k < gb.nodesPerEdge; ++k)
+        edges.push_back(localIndex(s, gb.edges[e * gb.nodesPerEdge + k]));
+    }
+    if (edges.empty()) continue;
+    const auto fe = plasticity::assembleSurfaceTraction(em, edges, t.data());
+    for (std::size_t i = 0; i < fe.size(); ++i) {
+      sd.f[i] += fe[i];
+      parts.force[i % dim] += fe[i];
+    }
+    auto& part = ramped.empty() || parts.rampOf[k] < 0 ? proportional
+                                                       : ramped[parts.rampOf[k]].f[p.local.size()];
+    for (std::size_t i = 0; i < fe.size(); ++i) part[i] += fe[i];
+    if (!ramped.empty() && parts.rampOf[k] >= 0)
+      for (std::size_t i = 0; i < fe.size(); ++i) ramped[parts.rampOf[k]].force[i % dim] += fe[i];
+  }
+  for (const auto& [name, total] : spec.bodyLoads) {
+    if (name != spec.bodies[b].name) continue;
+    const double unit[3] = {1.0, 1.0, 1.0};
+    const auto fe = plasticity::assembleBodyForce(em, unit);
+    for (std::size_t i = 0; i < fe.size(); ++i) {
+      const double density = total[i % dim] / bodyArea.at(name);
+      sd.f[i] += density * fe[i];
+      parts.force[i % dim] += density * fe[i];
+      proportional[i] += density * fe[i];
+    }
+  }
+}
+
+// This rank's subdomains: meshes for the tearing, stiffness and loads; then the loads'
+// resultants over all ranks and the equality rows at full load.
+void assembleLocalSubdomains(const ElasticContactSpec& spec, const Supports& h,
+                             const tfeti::Comm& comm, ElasticContactProblem& p) {
+  const int dim = p.dim();
+  const std::map<std::string, double> bodyArea = bodyLoadAreas(spec, p.mesh);
+  LoadParts parts = rampedTractionParts(spec);
   for (int sid : tfeti::subdomainsOfRank(p.ownerOfSubdomain, comm.getRank())) {
     const UnstructuredSubdomain& s = p.subdomains[sid];
-    for (auto& r : ramped) r.f.emplace_back(static_cast<std::size_t>(dim) * s.numNodes(), 0.0);
+    for (auto& r : parts.ramped)
+      r.f.emplace_back(static_cast<std::size_t>(dim) * s.numNodes(), 0.0);
     const int b = p.bodyOfSubdomain[sid];
-    plasticity::ElementMesh em{toPlasticityType(s.type), s.coords, s.connectivity};
-    tfeti::SubdomainData sd;
-    sd.dofsPerNode = dim;
-    sd.mesh.id = s.id;
-    sd.mesh.dim = dim;
-    const int npe = s.nodesPerElement();
-    for (int e = 0; e < s.numElements(); ++e)
-      sd.mesh.elements.add(std::vector<int>(s.connectivity.begin() + e * npe,
-                                            s.connectivity.begin() + (e + 1) * npe));
-    sd.mesh.coords = s.coords;
-    sd.mesh.globalNode.assign(s.globalNode.begin(), s.globalNode.end());
-    sd.mesh.interfaceCandidates = s.boundaryNodes();
-    for (int n = 0; n < s.numNodes(); ++n) {
-      if (fixedNodes.count(static_cast<int>(s.globalNode[n]))) sd.mesh.dirichletNodes.push_back(n);
-      for (int c = 0; c < dim; ++c)
-        if (fixedComponents.count({static_cast<int>(s.globalNode[n]), c}))
-          sd.mesh.fixedComponents.push_back({n, c});
-    }
+    plasticity::ElementMesh em{checkedBodyType(s.type), s.coords, s.connectivity};
+    tfeti::SubdomainData sd = subdomainData(s, dim, h);
     sd.K = plasticity::assembleStiffness(em, spec.bodies[b].law);
     sd.f.assign(static_cast<std::size_t>(dim) * s.numNodes(), 0.0);
-    const int bodyIndex = mesh.bodyIndex(spec.bodies[b].name);
     std::vector<double> proportional(sd.f.size(), 0.0);
-    for (std::size_t k = 0; k < spec.tractions.size(); ++k) {
-      const auto& [name, t] = spec.tractions[k];
-      const GmshBoundary& gb = boundaryNamed(mesh, name, "Traction boundaries");
-      std::vector<int> edges;
-      for (int e = 0; e < gb.numEdges(); ++e) {
-        if (gb.edgeBody[e] != bodyIndex ||
-            !std::binary_search(s.elements.begin(), s.elements.end(), gb.edgeElement[e]))
-          continue;
-        for (int k = 0; k < gb.nodesPerEdge; ++k)
-          edges.push_back(localIndex(s, gb.edges[e * gb.nodesPerEdge + k]));
-      }
-      if (edges.empty()) continue;
-      const auto fe = plasticity::assembleSurfaceTraction(em, edges, t.data());
-      for (std::size_t i = 0; i < fe.size(); ++i) {
-        sd.f[i] += fe[i];
-        force[i % dim] += fe[i];
-      }
-      auto& part =
-          ramped.empty() || rampOf[k] < 0 ? proportional : ramped[rampOf[k]].f[p.local.size()];
-      for (std::size_t i = 0; i < fe.size(); ++i) part[i] += fe[i];
-      if (!ramped.empty() && rampOf[k] >= 0)
-        for (std::size_t i = 0; i < fe.size(); ++i) ramped[rampOf[k]].force[i % dim] += fe[i];
-    }
-    for (const auto& [name, total] : spec.bodyLoads) {
-      if (name != spec.bodies[b].name) continue;
-      const double unit[3] = {1.0, 1.0, 1.0};
-      const auto fe = plasticity::assembleBodyForce(em, unit);
-      for (std::size_t i = 0; i < fe.size(); ++i) {
-        const double density = total[i % dim] / bodyArea.at(name);
-        sd.f[i] += density * fe[i];
-        force[i % dim] += density * fe[i];
-        proportional[i] += density * fe[i];
-      }
-    }
-    if (!ramped.empty()) p.proportionalLoad.push_back(std::move(proportional));
+    addLoads(spec, p, s, b, em, bodyArea, sd, proportional, parts);
+    if (!parts.ramped.empty()) p.proportionalLoad.push_back(std::move(proportional));
     p.local.push_back(std::move(sd));
     p.localElements.push_back(std::move(em));
     p.localBody.push_back(b);
   }
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 3, force, p.appliedForce);
-  for (auto& r : ramped) {
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 3, parts.force, p.appliedForce);
+  for (auto& r : parts.ramped) {
     double total[3] = {0.0, 0.0, 0.0};
     Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 3, r.force, total);
     std::copy(total, total + 3, r.force);
   }
-  p.rampedLoads = std::move(ramped);
+  p.rampedLoads = std::move(parts.ramped);
   p.equalities = equalityRowsAt(p, 1.0, {});
+}
 
-  // Contact: the slave boundary's nodes against the master boundary's segments, oriented by
-  // the master body's elements so that the normals point out of it, or a rigid obstacle.
-  const GmshBoundary& slave = boundaryNamed(mesh, spec.slave, "Slave");
-  const std::set<int> slaveSet = nodesOf(slave);
-  p.slaveNodes.assign(slaveSet.begin(), slaveSet.end());
-  p.slaveBody = bodyOfBoundary(mesh, spec, slave);
+// The search options: the spec's radius, or a tenth of the mesh's extent.
+ContactSearchOptions searchOptions(const ElasticContactSpec& spec, const GmshMesh& mesh) {
+  const int dim = mesh.dim;
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (int n = 0; n < mesh.numNodes(); ++n)
     for (int c = 0; c < dim; ++c) {
@@ -376,7 +416,15 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   // deformed geometry; a relative tolerance far above rounding keeps its row.
   options.endTolerance = 1e-4;
   options.searchRadius = spec.searchRadius > 0.0 ? spec.searchRadius : 0.1 * extent;
-  p.searchRadius = options.searchRadius;
+  return options;
+}
+
+// The master: a rigid obstacle, or the Master boundary's segments (faces) oriented by the
+// master body's elements so that the normals point out of it.
+void makeMaster(const ElasticContactSpec& spec, const ContactSearchOptions& options,
+                const std::set<int>& slaveSet, ElasticContactProblem& p) {
+  const GmshMesh& mesh = p.mesh;
+  const int dim = mesh.dim;
   if (spec.obstacle) {
     if (!spec.master.empty())
       throw std::invalid_argument("Master: \"" + spec.master +
@@ -393,27 +441,43 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("Contact problem/Rigid obstacle: ") + e.what());
     }
-  } else {
-    const GmshBoundary& master = boundaryNamed(mesh, spec.master, "Master");
-    bool onBody = false;
-    for (int e = 0; e < master.numEdges(); ++e) onBody = onBody || master.edgeBody[e] >= 0;
-    if (!onBody)
-      throw std::invalid_argument("Master: boundary \"" + spec.master + "\" is on no body");
-    p.master = makeMeshContactMaster(mesh, spec.master, options);
-    p.masterBody = bodyOfBoundary(mesh, spec, master);
-    // A node on both surfaces joins the bodies there: it is glued, not in contact (a .geo that
-    // extrudes touching bodies merges their coincident points unless told otherwise).
-    for (int n : p.master->masterNodes())
-      if (slaveSet.count(n)) {
-        std::ostringstream at;
-        for (int c = 0; c < dim; ++c) at << (c ? ", " : "") << mesh.coords[dim * n + c];
-        throw std::invalid_argument(mesh.source + ": the Slave \"" + spec.slave +
-                                    "\" and the Master \"" + spec.master +
-                                    "\" share the node at (" + at.str() +
-                                    "): the bodies are joined there; each body needs its own "
-                                    "nodes on the contact surfaces");
-      }
+    return;
   }
+  const GmshBoundary& master = boundaryNamed(mesh, spec.master, "Master");
+  bool onBody = false;
+  for (int e = 0; e < master.numEdges(); ++e) onBody = onBody || master.edgeBody[e] >= 0;
+  if (!onBody)
+    throw std::invalid_argument("Master: boundary \"" + spec.master + "\" is on no body");
+  p.master = makeMeshContactMaster(mesh, spec.master, options);
+  p.masterBody = bodyOfBoundary(mesh, spec, master);
+  // A node on both surfaces joins the bodies there: it is glued, not in contact (a .geo that
+  // extrudes touching bodies merges their coincident points unless told otherwise).
+  for (int n : p.master->masterNodes())
+    if (slaveSet.count(n)) {
+      std::ostringstream at;
+      for (int c = 0; c < dim; ++c) at << (c ? ", " : "") << mesh.coords[dim * n + c];
+      throw std::invalid_argument(mesh.source + ": the Slave \"" + spec.slave +
+                                  "\" and the Master \"" + spec.master + "\" share the node at (" +
+                                  at.str() +
+                                  "): the bodies are joined there; each body needs its own "
+                                  "nodes on the contact surfaces");
+    }
+}
+
+// Contact: the slave boundary's nodes against the master, the rows on the reference
+// configuration, with bonded contact their tangential rows, and the slave nodes' lumping
+// weights.
+void setUpContact(const ElasticContactSpec& spec, const tfeti::Comm& comm,
+                  ElasticContactProblem& p) {
+  const GmshMesh& mesh = p.mesh;
+  const int dim = mesh.dim;
+  const GmshBoundary& slave = boundaryNamed(mesh, spec.slave, "Slave");
+  const std::set<int> slaveSet = nodesOf(slave);
+  p.slaveNodes.assign(slaveSet.begin(), slaveSet.end());
+  p.slaveBody = bodyOfBoundary(mesh, spec, slave);
+  const ContactSearchOptions options = searchOptions(spec, mesh);
+  p.searchRadius = options.searchRadius;
+  makeMaster(spec, options, slaveSet, p);
   std::set<int> surface(slaveSet);
   for (int n : p.master->masterNodes()) surface.insert(n);
   p.surfaceNodes.assign(surface.begin(), surface.end());
@@ -433,6 +497,23 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   // contact pressure is its multiplier (a nodal force; per unit thickness in 2D) divided by it.
   std::map<int, double> weight = boundaryNodeWeights(mesh, slave);
   for (int n : p.slaveNodes) p.slaveWeights.push_back(weight[n]);
+}
+
+}  // namespace
+
+ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
+                                                 const tfeti::Comm& comm) {
+  ElasticContactProblem p;
+  // The problem's dimension is the mesh's (spec.meshOptions.dimension may demand one).
+  p.mesh = loadMesh(spec.meshFile, spec.meshOptions);
+  checkSpecAgainstMesh(spec, p.mesh, comm);
+  partitionBodies(spec, p);
+  findFirstCopies(p);
+  const Supports supports = dirichletConditions(spec, p);
+  addCouplings(spec, supports, comm, p);
+  distributeToRanks(spec, comm, p);
+  assembleLocalSubdomains(spec, supports, comm, p);
+  setUpContact(spec, comm, p);
   return p;
 }
 

@@ -115,7 +115,10 @@ std::vector<double> appliedForceAt(const ElasticContactProblem& p, double t);
 std::vector<tfeti::EqualityRow> equalityRowsAt(const ElasticContactProblem& p, double t,
                                                const std::vector<std::vector<double>>& current);
 
-// Throws std::invalid_argument naming the group or parameter that is wrong.
+// Loads the mesh, partitions every body into subdomains, gathers the Dirichlet conditions and
+// couplings, distributes the subdomains to ranks, assembles this rank's stiffness and loads, and
+// sets up the contact pair (see the steps in the .cpp). Throws std::invalid_argument naming the
+// group or parameter that is wrong.
 ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
                                                  const tfeti::Comm& comm);
 
@@ -131,7 +134,10 @@ void updateContact(ElasticContactProblem& p, const std::vector<double>& displace
 std::vector<plasticity::ElasticLaw> contactBodyLaws(const ElasticContactSpec& spec,
                                                     const ElasticContactProblem& p);
 
-plasticity::ElementType toPlasticityType(ElementType type);
+// A body's element type checked to be one the assembly takes (the catalogue's complete body
+// types: Tri3, Quad4, Tri6, Quad9, Tet4, Tet10, Hex8, Hex27); throws std::invalid_argument naming
+// them otherwise (a Hex20 mesh).
+ElementType checkedBodyType(ElementType type);
 
 // The untorn nodes of a boundary group, sorted; throws std::invalid_argument naming it.
 std::vector<int> boundaryNodeIds(const GmshMesh& mesh, const std::string& name);

@@ -42,7 +42,7 @@ Vec unit(const Vec& a) {
 }
 
 bool isTriangle(ElementType t) {
-  return t == ElementType::Tri3 || t == ElementType::Tri6;
+  return plasticity::elementInfo(t).simplex;
 }
 
 // Reference corners of the face types, in Gmsh's order.

@@ -1,8 +1,27 @@
 #pragma once
-// The isoparametric element types of Gmsh's families, in 1D (faces of 2D elements), 2D and 3D:
-// what each one is, its shape functions, Gauss rules and reference node positions. This is the
-// one place a new element type is added: a row of elementInfo() (and its name), plus a node
-// table below when it opens a new tensor-product family.
+// The element catalogue: every element type the code knows -- isoparametric bodies of Gmsh's
+// families in 2D and 3D, their faces, and the serendipity types a mesh file may hold -- and
+// everything about each one: node count, dimension, order, corners, facets (type, count and
+// local node lists), Gmsh type code, VTK cell type and node order, shape functions, Gauss rules
+// and reference node positions. The mesh reader (contact_GmshMesh), the assembly
+// (plasticity_Elements), the contact surfaces and the output (contact_ContactOutput,
+// contact_VtuWriter) only ask it.
+//
+// A new element type needs, in this file and plasticity_ElementTypes.cpp only:
+//  - a value of ElementType and its row of elementInfo() (dimension, order, nodes, corners,
+//    Gauss points, facet and linear types, flags, Gmsh and VTK codes), and larger bounds below
+//    (kMaxElementNodes, kMaxGaussPoints) if it exceeds them;
+//  - its row of kCatalogue in the .cpp (short and Gmsh names; the row's place is the order of
+//    type lists in messages) and, when VTK numbers its nodes otherwise than Gmsh, its VTK node
+//    order there (vtkPermutations);
+//  - when it opens a new family: its node table below (detail::tensorIndex, detail::simplexEdge),
+//    shape functions and Gauss rule (shapeFunctions, gaussPoint), and its facet corners in the
+//    .cpp (facetCorners).
+// Everything else derives from these: the mesh reader's accepted types and their facets, the
+// 2D reorientation, the partition's facets, the assembly, the VTK output. What stays per type
+// elsewhere is the numerics of two contact methods, each throwing for a face type it does not
+// know: the nodal area rule of a contact surface (contact_SurfaceWeights) and the face shape
+// functions of the node-to-face search (contact_NodeToFace, which also serves Quad8).
 //
 // Node ordering is Gmsh's (checked against gmsh::model::mesh::getElementProperties), so that
 // connectivity read from a .msh file needs no permutation.
@@ -22,6 +41,11 @@
 //                  14: 2-6, 15: 3-7, 16: 4-5, 17: 4-7, 18: 5-6, 19: 6-7; face centres 20: zeta
 //                  = -1, 21: eta = -1, 22: xi = -1, 23: xi = 1, 24: eta = 1, 25: zeta = 1;
 //                  centre 26
+// Serendipity (incomplete) types, which Gmsh writes for second order with
+// Mesh.SecondOrderIncomplete: a mesh file may hold them, the mesh reader takes Hex20 bodies and
+// Quad8 faces, and the node-to-face search has Quad8's shape functions; the assembly has none
+// (ElementInfo::complete is false: no shape functions or Gauss rule below).
+//   Quad8 / Hex20  the first 8 / 20 nodes of Quad9 / Hex27
 //
 // Gauss rules (full integration: exact for the stiffness of an undistorted element -- straight
 // sides, parallelogram/parallelepiped -- where B^T D B det J is a polynomial; on such elements
@@ -45,10 +69,30 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace plasticity {
 
-enum class ElementType { Tri3, Quad4, Tri6, Quad9, Tet4, Tet10, Hex8, Hex27, Line2, Line3 };
+// The enum lives in a namespace of its own so that argument-dependent lookup on an ElementType
+// finds no plasticity function: other packages name their own queries on the catalogue
+// (contact::elementTypeName, Gmsh's long name) without clashing with plasticity's.
+namespace element_type {
+enum class ElementType {
+  Tri3,
+  Quad4,
+  Tri6,
+  Quad9,
+  Tet4,
+  Tet10,
+  Hex8,
+  Hex27,
+  Line2,
+  Line3,
+  Quad8,  // serendipity: read from meshes and used as contact faces, not assembled
+  Hex20   // serendipity: read from meshes, not assembled
+};
+}  // namespace element_type
+using element_type::ElementType;
 
 // Bounds for fixed-size per-element arrays inside kernels.
 constexpr int kMaxElementNodes = 27;
@@ -61,39 +105,37 @@ struct ElementInfo {
   int order;           // polynomial order, 1 or 2
   int nodes;           // nodes per element
   int corners;         // vertices
-  int gaussPoints;     // points of the rule above
+  int gaussPoints;     // points of the rule above (0: not assembled)
   ElementType face;    // the type of the (dim - 1)-dimensional faces (edges in 2D)
   ElementType linear;  // the order-1 element on the same corners
+  bool complete;       // complete Lagrange: shape functions and Gauss rule here; false for the
+                       // serendipity Quad8 and Hex20, which the assembly rejects
+  bool meshBody;       // the mesh reader takes it as a body (an element of the mesh's dimension)
+  int gmshType;        // Gmsh's element type code (MSH_LIN_2 = 1, MSH_TRI_3 = 2, ...)
+  int vtkType;         // VTK's cell type (VTK_LINE = 3, VTK_TRIANGLE = 5, ...)
 };
 
 KOKKOS_INLINE_FUNCTION ElementInfo elementInfo(ElementType t) {
   using T = ElementType;
+  // clang-format off
+  //                    dim simplex order nodes corners Gauss face      linear    complete body  Gmsh VTK
   switch (t) {
-    case T::Line2:
-      return {1, false, 1, 2, 2, 2, T::Line2, T::Line2};
-    case T::Line3:
-      return {1, false, 2, 3, 2, 3, T::Line2, T::Line2};
-    case T::Tri3:
-      return {2, true, 1, 3, 3, 1, T::Line2, T::Tri3};
-    case T::Tri6:
-      return {2, true, 2, 6, 3, 3, T::Line3, T::Tri3};
-    case T::Quad4:
-      return {2, false, 1, 4, 4, 4, T::Line2, T::Quad4};
-    case T::Quad9:
-      return {2, false, 2, 9, 4, 9, T::Line3, T::Quad4};
-    case T::Tet4:
-      return {3, true, 1, 4, 4, 1, T::Tri3, T::Tet4};
-    case T::Tet10:
-      return {3, true, 2, 10, 4, 4, T::Tri6, T::Tet4};
-    case T::Hex8:
-      return {3, false, 1, 8, 8, 8, T::Quad4, T::Hex8};
-    case T::Hex27:
-      return {3, false, 2, 27, 8, 27, T::Quad9, T::Hex8};
+    case T::Line2: return {1, false, 1,  2, 2,  2, T::Line2, T::Line2, true,  false,  1,  3};  // VTK_LINE
+    case T::Line3: return {1, false, 2,  3, 2,  3, T::Line2, T::Line2, true,  false,  8, 21};  // VTK_QUADRATIC_EDGE
+    case T::Tri3:  return {2, true,  1,  3, 3,  1, T::Line2, T::Tri3,  true,  true,   2,  5};  // VTK_TRIANGLE
+    case T::Tri6:  return {2, true,  2,  6, 3,  3, T::Line3, T::Tri3,  true,  true,   9, 22};  // VTK_QUADRATIC_TRIANGLE
+    case T::Quad4: return {2, false, 1,  4, 4,  4, T::Line2, T::Quad4, true,  true,   3,  9};  // VTK_QUAD
+    case T::Quad8: return {2, false, 2,  8, 4,  0, T::Line3, T::Quad4, false, false, 16, 23};  // VTK_QUADRATIC_QUAD
+    case T::Quad9: return {2, false, 2,  9, 4,  9, T::Line3, T::Quad4, true,  true,  10, 28};  // VTK_BIQUADRATIC_QUAD
+    case T::Tet4:  return {3, true,  1,  4, 4,  1, T::Tri3,  T::Tet4,  true,  true,   4, 10};  // VTK_TETRA
+    case T::Tet10: return {3, true,  2, 10, 4,  4, T::Tri6,  T::Tet4,  true,  true,  11, 24};  // VTK_QUADRATIC_TETRA
+    case T::Hex8:  return {3, false, 1,  8, 8,  8, T::Quad4, T::Hex8,  true,  true,   5, 12};  // VTK_HEXAHEDRON
+    case T::Hex20: return {3, false, 2, 20, 8,  0, T::Quad8, T::Hex8,  false, true,  17, 25};  // VTK_QUADRATIC_HEXAHEDRON
+    case T::Hex27: return {3, false, 2, 27, 8, 27, T::Quad9, T::Hex8,  true,  true,  12, 29};  // VTK_TRIQUADRATIC_HEXAHEDRON
   }
-  return {0, false, 0, 0, 0, 0, t, t};
+  // clang-format on
+  return {0, false, 0, 0, 0, 0, t, t, false, false, 0, 0};
 }
-
-std::string elementTypeName(ElementType t);
 
 KOKKOS_INLINE_FUNCTION int spatialDimension(ElementType t) {
   return elementInfo(t).dim;
@@ -120,11 +162,48 @@ KOKKOS_INLINE_FUNCTION int nodesPerFace(ElementType t) {
 KOKKOS_INLINE_FUNCTION int nodesPerEdge(ElementType t) {
   return isQuadratic(t) ? 3 : 2;
 }
-// Faces per element: dim + 1 for simplices, 2 dim for tensor products.
+// Faces per element: dim + 1 for simplices, 2 dim for tensor products (the ends of a line).
 KOKKOS_INLINE_FUNCTION int facesPerElement(ElementType t) {
   const ElementInfo i = elementInfo(t);
   return i.simplex ? i.dim + 1 : 2 * i.dim;
 }
+inline int gmshType(ElementType t) {
+  return elementInfo(t).gmshType;
+}
+inline int vtkType(ElementType t) {
+  return elementInfo(t).vtkType;
+}
+
+// Host-side queries (plasticity_ElementTypes.cpp).
+
+// Every type, in the catalogue's order: lines, then 2D, then 3D types, each family linear
+// first. Lists of types in messages follow it.
+const std::vector<ElementType>& allElementTypes();
+// The short name ("Tri3", "Hex27"), used in the assembly's messages.
+std::string elementTypeName(ElementType t);
+// Gmsh's description ("3-node triangle", "27-node hexahedron"), used in the mesh's messages.
+const char* elementLongName(ElementType t);
+// The type of Gmsh's code `gmshType`; false when the catalogue has none.
+bool elementTypeOfGmsh(int gmshType, ElementType& t);
+// The type of VTK's cell type `vtkType`; false when the catalogue has none.
+bool elementTypeOfVtk(int vtkType, ElementType& t);
+
+// Local nodes of facet `facet` (0 .. facesPerElement - 1) of a 2D or 3D element, in the node
+// order of an element of faceType(t), oriented so that the facet's normal by the right-hand rule
+// (2D: the edge's direction turned clockwise) points out of the element. 2D: the edge from
+// corner `facet` to corner `facet + 1` (cyclically), then its midside node. 3D: corners first
+// (counter-clockwise seen from outside), then the midside nodes of the facet's edges in the
+// facet's edge order, then the face centre (Hex27). Throws std::invalid_argument for a line,
+// std::out_of_range for no such facet.
+const std::vector<int>& facetNodes(ElementType t, int facet);
+// A 2D element's nodes renumbered with the opposite orientation (clockwise <-> counter-clockwise):
+// node k of the reversed element is node reversedNodes(t)[k] of the original (corners in reverse
+// order from corner 0, the edge midpoints and the centre following their edges). Throws
+// std::invalid_argument unless t is 2D.
+const std::vector<int>& reversedNodes(ElementType t);
+// vtkNodeOrder(t)[k] is the element's local node at VTK's position k: the identity but where
+// VTK numbers the nodes otherwise than Gmsh (Tet10, Hex20, Hex27).
+const std::vector<int>& vtkNodeOrder(ElementType t);
 
 namespace detail {
 // Corner pairs of the quadratic simplices' edge nodes, Gmsh order (triangles use the first 3).

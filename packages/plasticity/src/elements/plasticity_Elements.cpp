@@ -26,6 +26,9 @@ void validateMesh(const ElementMesh& mesh) {
   if (dim < 2)
     throw std::invalid_argument(elementTypeName(mesh.type) +
                                 " is a face type: a mesh of solids needs 2D or 3D elements");
+  if (!elementInfo(mesh.type).complete)
+    throw std::invalid_argument(elementTypeName(mesh.type) +
+                                " elements are not assembled (serendipity: no shape functions)");
   if (mesh.coords.size() % dim != 0)
     throw std::invalid_argument("mesh of " + elementTypeName(mesh.type) + " elements has " +
                                 std::to_string(mesh.coords.size()) +
@@ -227,29 +230,6 @@ std::vector<double> extrapolationMatrix(ElementType t) {
   return E;
 }
 
-// Local nodes of each face of an element of type t: the nodes on the face's hyperplane (xi_d =
-// +-1 for tensor products, L_k = 0 for simplices), in element order.
-std::vector<std::vector<int>> elementFaces(ElementType t) {
-  const ElementInfo info = elementInfo(t);
-  std::vector<std::vector<int>> faces(facesPerElement(t));
-  for (int a = 0; a < info.nodes; ++a) {
-    double xi[kMaxDim];
-    referenceNode(t, a, xi);
-    for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
-      bool on;
-      if (info.simplex) {
-        double L0 = 1;
-        for (int j = 0; j < info.dim; ++j) L0 -= xi[j];
-        on = f == 0 ? std::abs(L0) < 1e-12 : xi[f - 1] == 0.0;
-      } else {
-        on = xi[f / 2] == (f % 2 ? 1.0 : -1.0);
-      }
-      if (on) faces[f].push_back(a);
-    }
-  }
-  return faces;
-}
-
 // Whether the face nodes `fn` (face-type order) sit on element e's face where that order puts
 // them: the affine map taking the face's reference corners 0, 1 and (last corner) to the
 // element reference positions of those nodes must take every face node to its own.
@@ -292,12 +272,12 @@ void checkFaces(const ElementMesh& mesh, const std::vector<int>& faces) {
                                 " nodes is not a multiple of the " + std::to_string(npf) +
                                 " nodes of a " + elementTypeName(mesh.type) + " " + word);
   // Element faces by their sorted node set, with the element holding them.
-  const auto local = elementFaces(mesh.type);
   std::map<std::vector<int>, int> owner;
   for (int e = 0; e < mesh.numElements(); ++e)
-    for (const auto& lf : local) {
+    for (int f = 0; f < facesPerElement(mesh.type); ++f) {
       std::vector<int> key;
-      for (int a : lf) key.push_back(mesh.connectivity[static_cast<std::size_t>(e) * npe + a]);
+      for (int a : facetNodes(mesh.type, f))
+        key.push_back(mesh.connectivity[static_cast<std::size_t>(e) * npe + a]);
       std::sort(key.begin(), key.end());
       owner.emplace(key, e);
     }
@@ -319,32 +299,6 @@ void checkFaces(const ElementMesh& mesh, const std::vector<int>& faces) {
 }
 
 }  // namespace
-
-std::string elementTypeName(ElementType t) {
-  switch (t) {
-    case ElementType::Tri3:
-      return "Tri3";
-    case ElementType::Quad4:
-      return "Quad4";
-    case ElementType::Tri6:
-      return "Tri6";
-    case ElementType::Quad9:
-      return "Quad9";
-    case ElementType::Tet4:
-      return "Tet4";
-    case ElementType::Tet10:
-      return "Tet10";
-    case ElementType::Hex8:
-      return "Hex8";
-    case ElementType::Hex27:
-      return "Hex27";
-    case ElementType::Line2:
-      return "Line2";
-    case ElementType::Line3:
-      return "Line3";
-  }
-  return "unknown";
-}
 
 tfeti::CsrMatrix assembleStiffness(const ElementMesh& mesh, const MaterialLaw& law) {
   validateMesh(mesh);
