@@ -11,15 +11,15 @@
 #include <stdexcept>
 
 #include "contact_ContactOutput.hpp"
+#include "contact_ContactParameters.hpp"
 #include "contact_Driver.hpp"
 #include "contact_DriverCommon.hpp"
-#include "contact_ElasticContactRun.hpp"
 #include "contact_FrictionStep.hpp"
 #include "contact_LoadStepControl.hpp"
-#include "contact_NonlinearContactRun.hpp"
 #include "contact_NonlinearIteration.hpp"
 #include "contact_NonlinearModel.hpp"
 #include "contact_NonlinearOptions.hpp"
+#include "contact_NonlinearSetup.hpp"
 #include "contact_NonlinearStepOutput.hpp"
 #include "contact_PrescribedDisplacement.hpp"
 

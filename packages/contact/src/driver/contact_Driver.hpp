@@ -5,9 +5,11 @@
 //   Study = "scalability": the reference paper's table (dimensions and iteration counts of FETI
 //                          and TFETI for every preconditioner over H and H/h), or for
 //                          two_membranes the QP solvers' Hessian multiplications over H and H/h
-//   Problem = two_membranes: the contact benchmark (contact_TwoMembranes.hpp)
+//   Problem = poisson, elasticity: the structured model problems (contact_StructuredRun.hpp)
+//   Problem = two_membranes: the contact benchmark (contact_TwoMembranesRun.hpp)
 //   Problem = elastic_contact, nonlinear_contact: contact::ContactSolver
-//   (contact_ContactSolver.hpp)
+//   (contact_ContactSolver.hpp; dry run: contact_ContactCheck.hpp)
+// Which function runs (and dry-runs) which (Study, Problem): the table of contact_Runners.hpp.
 #include <Teuchos_ParameterList.hpp>
 
 #include <ostream>

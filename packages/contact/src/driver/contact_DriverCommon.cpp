@@ -150,28 +150,45 @@ VtuPiece vtuPiece(const tfeti::FetiSolver& solver) {
   return piece;
 }
 
-void addSolverSummary(Json& s, const tfeti::FetiSolver& solver, const tfeti::DualResult& result,
-                      const Teuchos::ParameterList& feti) {
-  s["formulation"] = feti.get<std::string>("Formulation");
-  s["preconditioner"] = feti.get<std::string>("Preconditioner");
-  s["local_solver"] = feti.get<std::string>("Local solver");
+FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::ParameterList& feti) {
+  FetiDimensions d;
+  d.formulation = feti.get<std::string>("Formulation");
+  d.preconditioner = feti.get<std::string>("Preconditioner");
+  d.localSolver = feti.get<std::string>("Local solver");
+  d.primal = solver.primalDimension();
+  d.dual = solver.dualDimension();
+  d.gluingRows = solver.gluingRows();
+  d.dirichletRows = solver.dirichletRows();
+  d.contactRows = solver.inequalityRows();
+  d.coarse = solver.coarseDimension();
+  d.largestScalingGroup = solver.largestScalingGroup();
+  d.dualOperatorApplies = solver.dualOperatorApplies();
+  d.factorBytes = static_cast<unsigned long long>(solver.globalFactorBytes());
+  return d;
+}
+
+void addSolverSummary(Json& s, const FetiDimensions& feti, const tfeti::DualResult& result,
+                      const tfeti::MemoryLog& memory) {
+  s["formulation"] = feti.formulation;
+  s["preconditioner"] = feti.preconditioner;
+  s["local_solver"] = feti.localSolver;
   s["dual_solver"] = result.method;
-  s["primal_dim"] = solver.primalDimension();
-  s["dual_dim"] = solver.dualDimension();
-  s["gluing_rows"] = solver.gluingRows();
-  s["dirichlet_rows"] = solver.dirichletRows();
-  s["contact_rows"] = solver.inequalityRows();
-  s["coarse_dim"] = solver.coarseDimension();
-  s["largest_scaling_group"] = solver.largestScalingGroup();
+  s["primal_dim"] = feti.primal;
+  s["dual_dim"] = feti.dual;
+  s["gluing_rows"] = feti.gluingRows;
+  s["dirichlet_rows"] = feti.dirichletRows;
+  s["contact_rows"] = feti.contactRows;
+  s["coarse_dim"] = feti.coarse;
+  s["largest_scaling_group"] = feti.largestScalingGroup;
   s["converged"] = result.converged;
   s["iterations"] = result.iterations;
   s["relative_residual"] = result.relativeResidual;
   Json history = Json::array();
   for (double h : result.history) history.push(h);
   s["residual_history"] = std::move(history);
-  s["dual_operator_applies"] = solver.dualOperatorApplies();
-  s["factor_bytes"] = static_cast<unsigned long long>(solver.globalFactorBytes());
-  s["memory"] = memoryJson(solver.memory(), solver.primalDimension());
+  s["dual_operator_applies"] = feti.dualOperatorApplies;
+  s["factor_bytes"] = feti.factorBytes;
+  s["memory"] = memoryJson(memory, feti.primal);
 }
 
 Json qpJson(const tfeti::DualResult& r) {

@@ -3,6 +3,7 @@
 // a solved FETI problem.
 #include <string>
 
+#include "contact_ContactResult.hpp"
 #include "contact_Json.hpp"
 #include "contact_VtuWriter.hpp"
 #include "tfeti_FetiSolver.hpp"
@@ -27,10 +28,14 @@ Json memoryJson(const tfeti::MemoryLog& log, long long unknowns);
 // The solved subdomains of this rank: u (or displacement) per node, subdomain id per cell.
 VtuPiece vtuPiece(const tfeti::FetiSolver& solver);
 
-// The keys every single-run summary shares: formulation, preconditioner, local and dual solver,
-// dimensions, convergence, iterations, residual history, F applications, factor bytes.
-void addSolverSummary(Json& summary, const tfeti::FetiSolver& solver,
-                      const tfeti::DualResult& result, const Teuchos::ParameterList& feti);
+// The solver's dimensions and counters after a solve; feti: its FETI parameters (formulation,
+// preconditioner, local solver).
+FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::ParameterList& feti);
+// The keys every single-run summary of a structured problem or the two membranes shares:
+// formulation, preconditioner, local and dual solver, dimensions, convergence, iterations,
+// residual history, F applications, factor bytes and the memory per phase.
+void addSolverSummary(Json& summary, const FetiDimensions& feti, const tfeti::DualResult& result,
+                      const tfeti::MemoryLog& memory);
 // The QP solver's counters ("qp" object).
 Json qpJson(const tfeti::DualResult& result);
 // How well the recovered solution meets the contact rows (part of the "contact" object).

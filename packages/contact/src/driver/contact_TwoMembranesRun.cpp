@@ -1,5 +1,5 @@
-// The driver's two-membrane studies: one solve with VTU, contact CSV and summary.json, and the
-// scalability table (Hessian multiplications over H and H/h for each dual QP solver).
+#include "contact_TwoMembranesRun.hpp"
+
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include "contact_DriverCommon.hpp"
 #include "contact_DryRun.hpp"
 #include "contact_TwoMembranes.hpp"
+#include "contact_TwoMembranesResult.hpp"
 #include "tfeti_Gather.hpp"
 
 namespace contact {
@@ -40,13 +41,6 @@ TwoMembranes membranesFrom(const ParameterList& params) {
   tm.elementsX = elems[0], tm.elementsY = elems[1];
   tm.validate();
   return tm;
-}
-
-Json contactJson(const tfeti::ConstraintReport& c, double expectedForce) {
-  Json j = constraintJson(c);
-  j["force"] = c.force;
-  j["expected_force"] = expectedForce;
-  return j;
 }
 
 // Along x = 1: y, lambda, u1, u2 (rank 0 writes the gathered rows, sorted by y).
@@ -88,12 +82,135 @@ VtuPiece membranePiece(const tfeti::FetiSolver& solver) {
   return piece;
 }
 
-struct MembraneRun {
-  tfeti::DualResult result;
-  tfeti::ConstraintReport contact;
-  tfeti::FetiTimings timings;
-  tfeti::GO primal = 0, dual = 0, gluing = 0, dirichlet = 0, contactRows = 0, coarse = 0;
-};
+// The solution's norm, max |u| and min u over all subdomain copies on every rank.
+void measureSolution(const tfeti::Comm& comm, const tfeti::FetiSolver& solver,
+                     TwoMembranesResult& r) {
+  double local[3] = {0.0, 0.0, 0.0}, global[3];  // sum of squares, max |u|, -min u
+  for (std::size_t i = 0; i < solver.data().size(); ++i)
+    for (double v : solver.solution(i)) {
+      local[0] += v * v;
+      local[1] = std::max(local[1], std::abs(v));
+      local[2] = std::max(local[2], -v);
+    }
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 1, &local[0], &global[0]);
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 2, &local[1], &global[1]);
+  r.solutionNorm2 = std::sqrt(global[0]);
+  r.maxAbsU = global[1];
+  r.minU = -global[2];
+}
+
+// The figures of the solve itself.
+TwoMembranesResult solvedResult(const tfeti::Comm& comm, const TwoMembranes& tm,
+                                const tfeti::FetiSolver& solver, const tfeti::DualResult& solve,
+                                const ParameterList& feti) {
+  TwoMembranesResult r;
+  r.ranks = comm.getSize();
+  r.subdomains = tm.numSubdomains();
+  r.elements = 2LL * tm.subdomainsX * tm.elementsX * tm.subdomainsY * tm.elementsY;
+  r.H = 1.0 / tm.subdomainsX;
+  r.h = 1.0 / (tm.subdomainsX * tm.elementsX);
+  r.feti = fetiDimensions(solver, feti);
+  r.solve = solve;
+  r.memory = solver.memory();
+  r.contact = solver.constraintReport();
+  r.expectedContactForce = tm.expectedContactForce();
+  r.timings = solver.timings();
+  return r;
+}
+
+void printSingleRun(const TwoMembranes& tm, const tfeti::FetiSolver& solver,
+                    const TwoMembranesResult& r) {
+  const tfeti::DualResult& result = r.solve;
+  std::cout << "two_membranes: " << tm.numSubdomains() << " subdomains, primal "
+            << solver.primalDimension() << ", dual " << solver.dualDimension() << " ("
+            << solver.inequalityRows() << " contact rows), " << result.method << ": "
+            << result.qp.outerIterations << " outer iterations, "
+            << result.qp.hessianMultiplications << " Hessian multiplications ("
+            << (result.converged ? "converged" : "NOT CONVERGED") << "), contact force "
+            << r.contact.force << " (expected " << tm.expectedContactForce() << "), setup "
+            << solver.timings().setup() << " s, solve " << solver.timings().solve << " s\n";
+}
+
+// The membranes of a table row: 1/H subdomains of H/h elements per side of each membrane.
+TwoMembranes tableRowMembranes(int hinv, int ratio) {
+  TwoMembranes tm;
+  tm.subdomainsX = tm.subdomainsY = hinv;
+  tm.elementsX = tm.elementsY = ratio;
+  tm.validate();
+  return tm;
+}
+
+// One row of the table: the membranes on 1/H x H/h, solved by every QP solver (allConverged is
+// cleared by a solve that did not converge).
+TwoMembranesTableRow solveTableRow(const Teuchos::RCP<const tfeti::Comm>& comm,
+                                   const ParameterList& params, int hinv, int ratio,
+                                   const Array<std::string>& methods, bool& allConverged) {
+  const TwoMembranes tm = tableRowMembranes(hinv, ratio);
+  TwoMembranesTableRow row;
+  row.hInverse = hinv;
+  row.hOverh = ratio;
+  row.subdomains = tm.numSubdomains();
+  for (const auto& method : methods) {
+    ContactProblemData data = buildTwoMembranes(tm, *comm);
+    ParameterList feti = params.sublist("FETI");
+    feti.set("Dual solver", method);
+    tfeti::FetiSolver solver(comm, tm.numSubdomains(), std::move(data.local), feti,
+                             data.inequalities);
+    TwoMembranesSolve m;
+    m.method = method;
+    m.result = solver.solve();
+    m.contact = solver.constraintReport();
+    m.expectedContactForce = tm.expectedContactForce();
+    m.setupSeconds = solver.timings().setup();
+    m.solveSeconds = solver.timings().solve;
+    m.maxAbsU = maxAbsSolution(*comm, solver);
+    allConverged &= m.result.converged;
+    row.solvers.push_back(std::move(m));
+    row.primal = solver.primalDimension();
+    row.dual = solver.dualDimension();
+  }
+  return row;
+}
+
+void printTableHeader(const Array<std::string>& methods) {
+  std::cout << std::left << std::setw(8) << "H" << std::setw(8) << "h" << std::right
+            << std::setw(10) << "primal" << std::setw(9) << "dual";
+  for (const auto& m : methods) std::cout << std::setw(22) << (m + " outer/Hessian");
+  std::cout << "\n";
+}
+
+void printTableRow(const TwoMembranesTableRow& row) {
+  std::ostringstream line;
+  for (const auto& m : row.solvers)
+    line << std::setw(22)
+         << (std::to_string(m.result.qp.outerIterations) + "/" +
+             std::to_string(m.result.qp.hessianMultiplications) +
+             (m.result.converged ? "" : " n/c"));
+  std::cout << std::left << std::setw(8) << ("1/" + std::to_string(row.hInverse)) << std::setw(8)
+            << ("1/" + std::to_string(row.hInverse * row.hOverh)) << std::right << std::setw(10)
+            << row.primal << std::setw(9) << row.dual << line.str() << "\n"
+            << std::flush;
+}
+
+// The dry run's report of the membranes `tm` solved by each of `methods`, after `lines`.
+void reportMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, const ParameterList& params,
+                     const TwoMembranes& tm, const Array<std::string>& methods,
+                     std::vector<std::string> lines, std::ostream& out) {
+  ContactProblemData data = buildTwoMembranes(tm, *comm);
+  long long mine = static_cast<long long>(data.inequalities.size()), rows = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine, &rows);
+  for (const auto& m : methods) {
+    ParameterList feti = params.sublist("FETI");
+    feti.set("Dual solver", m);
+    tfeti::FetiSolver::dualSolverFor(feti, rows);
+  }
+  std::ostringstream s;
+  s << "problem: two_membranes, " << tm.subdomainsX << " x " << tm.subdomainsY << " subdomains of "
+    << tm.elementsX << " x " << tm.elementsY
+    << " elements per membrane; contact rows along x = 1: " << rows;
+  lines.push_back(s.str());
+  printDryRunReport(*comm, lines, data.local, rows, out);
+}
 
 }  // namespace
 
@@ -107,51 +224,16 @@ int runTwoMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& 
   tfeti::FetiSolver solver(comm, tm.numSubdomains(), std::move(data.local), params.sublist("FETI"),
                            data.inequalities);
   const tfeti::DualResult result = solver.solve();
-  const tfeti::ConstraintReport contact = solver.constraintReport();
 
-  Json s = Json::object();
-  s["study"] = "single";
-  s["problem"] = "two_membranes";
-  s["ranks"] = comm->getSize();
-  s["subdomains"] = tm.numSubdomains();
-  s["elements"] = 2LL * tm.subdomainsX * tm.elementsX * tm.subdomainsY * tm.elementsY;
-  s["H"] = 1.0 / tm.subdomainsX;
-  s["h"] = 1.0 / (tm.subdomainsX * tm.elementsX);
-  addSolverSummary(s, solver, result, params.sublist("FETI"));
-  s["qp"] = qpJson(result);
-  s["contact"] = contactJson(contact, tm.expectedContactForce());
-  Json timings = timingsJson(solver.timings(), result.iterations);
-  timings["per_multiplication_s"] =
-      result.qp.hessianMultiplications > 0
-          ? solver.timings().solve / static_cast<double>(result.qp.hessianMultiplications)
-          : 0.0;
-  s["timings"] = std::move(timings);
-  s["peak_rss_mb"] = peakRssMb(*comm);
-  double local[3] = {0.0, 0.0, 0.0}, global[3];  // sum of squares, max |u|, -min u
-  for (std::size_t i = 0; i < solver.data().size(); ++i)
-    for (double v : solver.solution(i)) {
-      local[0] += v * v;
-      local[1] = std::max(local[1], std::abs(v));
-      local[2] = std::max(local[2], -v);
-    }
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &local[0], &global[0]);
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 2, &local[1], &global[1]);
-  s["solution_norm2"] = std::sqrt(global[0]);
-  s["max_abs_u"] = global[1];
-  s["min_u"] = -global[2];
-  writeContactCsv(*comm, solver, dir + "/contact.csv");
-  s["contact_csv"] = dir + "/contact.csv";
-  if (out.get<bool>("VTU")) s["vtu"] = writeVtu(*comm, dir, "solution", membranePiece(solver));
-  writeSummary(*comm, dir, s, params);
-  if (root && verbosity > 0)
-    std::cout << "two_membranes: " << tm.numSubdomains() << " subdomains, primal "
-              << solver.primalDimension() << ", dual " << solver.dualDimension() << " ("
-              << solver.inequalityRows() << " contact rows), " << result.method << ": "
-              << result.qp.outerIterations << " outer iterations, "
-              << result.qp.hessianMultiplications << " Hessian multiplications ("
-              << (result.converged ? "converged" : "NOT CONVERGED") << "), contact force "
-              << contact.force << " (expected " << tm.expectedContactForce() << "), setup "
-              << solver.timings().setup() << " s, solve " << solver.timings().solve << " s\n";
+  TwoMembranesResult r = solvedResult(*comm, tm, solver, result, params.sublist("FETI"));
+  r.peakRssMb = peakRssMb(*comm);
+  measureSolution(*comm, solver, r);
+  r.contactCsv = dir + "/contact.csv";
+  writeContactCsv(*comm, solver, r.contactCsv);
+  if (out.get<bool>("VTU")) r.vtu = writeVtu(*comm, dir, "solution", membranePiece(solver));
+  writeSummary(*comm, dir, summaryJson(r), params);
+
+  if (root && verbosity > 0) printSingleRun(tm, solver, r);
   if (!result.converged && root)
     std::cerr << "tfeti_contact: " << result.method << " did not converge (" << result.qp.message
               << "); results written to " << dir << "\n";
@@ -164,113 +246,45 @@ int runTwoMembranesScalability(const Teuchos::RCP<const tfeti::Comm>& comm, Para
   const auto& sc = params.sublist("Scalability");
   const auto Hinv = sc.get<Array<int>>("Subdomains per side");
   const auto ratios = sc.get<Array<int>>("H over h");
-  const auto solvers = sc.get<Array<std::string>>("Dual solvers");
-  bool allConverged = true;
-  Json table = Json::array();
-  if (root) {
-    std::cout << std::left << std::setw(8) << "H" << std::setw(8) << "h" << std::right
-              << std::setw(10) << "primal" << std::setw(9) << "dual";
-    for (const auto& m : solvers) std::cout << std::setw(22) << (m + " outer/Hessian");
-    std::cout << "\n";
-  }
+  const auto methods = sc.get<Array<std::string>>("Dual solvers");
+  TwoMembranesScalabilityResult r;
+  r.ranks = comm->getSize();
+  if (root) printTableHeader(methods);
   for (int ratio : ratios)
     for (int hinv : Hinv) {
-      TwoMembranes tm;
-      tm.subdomainsX = tm.subdomainsY = hinv;
-      tm.elementsX = tm.elementsY = ratio;
-      tm.validate();
-      Json row = Json::object();
-      row["problem"] = "two_membranes";
-      row["H_inverse"] = hinv;
-      row["h_inverse"] = hinv * ratio;
-      row["H_over_h"] = ratio;
-      row["subdomains"] = tm.numSubdomains();
-      Json bySolver = Json::object();
-      std::ostringstream line;
-      tfeti::GO primal = 0, dual = 0;
-      for (const auto& method : solvers) {
-        ContactProblemData data = buildTwoMembranes(tm, *comm);
-        ParameterList feti = params.sublist("FETI");
-        feti.set("Dual solver", method);
-        tfeti::FetiSolver solver(comm, tm.numSubdomains(), std::move(data.local), feti,
-                                 data.inequalities);
-        const auto res = solver.solve();
-        const auto contact = solver.constraintReport();
-        allConverged &= res.converged;
-        Json j = qpJson(res);
-        j["contact"] = contactJson(contact, tm.expectedContactForce());
-        j["setup_s"] = solver.timings().setup();
-        j["solve_s"] = solver.timings().solve;
-        j["max_abs_u"] = maxAbsSolution(*comm, solver);
-        bySolver[method] = std::move(j);
-        primal = solver.primalDimension();
-        dual = solver.dualDimension();
-        line << std::setw(22)
-             << (std::to_string(res.qp.outerIterations) + "/" +
-                 std::to_string(res.qp.hessianMultiplications) + (res.converged ? "" : " n/c"));
-      }
-      row["primal_dim"] = primal;
-      row["dual_dim"] = dual;
-      row["solvers"] = std::move(bySolver);
-      table.push(std::move(row));
-      if (root)
-        std::cout << std::left << std::setw(8) << ("1/" + std::to_string(hinv)) << std::setw(8)
-                  << ("1/" + std::to_string(hinv * ratio)) << std::right << std::setw(10) << primal
-                  << std::setw(9) << dual << line.str() << "\n"
-                  << std::flush;
+      r.table.push_back(solveTableRow(comm, params, hinv, ratio, methods, r.allConverged));
+      if (root) printTableRow(r.table.back());
     }
-  Json s = Json::object();
-  s["study"] = "scalability";
-  s["problem"] = "two_membranes";
-  s["ranks"] = comm->getSize();
-  s["all_converged"] = allConverged;
-  s["table"] = std::move(table);
-  writeSummary(*comm, dir, s, params);
-  return allConverged ? 0 : 2;
+  writeSummary(*comm, dir, summaryJson(r), params);
+  return r.allConverged ? 0 : 2;
 }
 
 void checkTwoMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
                        std::ostream& out) {
-  const bool scalability = params.get<std::string>("Study") == "scalability";
+  const Array<std::string> method(1, params.sublist("FETI").get<std::string>("Dual solver"));
+  reportMembranes(comm, params, membranesFrom(params), method, {}, out);
+}
+
+void checkTwoMembranesScalability(const Teuchos::RCP<const tfeti::Comm>& comm,
+                                  ParameterList& params, std::ostream& out) {
+  // The table's rows, the largest built for the report.
   std::vector<std::string> lines;
   TwoMembranes largest;
-  if (scalability) {
-    const auto& sc = params.sublist("Scalability");
-    for (int ratio : sc.get<Array<int>>("H over h"))
-      for (int hinv : sc.get<Array<int>>("Subdomains per side")) {
-        TwoMembranes tm;
-        tm.subdomainsX = tm.subdomainsY = hinv;
-        tm.elementsX = tm.elementsY = ratio;
-        tm.validate();
-        std::ostringstream s;
-        s << "table row H = 1/" << hinv << ", h = 1/" << hinv * ratio << ": " << tm.numSubdomains()
-          << " subdomains";
-        lines.push_back(s.str());
-        if (tm.numSubdomains() * ratio * ratio >=
-            largest.numSubdomains() * largest.elementsX * largest.elementsY)
-          largest = tm;
-      }
-    lines.push_back("the largest row:");
-  } else {
-    largest = membranesFrom(params);
-  }
-  ContactProblemData data = buildTwoMembranes(largest, *comm);
-  long long mine = static_cast<long long>(data.inequalities.size()), rows = 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine, &rows);
-  const auto methods =
-      scalability ? params.sublist("Scalability").get<Array<std::string>>("Dual solvers")
-                  : Array<std::string>(1, params.sublist("FETI").get<std::string>("Dual solver"));
-  for (const auto& m : methods) {
-    ParameterList feti = params.sublist("FETI");
-    feti.set("Dual solver", m);
-    tfeti::FetiSolver::dualSolverFor(feti, rows);
-  }
-  std::ostringstream s;
-  s << "problem: two_membranes, " << largest.subdomainsX << " x " << largest.subdomainsY
-    << " subdomains of " << largest.elementsX << " x " << largest.elementsY
-    << " elements per membrane; contact rows along x = 1: " << rows;
-  lines.push_back(s.str());
-  printDryRunReport(*comm, lines, data.local, rows, out);
+  const auto& sc = params.sublist("Scalability");
+  for (int ratio : sc.get<Array<int>>("H over h"))
+    for (int hinv : sc.get<Array<int>>("Subdomains per side")) {
+      const TwoMembranes tm = tableRowMembranes(hinv, ratio);
+      std::ostringstream s;
+      s << "table row H = 1/" << hinv << ", h = 1/" << hinv * ratio << ": " << tm.numSubdomains()
+        << " subdomains";
+      lines.push_back(s.str());
+      if (tm.numSubdomains() * ratio * ratio >=
+          largest.numSubdomains() * largest.elementsX * largest.elementsY)
+        largest = tm;
+    }
+  lines.push_back("the largest row:");
+  reportMembranes(comm, params, largest, sc.get<Array<std::string>>("Dual solvers"),
+                  std::move(lines), out);
 }
 
 }  // namespace contact

@@ -5,8 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "contact_ElasticContactRun.hpp"
-#include "contact_NonlinearContactRun.hpp"
+#include "contact_ContactParameters.hpp"
 #include "tfeti_StrictParameters.hpp"
 
 namespace contact {

@@ -33,6 +33,13 @@ struct NonlinearOptions {
 
 // Throws std::invalid_argument naming the parameter that is wrong.
 NonlinearOptions nonlinearOptionsFrom(const Teuchos::ParameterList& params);
+// Adds "Nonlinear" to the driver's valid parameters (the materials: contact_Materials.hpp).
+void addNonlinearContactParameters(Teuchos::ParameterList& valid);
+
+// The checks of the "Nonlinear", "Material" and "Contact problem" parameters a run makes before
+// it meshes (throw std::invalid_argument as the run does).
+void checkNonlinearParameters(const Teuchos::ParameterList& params);
+
 // The checks that need the problem's dimension (2 or 3) and whether its master is a rigid
 // obstacle: the extent rule and the obstacle displacement must fit them.
 void checkNonlinearOptionsFor(const NonlinearOptions& options, int dim, bool rigidObstacle);

@@ -7,9 +7,12 @@
 // Extending it (a new figure of the run, e.g. a friction force or stick/slip counts): add the
 // value to the struct it belongs to (ContactMeasures for the "contact" object, StepRecord in
 // contact_NonlinearHistory.hpp for a per-step value, ContactResult for a top-level key), fill it
-// in ContactSolver (contact_ContactSolver.cpp: measureContact for the contact object,
-// fillResult for the rest), and write its key in contactJson / summaryJson
-// (contact_ContactResult.cpp), where each key of the file is written.
+// in ContactSolver::solve (contact_ContactSolver.cpp, after the load-step loop: the block "The
+// contact zone of the final state" fills ContactMeasures, the lines before and after it the rest
+// of the result; a per-step value where the step is evaluated: NonlinearStepOutput::evaluate,
+// contact_NonlinearStepOutput.cpp, or for elastic_contact the evaluateLinear step of solve), and
+// write its key in contactJson / summaryJson (contact_ContactResult.cpp), where each key of the
+// file is written.
 #include <optional>
 #include <string>
 #include <vector>
@@ -92,8 +95,9 @@ struct ContactResult {
 
   bool haveContact = false;  // the contact object is filled (nonlinear: a step converged)
   ContactMeasures contact;
-  // The slave nodes with a contact row (every rank holds all): position, multiplier, pressure
-  // and the node's gap direction; the gap itself is contactGaps[k] (B_I u - c_I, <= 0 in contact).
+  // The slave nodes with a contact row (every rank holds all): position, multiplier, pressure,
+  // the master's normal and the gap the solve left (ContactNode::gap, c_I - B_I u >= 0; 0 in
+  // contact), and with friction the tangential results.
   std::vector<ContactNode> contactNodes;
 
   double maxVonMises = 0.0, maxPlasticStrain = 0.0, maxAbsU = 0.0;

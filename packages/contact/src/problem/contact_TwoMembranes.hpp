@@ -7,7 +7,6 @@
 // two membranes' nodes at the same height:  u1 - u2 <= 0,  lambda >= 0.
 #include <Teuchos_ParameterList.hpp>
 
-#include <ostream>
 #include <vector>
 
 #include "tfeti_FetiSolver.hpp"
@@ -33,13 +32,6 @@ struct ContactProblemData {
 
 ContactProblemData buildTwoMembranes(const TwoMembranes& problem, const tfeti::Comm& comm);
 
-// The driver's studies for Problem = two_membranes (see contact_Driver.hpp).
-int runTwoMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
-                    const std::string& dir);
-int runTwoMembranesScalability(const Teuchos::RCP<const tfeti::Comm>& comm,
-                               Teuchos::ParameterList& params, const std::string& dir);
-// The dry run (--check) of both: the problem's checks and set-up; rank 0 reports to `out`.
-void checkTwoMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, Teuchos::ParameterList& params,
-                       std::ostream& out);
+// The driver's studies of this problem: contact_TwoMembranesRun.hpp.
 
 }  // namespace contact

@@ -17,8 +17,9 @@
 // geometry, so its previous value would act through rows that no longer exist.
 // A step that does not converge (iterations, QP, an inverted element) is cut back (halved) and
 // retried; every converged step writes its VTU, CSV rows and restart files. The run is
-// contact::ContactSolver's (contact_ContactSolver.hpp); this header holds its parameters and
-// checks.
+// contact::ContactSolver's (contact_ContactSolver.hpp); its parameters are in
+// contact_NonlinearOptions.hpp. This header holds the run's set-up: the problem it solves, the
+// restart state it continues from and the load it needs.
 #include <Teuchos_ParameterList.hpp>
 
 #include <string>
@@ -33,12 +34,6 @@
 
 namespace contact {
 
-// Adds "Nonlinear" to the driver's valid parameters (the materials: contact_Materials.hpp).
-void addNonlinearContactParameters(Teuchos::ParameterList& valid);
-
-// The checks of the "Nonlinear", "Material" and "Contact problem" parameters a run makes before
-// it meshes (throw std::invalid_argument as the run does).
-void checkNonlinearParameters(const Teuchos::ParameterList& params);
 // The contact problem a nonlinear run solves: elasticContactSpec's, 2D (plane strain) or 3D as
 // its mesh is (one code path: J2 in six Voigt components, total Lagrangian kernels, node-to-
 // segment or node-to-face contact, rigid obstacles).

@@ -1,6 +1,5 @@
-// The parameters of Problem = elastic_contact (bodies on a Gmsh mesh in contact) and the dry run
-// of both contact problems; the run itself is contact::ContactSolver's.
-#include <Teuchos_CommHelpers.hpp>
+#include "contact_ContactParameters.hpp"
+
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <algorithm>
@@ -14,15 +13,11 @@
 #include <tuple>
 
 #include "contact_ContactOutput.hpp"
-#include "contact_DriverCommon.hpp"
-#include "contact_DryRun.hpp"
 #include "contact_ElasticContactProblem.hpp"
-#include "contact_ElasticContactRun.hpp"
 #include "contact_Friction.hpp"
 #include "contact_KinematicCoupling.hpp"
 #include "contact_LoadRamp.hpp"
 #include "contact_Materials.hpp"
-#include "contact_NonlinearContactRun.hpp"
 #include "contact_PrescribedDisplacement.hpp"
 #include "plasticity_MaterialLaw.hpp"
 #include "tfeti_StrictParameters.hpp"
@@ -260,109 +255,6 @@ ParameterList fetiParameters(const ParameterList& params, const ElasticContactSp
         "frictionless; a tied contact pair is chosen by \"Contact type\" = tied");
   }
   return feti;
-}
-
-void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
-                         const std::string& outputDirectory, std::ostream& out) {
-  // The full runs' set-up, in their order, up to the FETI solver.
-  const std::string kind = params.get<std::string>("Problem");
-  const bool nonlinear = kind == "nonlinear_contact";
-  if (nonlinear) checkNonlinearParameters(params);
-  const ElasticContactSpec spec =
-      nonlinear ? nonlinearContactSpec(params) : elasticContactSpec(params);
-  const ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
-  if (nonlinear) {
-    const NonlinearOptions options = nonlinearOptionsFrom(params);
-    checkNonlinearOptionsFor(options, problem.dim(), spec.obstacle.has_value());
-    requireLoadOrMotion(*comm, problem.local, options, !problem.prescribed.empty());
-  }
-  int restartStep = -1;
-  if (nonlinear && params.sublist("Nonlinear").get<bool>("Restart")) {
-    std::vector<SubdomainRestart> saved;
-    FrictionHistory friction;
-    const bool frictional = frictionSpec(params, spec.slave, spec.master).active();
-    restartStep =
-        readRestart(outputDirectory + "/restart", problem, saved, frictional ? &friction : nullptr)
-            .step;
-  }
-  const auto rows = static_cast<long long>(problem.contact.rows.size());
-  const std::string solver = tfeti::FetiSolver::dualSolverFor(fetiParameters(params, spec), rows);
-
-  std::vector<std::string> lines;
-  std::ostringstream s;
-  s << "problem: " << kind;
-  if (nonlinear) {
-    const auto& nl = params.sublist("Nonlinear");
-    double yield = 0.0;
-    for (const auto& b : spec.bodies) yield = std::max(yield, b.yieldStress);
-    s << " (" << nl.get<int>("Load steps") << " load steps, "
-      << (nl.get<bool>("Geometrically nonlinear") ? "total Lagrangian" : "small strain") << ", "
-      << (yield > 0.0 ? "J2 plastic" : "elastic") << ", stiffness "
-      << nl.get<std::string>("Stiffness") << ")";
-    if (restartStep >= 0)
-      s << "; restart from step " << restartStep << " in " << outputDirectory << "/restart";
-  }
-  s << "; dual solver " << solver;
-  lines.push_back(s.str());
-  s.str("");
-  s << "mesh: " << problem.mesh.source << ": " << problem.mesh.numNodes() << " nodes";
-  lines.push_back(s.str());
-  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
-    const GmshBody& gb = problem.mesh.body(spec.bodies[b].name);
-    s.str("");
-    s << "body \"" << gb.name << "\": " << gb.numElements() << " " << elementTypeName(gb.type)
-      << " elements, " << spec.bodies[b].subdomains << " METIS parts, "
-      << std::count(problem.bodyOfSubdomain.begin(), problem.bodyOfSubdomain.end(),
-                    static_cast<int>(b))
-      << " subdomains; E = " << spec.bodies[b].law.E << ", nu = " << spec.bodies[b].law.nu;
-    if (nonlinear && spec.bodies[b].yieldStress > 0.0)
-      s << ", yield stress " << spec.bodies[b].yieldStress << ", H = " << spec.bodies[b].hardening;
-    lines.push_back(s.str());
-  }
-  const auto boundary = [&](const std::string& role, const std::string& name) {
-    s.str("");
-    s << "boundary \"" << name << "\" (" << role << "): " << problem.mesh.boundary(name).numEdges()
-      << (problem.mesh.dim == 3 ? " faces" : " edges");
-    lines.push_back(s.str());
-  };
-  for (const auto& name : spec.fixed) boundary("fixed", name);
-  for (const auto& [name, comp] : spec.symmetry)
-    boundary(std::string("symmetry, u_") + "xyz"[comp % 3] + " = 0", name);
-  for (const auto& p : spec.prescribed)
-    boundary("prescribed " + describePrescribed(p, problem.mesh.dim) + " m", p.boundary);
-  if (!spec.prescribed.empty()) {
-    long long mine =
-                  static_cast<long long>(problem.equalities.size() - problem.couplingRows.size()),
-              all = 0;
-    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine, &all);
-    lines.push_back("prescribed rows: " + std::to_string(all) +
-                    " (one per subdomain copy of a prescribed node and component)");
-  }
-  for (const auto& k : spec.couplings)
-    boundary(std::string("coupled u_") + "xyz"[k.component % 3] + ": one common value", k.boundary);
-  if (!spec.couplings.empty())
-    lines.push_back("coupling rows: " + std::to_string(problem.couplingRowCount) +
-                    " (one per coupled node and component but the first of its boundary)");
-  const auto braced = [](const auto& v, std::size_t n) {
-    std::ostringstream b;
-    b << "{";
-    for (std::size_t c = 0; c < n; ++c) b << (c ? ", " : "") << v[c];
-    b << "}";
-    return b.str();
-  };
-  const std::size_t dim = static_cast<std::size_t>(problem.mesh.dim);
-  for (const auto& [name, t] : spec.tractions) boundary("traction " + braced(t, t.size()), name);
-  boundary("contact slave", spec.slave);
-  if (!spec.obstacle) boundary("contact master", spec.master);
-  s.str("");
-  s << "contact pair: " << problem.slaveNodes.size() << " slave nodes of \"" << spec.slave
-    << "\" against "
-    << (spec.obstacle ? std::string("the rigid obstacle")
-                      : (dim == 3 ? "the faces of \"" : "the segments of \"") + spec.master + "\"")
-    << ": " << rows << " within the search radius " << problem.searchRadius << "; applied force "
-    << braced(problem.appliedForce, dim);
-  lines.push_back(s.str());
-  printDryRunReport(*comm, lines, problem.local, rows, out);
 }
 
 }  // namespace contact

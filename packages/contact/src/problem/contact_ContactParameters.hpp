@@ -1,10 +1,10 @@
 #pragma once
-// Problem = elastic_contact of the tfeti_contact driver (see contact_ElasticContactProblem.hpp):
-// its parameters and dry run; the run itself is contact::ContactSolver's
-// (contact_ContactSolver.hpp).
+// The "Contact problem" parameters of Problem = elastic_contact and nonlinear_contact (bodies on
+// a Gmsh mesh in contact, contact_ElasticContactProblem.hpp): their valid list, the problem
+// description read from them and the FETI list of a run. The run is contact::ContactSolver's
+// (contact_ContactSolver.hpp), its dry run checkContactProblem (contact_ContactCheck.hpp).
 #include <Teuchos_ParameterList.hpp>
 
-#include <ostream>
 #include <string>
 
 #include "contact_ElasticContactProblem.hpp"
@@ -23,12 +23,5 @@ ElasticContactSpec elasticContactSpec(const Teuchos::ParameterList& params);
 // set there for a frictionless pair).
 Teuchos::ParameterList fetiParameters(const Teuchos::ParameterList& params,
                                       const ElasticContactSpec& spec);
-
-// The dry run (--check, contact_DryRun.hpp) of Problem = elastic_contact and nonlinear_contact:
-// the runs' checks, meshing, partitioning and first contact search, and a nonlinear Restart's
-// files in outputDirectory/restart; rank 0 reports to `out`.
-void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm,
-                         Teuchos::ParameterList& params, const std::string& outputDirectory,
-                         std::ostream& out);
 
 }  // namespace contact

@@ -1,10 +1,10 @@
-#include "contact_NonlinearContactRun.hpp"
+#include "contact_NonlinearSetup.hpp"
 
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "contact_ElasticContactRun.hpp"
+#include "contact_ContactParameters.hpp"
 #include "contact_NonlinearModel.hpp"
 
 namespace contact {
