@@ -7,12 +7,12 @@
 // Extending it (a new figure of the run, e.g. a friction force or stick/slip counts): add the
 // value to the struct it belongs to (ContactMeasures for the "contact" object, StepRecord in
 // contact_NonlinearHistory.hpp for a per-step value, ContactResult for a top-level key), fill it
-// in ContactSolver::solve (contact_ContactSolver.cpp, after the load-step loop: the block "The
-// contact zone of the final state" fills ContactMeasures, the lines before and after it the rest
-// of the result; a per-step value where the step is evaluated: NonlinearStepOutput::evaluate,
-// contact_NonlinearStepOutput.cpp, or for elastic_contact the evaluateLinear step of solve), and
-// write its key in contactJson / summaryJson (contact_ContactResult.cpp), where each key of the
-// file is written.
+// in one of ContactSolver::solve's named steps (contact_ContactSolver.cpp: measureContact for
+// ContactMeasures, measureFinalState for the final state's fields and reactions, fillResult for
+// the rest; a per-step value where the step is evaluated: NonlinearStepOutput::evaluate and fill,
+// contact_NonlinearStepOutput.cpp, or for elastic_contact ContactSolver::evaluateLinearSolution),
+// and write its key in contactJson / summaryJson (contact_ContactResult.cpp), where each key of
+// the file is written.
 #include <optional>
 #include <string>
 #include <vector>
