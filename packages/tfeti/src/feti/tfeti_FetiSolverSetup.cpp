@@ -12,6 +12,40 @@
 
 namespace tfeti {
 
+namespace {
+TearingOptions tearingOptions(const Teuchos::ParameterList& params) {
+  TearingOptions opts;
+  opts.formulation = parseFormulation(params.get<std::string>("Formulation"));
+  const std::string gluing = params.get<std::string>("Gluing");
+  opts.gluing = gluing == "redundant" ? Gluing::Redundant
+                : gluing == "none"    ? Gluing::None
+                                      : Gluing::NonRedundant;
+  opts.gluingAtDirichletNodes = params.get<bool>("Gluing at Dirichlet nodes");
+  opts.inequalityScaling = params.get<std::string>("Inequality row scaling") == "separate"
+                               ? TearingOptions::InequalityScaling::Separate
+                               : TearingOptions::InequalityScaling::Joined;
+  return opts;
+}
+
+// What the tearing needs of each local subdomain: its size and its boundary nodes.
+std::vector<TearingInput> tearingInput(const std::vector<SubdomainData>& data) {
+  std::vector<TearingInput> input;
+  for (const auto& sd : data) {
+    TearingInput in;
+    in.id = sd.mesh.id;
+    in.numDofs = sd.mesh.numNodes() * sd.dofsPerNode;
+    in.boundaryNodes = sd.mesh.boundaryNodes();
+    const std::vector<int> dir = sd.mesh.dirichletMasks(sd.dofsPerNode);
+    for (int n : in.boundaryNodes) {
+      in.boundaryGlobal.push_back(sd.mesh.globalNode[n]);
+      in.boundaryDirichlet.push_back(dir[n]);
+    }
+    input.push_back(std::move(in));
+  }
+  return input;
+}
+}  // namespace
+
 FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                        std::vector<SubdomainData> local, const Teuchos::ParameterList& params,
                        const std::vector<InequalityRow>& inequalities,
@@ -78,31 +112,8 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
   const std::string solver = params_.get<std::string>("Local solver");
   {
     PhaseTimer t(*comm_, timings_.tearing, &memory_, "tearing");
-    TearingOptions opts;
-    opts.formulation = formulation;
-    const std::string gluing = params_.get<std::string>("Gluing");
-    opts.gluing = gluing == "redundant" ? Gluing::Redundant
-                  : gluing == "none"    ? Gluing::None
-                                        : Gluing::NonRedundant;
-    opts.gluingAtDirichletNodes = params_.get<bool>("Gluing at Dirichlet nodes");
-    opts.inequalityScaling = params_.get<std::string>("Inequality row scaling") == "separate"
-                                 ? TearingOptions::InequalityScaling::Separate
-                                 : TearingOptions::InequalityScaling::Joined;
-    std::vector<TearingInput> input;
-    for (const auto& sd : data_) {
-      TearingInput in;
-      in.id = sd.mesh.id;
-      in.numDofs = sd.mesh.numNodes() * sd.dofsPerNode;
-      in.boundaryNodes = sd.mesh.boundaryNodes();
-      const std::vector<int> dir = sd.mesh.dirichletMasks(sd.dofsPerNode);
-      for (int n : in.boundaryNodes) {
-        in.boundaryGlobal.push_back(sd.mesh.globalNode[n]);
-        in.boundaryDirichlet.push_back(dir[n]);
-      }
-      input.push_back(std::move(in));
-    }
-    tearing_ =
-        buildTearing(comm_, numSubdomains_, input, dofsPerNode_, opts, inequalities, equalities_);
+    tearing_ = buildTearing(comm_, numSubdomains_, tearingInput(data_), dofsPerNode_,
+                            tearingOptions(params_), inequalities, equalities_);
     if (formulation == Formulation::FETI) requireNoRowOnEliminatedDofs();
   }
   {
