@@ -28,6 +28,7 @@
 //    the mesh's own Dirichlet nodes, or leave those nodes out of dirichletNodes and pass rows.
 // Malformed rows (unknown subdomain or dof, no non-zero coefficient, non-finite values) are an
 // error naming the row, raised on every rank.
+#include <BelosTypes.hpp>
 #include <Teuchos_ParameterList.hpp>
 
 #include <memory>
@@ -224,13 +225,39 @@ class FetiSolver {
   Teuchos::RCP<PseudoInverseOperator> Kplus_;
   Teuchos::RCP<DualOperator> F_;
   Teuchos::RCP<DualPreconditioner> M_;
-  DualResult solveQp(const std::string& method);
+  std::vector<EqualityRow> equalities_;  // the caller's rows this rank contributes
+  // One switch, in the FETI list, for MPRGP alone and inside SMALBE.
+  static constexpr const char* kPreconditioningInFace = "Preconditioning in face";
+
+  // Set-up (tfeti_FetiSolverSetup.cpp).
   void buildSubdomains(const std::vector<std::vector<double>>& coords);
   void buildConstraints(const std::vector<InequalityRow>& inequalities, bool newSubdomains);
-  std::vector<double> multipliersOfRows(GO first, GO count) const;
   void requireNoRowOnEliminatedDofs() const;
-  std::vector<EqualityRow> equalities_;  // the caller's rows this rank contributes
   void buildDualRhs();
+  // The dual solve: PCPG (tfeti_FetiSolverSolve.cpp), the QP of the inequality rows
+  // (tfeti_FetiSolverQp.cpp).
+  DualResult solvePcpg();
+  DualResult solveQp(const std::string& method);
+  struct DualQp;  // the QP in mu = lambda - lambda~ and its operators
+  Teuchos::RCP<Vector> dualQpLinearTerm() const;
+  void setDualQpBounds(BoundConstrainedQp<Scalar, MultiVector, Operator>& qp) const;
+  bool warmStartAgreed() const;  // collective: every rank can start from the last solve
+  Teuchos::RCP<Vector> initialIncrement(bool warm) const;
+  double projectedNormEstimate(const Operator& PFP, const MultiVector& b, bool smalbe, bool warm);
+  void setQpOperators(DualQp& dual) const;
+  Belos::ReturnType solveSmalbe(DualQp& dual, QpCounters& counters);
+  Teuchos::RCP<Vector> smalbeInitialMultiplier(bool warm, const Operator& Q) const;
+  Teuchos::RCP<Vector> contactGapLevels() const;
+  Belos::ReturnType solvePenalty(DualQp& dual, QpCounters& counters);
+  void completeQpResult(Belos::ReturnType ret, DualResult& result) const;
+  // The primal solution (tfeti_PrimalRecovery.cpp).
+  void recoverPrimal();
+  bool nothingActs() const;  // collective: no load, no multiplier, no prescribed value
+  void addKernelComponent(MultiVector& u) const;
+  void markRowsHoldingWithEquality(Vector& mask) const;
+  void keepSubdomainSolutions(const MultiVector& u);
+  // Results (tfeti_FetiSolverResults.cpp).
+  std::vector<double> multipliersOfRows(GO first, GO count) const;
   Teuchos::RCP<Vector> d_, lambda0_, lambda_;
   // Warm start (update()): the last solve's multipliers, SMALBE's equality multiplier and the
   // estimate of ||P F P||.

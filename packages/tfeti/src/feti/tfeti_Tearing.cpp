@@ -139,15 +139,9 @@ struct Components {
   }
 };
 
-}  // namespace
-
-Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
-                     const std::vector<TearingInput>& local, int dofsPerNode,
-                     const TearingOptions& options, const std::vector<InequalityRow>& inequalities,
-                     const std::vector<EqualityRow>& equalities) {
-  Tearing t;
-
-  // Global dof numbering: subdomain by subdomain.
+// Global dof numbering: subdomain by subdomain. Returns every subdomain's number of dofs.
+std::vector<long long> numberPrimalDofs(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
+                                        const std::vector<TearingInput>& local, Tearing& t) {
   std::vector<long long> sizes(numSubdomains, 0), allSizes(numSubdomains, 0);
   for (const auto& s : local) sizes[s.id] = s.numDofs;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, numSubdomains, sizes.data(), allSizes.data());
@@ -158,11 +152,15 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     for (int d = 0; d < s.numDofs; ++d) myDofs.push_back(t.dofOffset[s.id] + d);
   t.primalMap = Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(t.dofOffset.back()),
                                      Teuchos::ArrayView<const GO>(myDofs), 0, comm));
+  return allSizes;
+}
 
-  // Who owns which subdomain: whatever distribution the caller chose (block rule, Zoltan2).
+// Who owns which subdomain: whatever distribution the caller chose (block rule, Zoltan2).
+std::vector<int> subdomainOwners(const Comm& comm, int numSubdomains,
+                                 const std::vector<TearingInput>& local) {
   std::vector<long long> owned;
-  for (const auto& sd : local) owned.insert(owned.end(), {sd.id, comm->getRank()});
-  const std::vector<long long> allOwned = allGather(*comm, owned);
+  for (const auto& sd : local) owned.insert(owned.end(), {sd.id, comm.getRank()});
+  const std::vector<long long> allOwned = allGather(comm, owned);
   std::vector<int> owner(numSubdomains, -1);
   for (std::size_t k = 0; k < allOwned.size(); k += 2) {
     const auto id = allOwned[k];
@@ -175,14 +173,17 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   for (int sd = 0; sd < numSubdomains; ++sd)
     if (owner[sd] < 0)
       throw std::invalid_argument("tearing: no rank holds subdomain " + std::to_string(sd));
+  return owner;
+}
 
-  // Gather every subdomain's boundary nodes: (untorn node, subdomain, local node, Dirichlet).
-  std::vector<long long> mine;
+// Every subdomain's boundary nodes, by untorn node, then subdomain.
+std::vector<Copy> gatherBoundaryCopies(const Comm& comm, const std::vector<TearingInput>& local) {
+  std::vector<long long> mine;  // (untorn node, subdomain, local node, Dirichlet)
   for (const auto& s : local)
     for (std::size_t k = 0; k < s.boundaryNodes.size(); ++k)
       mine.insert(mine.end(),
                   {s.boundaryGlobal[k], s.id, s.boundaryNodes[k], s.boundaryDirichlet[k]});
-  const std::vector<long long> all = allGather(*comm, mine);
+  const std::vector<long long> all = allGather(comm, mine);
   std::vector<Copy> copies(all.size() / 4);
   for (std::size_t k = 0; k < copies.size(); ++k)
     copies[k] = {all[4 * k], static_cast<int>(all[4 * k + 1]), static_cast<int>(all[4 * k + 2]),
@@ -190,10 +191,39 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   std::sort(copies.begin(), copies.end(), [](const Copy& a, const Copy& b) {
     return a.node != b.node ? a.node < b.node : a.sub < b.sub;
   });
+  return copies;
+}
 
-  // Rows in canonical order: by untorn node, then component.
-  std::vector<Row> rows;
-  std::vector<int> groupOwner;
+// Every row of the tearing in its global numbering: the automatic rows (gluing and TFETI's
+// Dirichlet rows), then the caller's equality rows, then the inequality rows.
+struct RowSet {
+  std::vector<Row> automatic;
+  std::vector<int> groupOwner;  // the rank owning each automatic row's group
+  std::vector<EqualityRow> user;
+  std::vector<InequalityRow> ineq;
+
+  GO numAuto() const { return static_cast<GO>(automatic.size()); }
+  GO numEq() const { return numAuto() + static_cast<GO>(user.size()); }
+  std::vector<ConstraintEntry> entriesOf(GO r) const {
+    std::vector<ConstraintEntry> e;
+    if (r < numAuto()) {
+      const Row& row = automatic[r];
+      for (int k = 0; k < row.n; ++k) e.push_back({row.sub[k], row.dof[k], row.coef[k]});
+    } else if (r < numEq()) {
+      e = user[r - numAuto()].entries;
+    } else {
+      e = ineq[r - numEq()].entries;
+    }
+    return e;
+  }
+};
+
+// The automatic rows in canonical order: by untorn node, then component.
+void addAutomaticRows(const std::vector<Copy>& copies, int dofsPerNode,
+                      const TearingOptions& options, const std::vector<int>& owner, RowSet& set,
+                      Tearing& t) {
+  std::vector<Row>& rows = set.automatic;
+  std::vector<int>& groupOwner = set.groupOwner;
   for (std::size_t first = 0; first < copies.size();) {
     std::size_t last = first;
     int mask = 0;
@@ -227,13 +257,17 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     }
     first = last;
   }
-  // The caller's equality rows follow the automatic ones, the inequality rows come last.
-  const std::vector<EqualityRow> user =
-      gatherRows(*comm, equalities, [](auto& r) { return std::tie(r.rhs); });
-  const std::vector<InequalityRow> ineq = gatherRows(
-      *comm, inequalities, [](auto& r) { return std::tie(r.gap, r.lowerBound, r.upperBound); });
-  for (const auto& row : user) checkRow(row.entries, row.rhs, "equality", "=", allSizes);
-  for (const auto& row : ineq) {
+}
+
+// The caller's rows, gathered from every rank in canonical order and checked.
+void addCallerRows(const Comm& comm, const std::vector<EqualityRow>& equalities,
+                   const std::vector<InequalityRow>& inequalities,
+                   const std::vector<long long>& allSizes, RowSet& set) {
+  set.user = gatherRows(comm, equalities, [](auto& r) { return std::tie(r.rhs); });
+  set.ineq = gatherRows(comm, inequalities,
+                        [](auto& r) { return std::tie(r.gap, r.lowerBound, r.upperBound); });
+  for (const auto& row : set.user) checkRow(row.entries, row.rhs, "equality", "=", allSizes);
+  for (const auto& row : set.ineq) {
     checkRow(row.entries, row.gap, "inequality", "<=", allSizes);
     // NaN fails both comparisons.
     if (!(row.lowerBound <= row.upperBound) || !(row.lowerBound < kInf) ||
@@ -243,80 +277,81 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                                   ", " + std::to_string(row.upperBound) +
                                   "] are empty or not finite on the closed side");
   }
-  const GO numAuto = static_cast<GO>(rows.size());
-  t.firstUserEqualityRow = numAuto;
-  t.numUserEqualityRows = static_cast<GO>(user.size());
-  const GO numEq = numAuto + t.numUserEqualityRows;
-  t.firstInequalityRow = numEq;
-  t.numInequalityRows = static_cast<GO>(ineq.size());
-  t.numRows = numEq + t.numInequalityRows;
-  std::size_t maxEntries = 2;
-  for (const auto& row : user) maxEntries = std::max(maxEntries, row.entries.size());
-  for (const auto& row : ineq) maxEntries = std::max(maxEntries, row.entries.size());
-  // The entries of row r (automatic, the caller's equality row or an inequality row).
-  auto entriesOf = [&](GO r) {
-    std::vector<ConstraintEntry> e;
-    if (r < numAuto) {
-      const Row& row = rows[r];
-      for (int k = 0; k < row.n; ++k) e.push_back({row.sub[k], row.dof[k], row.coef[k]});
-    } else if (r < numEq) {
-      e = user[r - numAuto].entries;
-    } else {
-      e = ineq[r - numEq].entries;
-    }
-    return e;
-  };
+}
 
-  // Scaling groups: the automatic groups, joined through the dofs the caller's rows share with
-  // them or with each other (the inequality rows too, unless they are scaled separately).
-  const GO numJoined =
-      options.inequalityScaling == TearingOptions::InequalityScaling::Joined ? t.numRows : numEq;
-  std::vector<int> groupOf(t.numRows);
-  std::vector<GO> groupLowest;  // lowest subdomain of each group: its owner's
-  {
-    Components comp(static_cast<std::size_t>(t.numRows));
-    std::vector<GO> firstOfGroup(groupOwner.size(), -1);
-    for (GO r = 0; r < numAuto; ++r) {
-      GO& first = firstOfGroup[rows[r].group];
-      if (first < 0) first = r;
-      comp.join(first, r);
-    }
-    if (numJoined > numAuto) {
-      std::map<std::pair<int, int>, GO> rowOfDof;
-      for (GO r = 0; r < numJoined; ++r)
-        for (const auto& e : entriesOf(r)) {
-          auto [it, added] = rowOfDof.insert({{e.subdomain, e.dof}, r});
-          if (!added) comp.join(it->second, r);
-        }
-    }
-    std::map<std::size_t, int> groupOfRoot;
-    std::vector<GO> groupSize;
-    for (GO r = 0; r < t.numRows; ++r) {
-      auto [it, added] = groupOfRoot.insert({comp.find(r), static_cast<int>(groupLowest.size())});
-      if (added) {
-        groupLowest.push_back(std::numeric_limits<GO>::max());
-        groupSize.push_back(0);
-      }
-      groupOf[r] = it->second;
-      ++groupSize[it->second];
-      for (const auto& e : entriesOf(r))
-        groupLowest[it->second] = std::min<GO>(groupLowest[it->second], e.subdomain);
-    }
-    t.numScalingGroups = static_cast<GO>(groupSize.size());
-    for (GO size : groupSize) {
-      t.largestScalingGroup = std::max(t.largestScalingGroup, size);
-      if (size > kMaxDenseScalingGroup) ++t.numSparseScalingGroups;
-    }
+// The scaling group of every row and the lowest subdomain of each group (its owner's).
+struct Grouping {
+  std::vector<int> groupOf;
+  std::vector<GO> groupLowest;
+};
+
+// Scaling groups: the automatic groups, joined through the dofs the caller's rows share with
+// them or with each other (the inequality rows too, unless they are scaled separately).
+Grouping scalingGroups(const RowSet& set, const TearingOptions& options, Tearing& t) {
+  const GO numAuto = set.numAuto();
+  const GO numJoined = options.inequalityScaling == TearingOptions::InequalityScaling::Joined
+                           ? t.numRows
+                           : set.numEq();
+  Grouping grouping;
+  std::vector<int>& groupOf = grouping.groupOf;
+  std::vector<GO>& groupLowest = grouping.groupLowest;
+  groupOf.resize(t.numRows);
+  Components comp(static_cast<std::size_t>(t.numRows));
+  std::vector<GO> firstOfGroup(set.groupOwner.size(), -1);
+  for (GO r = 0; r < numAuto; ++r) {
+    GO& first = firstOfGroup[set.automatic[r].group];
+    if (first < 0) first = r;
+    comp.join(first, r);
   }
+  if (numJoined > numAuto) {
+    std::map<std::pair<int, int>, GO> rowOfDof;
+    for (GO r = 0; r < numJoined; ++r)
+      for (const auto& e : set.entriesOf(r)) {
+        auto [it, added] = rowOfDof.insert({{e.subdomain, e.dof}, r});
+        if (!added) comp.join(it->second, r);
+      }
+  }
+  std::map<std::size_t, int> groupOfRoot;
+  std::vector<GO> groupSize;
+  for (GO r = 0; r < t.numRows; ++r) {
+    auto [it, added] = groupOfRoot.insert({comp.find(r), static_cast<int>(groupLowest.size())});
+    if (added) {
+      groupLowest.push_back(std::numeric_limits<GO>::max());
+      groupSize.push_back(0);
+    }
+    groupOf[r] = it->second;
+    ++groupSize[it->second];
+    for (const auto& e : set.entriesOf(r))
+      groupLowest[it->second] = std::min<GO>(groupLowest[it->second], e.subdomain);
+  }
+  t.numScalingGroups = static_cast<GO>(groupSize.size());
+  for (GO size : groupSize) {
+    t.largestScalingGroup = std::max(t.largestScalingGroup, size);
+    if (size > kMaxDenseScalingGroup) ++t.numSparseScalingGroups;
+  }
+  return grouping;
+}
 
-  // The multiplier map: rows of groups owned here.
+// The multiplier map: rows of groups owned here. Returns those rows.
+std::vector<GO> buildMultiplierMap(const Teuchos::RCP<const Comm>& comm,
+                                   const std::vector<int>& owner, const Grouping& grouping,
+                                   Tearing& t) {
   const int me = comm->getRank();
   std::vector<GO> myRows;
   for (GO r = 0; r < t.numRows; ++r)
-    if (owner[groupLowest[groupOf[r]]] == me) myRows.push_back(r);
+    if (owner[grouping.groupLowest[grouping.groupOf[r]]] == me) myRows.push_back(r);
   t.multiplierMap = Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(t.numRows),
                                          Teuchos::ArrayView<const GO>(myRows), 0, comm));
+  return myRows;
+}
 
+// B and c on the rows owned here.
+void assembleConstraintMatrix(const RowSet& set, const std::vector<GO>& myRows, Tearing& t) {
+  const std::vector<Row>& rows = set.automatic;
+  const GO numAuto = set.numAuto(), numEq = set.numEq();
+  std::size_t maxEntries = 2;
+  for (const auto& row : set.user) maxEntries = std::max(maxEntries, row.entries.size());
+  for (const auto& row : set.ineq) maxEntries = std::max(maxEntries, row.entries.size());
   t.B = Teuchos::rcp(new CrsMatrix(t.multiplierMap, maxEntries, Tpetra::StaticProfile));
   t.rhs = Teuchos::rcp(new Vector(t.multiplierMap));
   {
@@ -333,14 +368,14 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
           vals[n] = row.coef[n];
         }
       } else if (r < numEq) {
-        const EqualityRow& row = user[r - numAuto];
+        const EqualityRow& row = set.user[r - numAuto];
         for (const auto& e : row.entries) {
           cols[n] = t.dofOffset[e.subdomain] + e.dof;
           vals[n++] = e.coef;
         }
         c[l] = row.rhs;
       } else {
-        const InequalityRow& row = ineq[r - numEq];
+        const InequalityRow& row = set.ineq[r - numEq];
         // Entries on the same dof are summed: Tpetra would sum them at fillComplete anyway.
         for (const auto& e : row.entries) {
           cols[n] = t.dofOffset[e.subdomain] + e.dof;
@@ -353,8 +388,12 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     }
   }
   t.B->fillComplete(t.primalMap, t.multiplierMap);
+}
 
-  // Rows touching each local subdomain.
+// The rows touching each local subdomain.
+void findSubdomainRows(const RowSet& set, const std::vector<TearingInput>& local, Tearing& t) {
+  const std::vector<Row>& rows = set.automatic;
+  const GO numAuto = set.numAuto(), numEq = set.numEq();
   std::map<int, std::size_t> localIndex;
   for (std::size_t k = 0; k < local.size(); ++k) localIndex[local[k].id] = k;
   t.subdomainRows.assign(local.size(), {});
@@ -365,28 +404,31 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
         t.subdomainRows[it->second].push_back(
             {static_cast<GO>(r), rows[r].dof[k], rows[r].coef[k]});
     }
-  for (std::size_t r = 0; r < user.size(); ++r)
-    for (const auto& e : user[r].entries) {
+  for (std::size_t r = 0; r < set.user.size(); ++r)
+    for (const auto& e : set.user[r].entries) {
       auto it = localIndex.find(e.subdomain);
       if (it != localIndex.end())
         t.subdomainRows[it->second].push_back({numAuto + static_cast<GO>(r), e.dof, e.coef});
     }
-  for (std::size_t r = 0; r < ineq.size(); ++r)
-    for (const auto& e : ineq[r].entries) {
+  for (std::size_t r = 0; r < set.ineq.size(); ++r)
+    for (const auto& e : set.ineq[r].entries) {
       auto it = localIndex.find(e.subdomain);
       if (it != localIndex.end())
         t.subdomainRows[it->second].push_back({numEq + static_cast<GO>(r), e.dof, e.coef});
     }
+}
 
-  // Owned groups and the pseudo-inverse of their block of B B^T (entries on one dof add up).
+// Owned groups and the pseudo-inverse of their block of B B^T (entries on one dof add up).
+void buildScaling(const RowSet& set, const Grouping& grouping, const std::vector<GO>& myRows,
+                  Tearing& t) {
   std::map<int, std::vector<LO>> groupLids;  // owned group -> local rows, ascending
   for (std::size_t l = 0; l < myRows.size(); ++l)
-    groupLids[groupOf[myRows[l]]].push_back(static_cast<LO>(l));
+    groupLids[grouping.groupOf[myRows[l]]].push_back(static_cast<LO>(l));
   for (auto& [group, lids] : groupLids) {
     const int m = static_cast<int>(lids.size());
     std::vector<std::map<std::pair<int, int>, double>> coefs(m);
     for (int i = 0; i < m; ++i)
-      for (const auto& e : entriesOf(myRows[lids[i]]))
+      for (const auto& e : set.entriesOf(myRows[lids[i]]))
         coefs[i][std::make_pair(e.subdomain, e.dof)] += e.coef;
     if (m <= kMaxDenseScalingGroup) {
       std::vector<double> BBt(m * m, 0.0);
@@ -418,8 +460,32 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
     }
     t.scaling.rows.push_back(std::move(lids));
   }
-  t.userEqualityRows = user;
-  t.inequalityRows = ineq;
+}
+
+}  // namespace
+
+Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
+                     const std::vector<TearingInput>& local, int dofsPerNode,
+                     const TearingOptions& options, const std::vector<InequalityRow>& inequalities,
+                     const std::vector<EqualityRow>& equalities) {
+  Tearing t;
+  const std::vector<long long> allSizes = numberPrimalDofs(comm, numSubdomains, local, t);
+  const std::vector<int> owner = subdomainOwners(*comm, numSubdomains, local);
+  RowSet set;
+  addAutomaticRows(gatherBoundaryCopies(*comm, local), dofsPerNode, options, owner, set, t);
+  addCallerRows(*comm, equalities, inequalities, allSizes, set);
+  t.firstUserEqualityRow = set.numAuto();
+  t.numUserEqualityRows = static_cast<GO>(set.user.size());
+  t.firstInequalityRow = set.numEq();
+  t.numInequalityRows = static_cast<GO>(set.ineq.size());
+  t.numRows = set.numEq() + t.numInequalityRows;
+  const Grouping grouping = scalingGroups(set, options, t);
+  const std::vector<GO> myRows = buildMultiplierMap(comm, owner, grouping, t);
+  assembleConstraintMatrix(set, myRows, t);
+  findSubdomainRows(set, local, t);
+  buildScaling(set, grouping, myRows, t);
+  t.userEqualityRows = set.user;
+  t.inequalityRows = set.ineq;
   return t;
 }
 

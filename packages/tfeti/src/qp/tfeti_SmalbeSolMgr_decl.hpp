@@ -78,7 +78,11 @@
 namespace tfeti {
 template <class S, class MV, class OP>
 class FaceGramian;
-}
+template <class S, class MV, class OP>
+class FaceProjector;
+template <class S>
+struct FacePcpgResult;
+}  // namespace tfeti
 
 namespace tfeti {
 
@@ -121,8 +125,9 @@ class SmalbeSolMgr {
   void reset(Belos::ResetType type = Belos::Problem);
 
   // The augmented Hessian A + rho Q applied by the caller's own operator (e.g. one that shares
-  // work between A and Q) instead of the OperatorSum of the two; its rho must be
-  // penaltyFor(||A||), the "Penalty" parameter times the "Norm of A" given.
+  // work between A and Q) instead of the OperatorSum of the two; its rho must be the one the
+  // solve uses, getPenalty(): the "Penalty" parameter times ||A||, so give "Norm of A" (the
+  // power-iteration estimate is not known beforehand).
   void setAugmentedHessian(Teuchos::RCP<const OP> H) { augmented_ = std::move(H); }
   // Starting multiplier (in range(Q); default zero).
   void setInitialMultiplier(Teuchos::RCP<const MV> mu0) { mu0_ = std::move(mu0); }
@@ -166,7 +171,25 @@ class SmalbeSolMgr {
   magnitude_type normA_ = 0, rho_ = 0, M_ = 0;
   magnitude_type achievedTol_ = 0, achievedEqualityTol_ = 0;
   SolverOutput out_;
+  // The steps of solve() (tfeti_SmalbeSolMgr_def.hpp), sharing the state of the solve.
+  struct SolveState;
   Belos::ReturnType solveTimed();
+  void setNormAndPenalty();                  // ||A||, rho and M_0
+  void setTolerances(SolveState& s);         // ||b|| (or ||A P(0)|| when b = 0) and the tolerances
+  void setUpOuterIterations(SolveState& s);  // the multiplier, the inner problem, the rules
+  void setUpFaceGramian(SolveState& s);
+  void startFromLevelFace(SolveState& s);  // "Initial face" = levels
+  void testInitialIterate(SolveState& s);  // the final test at the starting point
+  void outerIteration(SolveState& s);      // an inner solve, the multiplier update, the face phase
+  // L(x, mu) from the inner gradient, and the rounding level of that value.
+  S lagrangianAt(const MV& innerGradient, magnitude_type& noise) const;
+  void reportOuterIteration(const SolveState& s, int innerSteps, S lagrangian, S required,
+                            bool reduceM);
+  // The face phase after an outer iteration once the active set has settled; true: accepted.
+  bool faceAfterOuterIteration(SolveState& s);
+  void finishSolve(const SolveState& s);  // the counters, the message, the final report
+  std::string summaryMessage(const SolveState& s) const;
+  void reportSolve(const SolveState& s);
   // The face phase ("Face solve" = pcpg): PCPG on the face of `active`, then SMALBE's final test
   // on the result; on failure primal-dual active-set steps within "Maximum face solves". True:
   // x, the multiplier, gp and qxNorm hold the accepted result; false: all untouched.
@@ -174,6 +197,27 @@ class SmalbeSolMgr {
   bool faceSolve(std::vector<long long> active, magnitude_type gTol, magnitude_type eTol,
                  magnitude_type scale, magnitude_type& gp, magnitude_type& qxNorm,
                  const MV* start = nullptr);
+  // The steps of faceSolve (tfeti_SmalbeFacePhase_def.hpp).
+  struct FaceRun;      // what the faces of one face phase share
+  struct FaceOutcome;  // SMALBE's final test on a face solve's result
+  FaceRun startFaceRun(magnitude_type gTol, magnitude_type eTol, magnitude_type scale,
+                       const MV* start);
+  // x onto the face (the active rows at their bounds, returned) and its gradient.
+  std::vector<S> enterFace(const FaceProjector<S, MV, OP>& face,
+                           const std::vector<long long>& active, FaceRun& run);
+  FacePcpgResult<S> faceCg(const FaceProjector<S, MV, OP>& face, S tol, int maxIterations,
+                           FaceRun& run);
+  // The loose face solve; true when its verdict moved `active` (and x) to a new face.
+  bool looseVerdictMoves(const FaceProjector<S, MV, OP>& face, const std::vector<S>& r,
+                         FaceRun& run, int& steps, std::vector<long long>& active);
+  FaceOutcome finalTestOnFace(const FaceProjector<S, MV, OP>& face,
+                              const std::vector<long long>& active, const std::vector<S>& r,
+                              FaceRun& run);
+  void reportFaceSolve(const FaceRun& run, std::size_t activeRows, int steps, bool cgConverged,
+                       const FaceOutcome& out, bool passed, std::size_t nextRows);
+  // The primal-dual active-set step from the projected iterate xp on `face`.
+  std::vector<long long> activeSetStep(const MV& xp, const std::vector<long long>& face,
+                                       const std::vector<S>& sigma) const;
   // "Initial face" = levels: bisection over the level sets for the face on which neither a free
   // component leaves the box nor an active one has a multiplier of the wrong sign, each face
   // solved to the loose tolerance tol from x (updated). Returns the face found (or the last one

@@ -1,0 +1,240 @@
+// FetiSolver::solveQp: the dual QP of the inequality rows (reference paper, "FETI domain
+// decomposition method (III), (IV)"), lambda = lambda~ + mu,
+//   min 1/2 mu^T P F P mu - mu^T P (d - F lambda~)  s.t.  Q mu = 0,  l - lambda~ <= mu <= u -
+//   lambda~
+// by SMALBE (MPRGP inner solves) or by MPRGP on the penalized Hessian P F P + rho Q.
+#include <Teuchos_CommHelpers.hpp>
+
+#include <algorithm>
+#include <limits>
+
+#include "tfeti_FetiSolver.hpp"
+#include "tfeti_MprgpSolMgr_decl.hpp"
+#include "tfeti_PhaseTimer.hpp"
+#include "tfeti_ProjectedOperators.hpp"
+#include "tfeti_SmalbeSolMgr_decl.hpp"
+
+namespace tfeti {
+
+// The dual QP in mu and the operators its solvers share.
+struct FetiSolver::DualQp {
+  BoundConstrainedQp<Scalar, MultiVector, Operator> qp;
+  Teuchos::RCP<Vector> mu;                 // qp.x
+  Teuchos::RCP<const Operator> PFP, Q, H;  // H = P F P + rho Q
+  Teuchos::RCP<const Operator> prec;       // null: MPRGP unpreconditioned
+  double norm = 0.0;                       // the estimate of ||P F P||
+  double rho = 0.0;
+  bool warm = false;  // from the previous solve's multipliers
+};
+
+DualResult FetiSolver::solveQp(const std::string& method) {
+  DualResult result;
+  result.method = method;
+  PhaseTimer t(*comm_, timings_.solve, &memory_, "solve");
+  const auto map = tearing_.multiplierMap;
+  DualQp dual;
+  dual.qp.b = dualQpLinearTerm();
+  setDualQpBounds(dual.qp);
+  dual.warm = warmStartAgreed();
+  dual.mu = initialIncrement(dual.warm);
+  dual.qp.x = dual.mu;
+  dual.PFP = Teuchos::rcp(new ProjectedDualOperator(F_, *coarse_));
+  dual.Q = Teuchos::rcp(new ComplementProjector(map, *coarse_));
+  const long long before = F_->numApplies();
+  const bool smalbe = method == "SMALBE";
+  dual.norm = projectedNormEstimate(*dual.PFP, *dual.qp.b, smalbe, dual.warm);
+  normEstimate_ = dual.norm;
+  dual.rho = (smalbe ? params_.sublist("SMALBE").get<double>("Penalty")
+                     : params_.sublist("Penalty").get<double>("Penalty")) *
+             dual.norm;
+  result.rho = dual.rho;
+  setQpOperators(dual);
+  const Belos::ReturnType ret =
+      smalbe ? solveSmalbe(dual, result.qp) : solvePenalty(dual, result.qp);
+  // Every application of the Hessian is one of F (the projections are coarse solves): count
+  // them all, the norm estimate's included.
+  result.qp.hessianMultiplications = F_->numApplies() - before;
+  completeQpResult(ret, result);
+  Tpetra::deep_copy(*lambda_, *lambda0_);
+  lambda_->update(1.0, *dual.mu, 1.0);
+  return result;
+}
+
+Teuchos::RCP<Vector> FetiSolver::dualQpLinearTerm() const {
+  // b = P (d - F lambda~)
+  auto b = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  F_->apply(*lambda0_, *b);
+  b->update(1.0, *d_, -1.0);
+  coarse_->project(*b, *b);
+  return b;
+}
+
+void FetiSolver::setDualQpBounds(BoundConstrainedQp<Scalar, MultiVector, Operator>& qp) const {
+  // l_I - lambda~_I <= mu_I <= u_I - lambda~_I (l = 0, u = +inf for the non-penetration rows; a
+  // box for friction rows).
+  const auto map = tearing_.multiplierMap;
+  auto lower = Teuchos::rcp(new Vector(map));
+  auto upper = Teuchos::rcp(new Vector(map));
+  int anyUpperLocal = 0, anyUpper = 0;
+  {
+    const double inf = std::numeric_limits<double>::infinity();
+    auto lo = lower->getDataNonConst();
+    auto up = upper->getDataNonConst();
+    auto l0 = lambda0_->getData();
+    const bool tied = inequalitiesTied(params_);
+    for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) {
+      const GO row = map->getGlobalElement(static_cast<LO>(i));
+      lo[i] = -inf;
+      up[i] = inf;
+      if (!tied && tearing_.isInequality(row)) {
+        const InequalityRow& r = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
+        lo[i] = r.lowerBound - l0[i];
+        up[i] = r.upperBound - l0[i];
+        if (r.upperBound < inf) anyUpperLocal = 1;
+      }
+    }
+  }
+  // Without friction rows the QP keeps its lower bounds only (the solvers' one-sided path).
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &anyUpperLocal, &anyUpper);
+  qp.lower = lower;
+  if (anyUpper == 1) qp.upper = upper;
+}
+
+bool FetiSolver::warmStartAgreed() const {
+  const auto map = tearing_.multiplierMap;
+  bool warm = params_.get<bool>("Warm start") && !previousLambda_.is_null() &&
+              previousLambda_->getGlobalLength() == map->getGlobalNumElements() &&
+              previousLambda_->getLocalLength() == map->getNodeNumElements();
+  int warmAll = 0, warmLocal = warm ? 1 : 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, 1, &warmLocal, &warmAll);
+  return warmAll == 1;
+}
+
+Teuchos::RCP<Vector> FetiSolver::initialIncrement(bool warm) const {
+  // From 0, or (warm start) from P (lambda_previous - lambda~): in the kernel of G, projected
+  // onto the bounds by MPRGP. The rows of a nonlinear iteration keep their canonical order as
+  // long as each slave node keeps its segment; any start is valid, a close one is cheap.
+  const auto map = tearing_.multiplierMap;
+  auto mu = Teuchos::rcp(new Vector(map));
+  if (warm) {
+    auto m = mu->getDataNonConst();
+    auto p = previousLambda_->getData();
+    auto l0 = lambda0_->getData();
+    for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) m[i] = p[i] - l0[i];
+    coarse_->project(*mu, *mu);
+  }
+  return mu;
+}
+
+double FetiSolver::projectedNormEstimate(const Operator& PFP, const MultiVector& b, bool smalbe,
+                                         bool warm) {
+  // ||P F P|| sets the scale of rho (both methods) and of MPRGP's step length; estimated once.
+  const Teuchos::ParameterList& sp = params_.sublist("SMALBE");
+  const Teuchos::ParameterList& pen = params_.sublist("Penalty");
+  double norm = smalbe ? sp.get<double>("Norm of A") : 0.0;
+  // A warm start after update() keeps K, so ||P F P|| moves only with the contact rows: the
+  // previous estimate (already enlarged by 5 %) is kept instead of new power iterations.
+  if (norm <= 0.0 && warm && previousNorm_ > 0.0) norm = previousNorm_;
+  if (norm <= 0.0) {
+    const int its = smalbe ? sp.get<int>("Power iterations") : pen.get<int>("Power iterations");
+    norm = MprgpSolMgr<Scalar, MultiVector, Operator>::estimateNorm(PFP, b, its);
+  }
+  return norm;
+}
+
+void FetiSolver::setQpOperators(DualQp& dual) const {
+  // Preconditioning in face: P M P acts on range(P), where the Hessian is P F P; on range(Q) the
+  // Hessian is rho I, so the preconditioner is P M P + Q / rho (singular without the Q part).
+  if (params_.get<bool>(kPreconditioningInFace) && !M_.is_null())
+    dual.prec = Teuchos::rcp(new ProjectedPlusComplement(M_, *coarse_, 1.0 / dual.rho));
+  // P F P + rho Q sharing P x between its two terms: two coarse projections, not three.
+  dual.H = Teuchos::rcp(new ProjectedPlusComplement(F_, *coarse_, dual.rho));
+}
+
+Belos::ReturnType FetiSolver::solveSmalbe(DualQp& dual, QpCounters& counters) {
+  dual.qp.A = dual.PFP;
+  Teuchos::ParameterList sp = params_.sublist("SMALBE");
+  sp.set("Norm of A", dual.norm);
+  sp.sublist("MPRGP").set(kPreconditioningInFace, !dual.prec.is_null());
+  SmalbeSolMgr<Scalar, MultiVector, Operator> solver(dual.qp, dual.Q, sp, dual.prec);
+  solver.setOutputStream(out_);
+  solver.setAugmentedHessian(dual.H);
+  const auto nu0 = smalbeInitialMultiplier(dual.warm, *dual.Q);
+  if (!nu0.is_null()) solver.setInitialMultiplier(nu0);
+  // The gaps as the levels of SMALBE's "Initial face" = levels (frictionless contact only:
+  // the tangential rows' boxes have no level), not for warm starts, which have their face.
+  if (!dual.warm && tearing_.numInequalityRows > 0 && !inequalitiesTied(params_) &&
+      dual.qp.upper.is_null())
+    solver.setFaceLevels(contactGapLevels());
+  const Belos::ReturnType ret = solver.solve();
+  counters = solver.counters();
+  equalityMultiplier_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  Tpetra::deep_copy(*equalityMultiplier_, *solver.getMultiplier()->getVector(0));
+  return ret;
+}
+
+Teuchos::RCP<Vector> FetiSolver::smalbeInitialMultiplier(bool warm, const Operator& Q) const {
+  // SMALBE's equality multiplier of the previous solve, moved into the new range(Q).
+  // Otherwise, from the geometry: with lambda = lambda~ + mu, the KKT conditions read
+  // P F P mu - b + nu = c - B u (zero on the equality rows and the active inequality rows, the
+  // open gap elsewhere) with nu = Q (c - B u); u = 0 gives nu_0 = Q c_I. Without a load
+  // (lambda~ = 0, b = P c) mu = 0 then meets them at once, so the result is the exact zero.
+  const auto map = tearing_.multiplierMap;
+  Vector from(map);
+  if (warm && !previousEqualityMultiplier_.is_null()) {
+    auto dst = from.getDataNonConst();
+    auto src = previousEqualityMultiplier_->getData();
+    for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) dst[i] = src[i];
+  } else if (!warm && tearing_.numInequalityRows > 0 && !inequalitiesTied(params_) &&
+             params_.get<std::string>("Initial equality multiplier") == "gap") {
+    auto dst = from.getDataNonConst();
+    auto c = tearing_.rhs->getData();
+    for (std::size_t i = 0; i < map->getNodeNumElements(); ++i)
+      dst[i] = tearing_.isInequality(map->getGlobalElement(static_cast<LO>(i))) ? c[i] : 0.0;
+  } else {
+    return Teuchos::null;
+  }
+  auto nu0 = Teuchos::rcp(new Vector(map));
+  Q.apply(from, *nu0);
+  return nu0;
+}
+
+Teuchos::RCP<Vector> FetiSolver::contactGapLevels() const {
+  const auto map = tearing_.multiplierMap;
+  auto levels = Teuchos::rcp(new Vector(map));
+  auto dst = levels->getDataNonConst();
+  auto c = tearing_.rhs->getData();
+  for (std::size_t i = 0; i < map->getNodeNumElements(); ++i)
+    dst[i] = tearing_.isInequality(map->getGlobalElement(static_cast<LO>(i)))
+                 ? c[i]
+                 : std::numeric_limits<double>::quiet_NaN();
+  return levels;
+}
+
+Belos::ReturnType FetiSolver::solvePenalty(DualQp& dual, QpCounters& counters) {
+  dual.qp.A = dual.H;
+  Teuchos::ParameterList mp = params_.sublist("MPRGP");
+  // ||P F P + rho Q|| = max(||P F P||, rho): P and Q are complementary orthogonal projectors.
+  if (mp.get<double>("Norm of A") == 0.0) mp.set("Norm of A", std::max(dual.norm, dual.rho));
+  mp.set(kPreconditioningInFace, !dual.prec.is_null());
+  MprgpSolMgr<Scalar, MultiVector, Operator> solver(dual.qp, mp, dual.prec);
+  solver.setOutputStream(out_);
+  const Belos::ReturnType ret = solver.solve();
+  counters = solver.counters();
+  Vector qmu(tearing_.multiplierMap);
+  dual.Q->apply(*dual.mu, qmu);
+  counters.equalityResidualNorm = qmu.norm2();
+  return ret;
+}
+
+void FetiSolver::completeQpResult(Belos::ReturnType ret, DualResult& result) const {
+  result.converged = ret == Belos::Converged && result.qp.converged;
+  result.iterations =
+      static_cast<int>(result.qp.cgSteps + result.qp.expansionSteps + result.qp.proportioningSteps);
+  result.projectedGradientNorm = result.qp.projectedGradientNorm;
+  result.relativeResidual =
+      result.qp.rhsNorm > 0.0 ? result.qp.projectedGradientNorm / result.qp.rhsNorm : 0.0;
+  result.history = result.qp.history;
+}
+
+}  // namespace tfeti

@@ -1,0 +1,252 @@
+// FetiSolver's set-up: the subdomains and their factorizations, the tearing, the coarse space,
+// the preconditioner and the dual right-hand side, built by the constructor and rebuilt by
+// update() and updateStiffness().
+#include <Teuchos_CommHelpers.hpp>
+
+#include <algorithm>
+
+#include "tfeti_FetiSolver.hpp"
+#include "tfeti_InputChecks.hpp"
+#include "tfeti_PhaseTimer.hpp"
+#include "tfeti_TpetraInterface.hpp"
+
+namespace tfeti {
+
+namespace {
+TearingOptions tearingOptions(const Teuchos::ParameterList& params) {
+  TearingOptions opts;
+  opts.formulation = parseFormulation(params.get<std::string>("Formulation"));
+  const std::string gluing = params.get<std::string>("Gluing");
+  opts.gluing = gluing == "redundant" ? Gluing::Redundant
+                : gluing == "none"    ? Gluing::None
+                                      : Gluing::NonRedundant;
+  opts.gluingAtDirichletNodes = params.get<bool>("Gluing at Dirichlet nodes");
+  opts.inequalityScaling = params.get<std::string>("Inequality row scaling") == "separate"
+                               ? TearingOptions::InequalityScaling::Separate
+                               : TearingOptions::InequalityScaling::Joined;
+  return opts;
+}
+
+// What the tearing needs of each local subdomain: its size and its boundary nodes.
+std::vector<TearingInput> tearingInput(const std::vector<SubdomainData>& data) {
+  std::vector<TearingInput> input;
+  for (const auto& sd : data) {
+    TearingInput in;
+    in.id = sd.mesh.id;
+    in.numDofs = sd.mesh.numNodes() * sd.dofsPerNode;
+    in.boundaryNodes = sd.mesh.boundaryNodes();
+    const std::vector<int> dir = sd.mesh.dirichletMasks(sd.dofsPerNode);
+    for (int n : in.boundaryNodes) {
+      in.boundaryGlobal.push_back(sd.mesh.globalNode[n]);
+      in.boundaryDirichlet.push_back(dir[n]);
+    }
+    input.push_back(std::move(in));
+  }
+  return input;
+}
+}  // namespace
+
+FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
+                       std::vector<SubdomainData> local, const Teuchos::ParameterList& params,
+                       const std::vector<InequalityRow>& inequalities,
+                       const std::vector<EqualityRow>& equalities)
+    : comm_(comm),
+      params_(params),
+      numSubdomains_(numSubdomains),
+      data_(std::move(local)),
+      equalities_(equalities) {
+  rejectMisplacedParameters(params_);
+  applySolverAliases(params_);
+  params_.validateParametersAndSetDefaults(*validParameters());
+  // Subdomain matrices given as Tpetra::CrsMatrix become CSR arrays (checked with the rest).
+  collectively(*comm_, [&] {
+    for (auto& sd : data_) {
+      if (sd.tpetraK.is_null()) continue;
+      const std::string what = "subdomain " + std::to_string(sd.mesh.id) + ": tpetraK";
+      if (sd.K.rows != 0 || !sd.K.rowPtr.empty())
+        throw std::invalid_argument(what + " and K are both given; give one");
+      sd.K = csrFromTpetra(*sd.tpetraK, what);
+      sd.tpetraK = Teuchos::null;
+    }
+  });
+  // Every size the solver indexes by, on every rank, before anything is built from it.
+  checkSubdomainInput(*comm_, numSubdomains_, data_);
+  // A rank may hold no subdomain; every rank must still agree on the dofs per node.
+  int localDpn = data_.empty() ? 0 : data_.front().dofsPerNode;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &localDpn, &dofsPerNode_);
+  std::vector<std::vector<double>> coords;
+  for (const auto& sd : data_) coords.push_back(sd.mesh.coords);
+  buildSubdomains(coords);
+  buildConstraints(inequalities, true);
+  buildDualRhs();
+}
+
+void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords) {
+  const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
+  const std::string solver = params_.get<std::string>("Local solver");
+  PhaseTimer t(*comm_, timings_.factorization, &memory_, "factorization");
+  subdomains_.clear();
+  // An error in one subdomain is reported on every rank (no rank left waiting in a collective).
+  collectively(*comm_, [&] {
+    for (std::size_t i = 0; i < data_.size(); ++i) {
+      auto& sd = data_[i];
+      KernelOptions kernel;
+      kernel.dim = sd.mesh.dim;
+      kernel.elements = sd.mesh.connectivity();
+      kernel.kernel = sd.kernel;
+      kernel.residualTolerance = params_.get<double>("Kernel tolerance");
+      const std::vector<int> dirichletDofs = sd.mesh.dirichletDofs(sd.dofsPerNode);
+      // K and f move into the subdomain (data_ keeps the mesh, the kernel and the sizes).
+      subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, coords[i],
+                                                        kernel, std::move(sd.K), std::move(sd.f),
+                                                        dirichletDofs, formulation, solver));
+    }
+  });
+}
+
+void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities,
+                                  bool newSubdomains) {
+  const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
+  const PreconditionerType precType =
+      parsePreconditioner(params_.get<std::string>("Preconditioner"));
+  const std::string solver = params_.get<std::string>("Local solver");
+  {
+    PhaseTimer t(*comm_, timings_.tearing, &memory_, "tearing");
+    tearing_ = buildTearing(comm_, numSubdomains_, tearingInput(data_), dofsPerNode_,
+                            tearingOptions(params_), inequalities, equalities_);
+    if (formulation == Formulation::FETI) requireNoRowOnEliminatedDofs();
+  }
+  {
+    PhaseTimer t(*comm_, timings_.coarse, &memory_, "coarse");
+    coarse_ = std::make_unique<CoarseSpace>(tearing_, subdomains_,
+                                            params_.get<std::string>("Coarse solver"));
+  }
+  {
+    PhaseTimer t(*comm_, timings_.preconditioner, &memory_, "preconditioner");
+    collectively(*comm_, [&] {
+      for (std::size_t i = 0; i < subdomains_.size(); ++i) {
+        std::vector<int> dofs;
+        for (const auto& e : tearing_.subdomainRows[i]) dofs.push_back(e.dof);
+        std::sort(dofs.begin(), dofs.end());
+        dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+        // Contact rows that move between iterations of a nonlinear solve mostly keep the same
+        // dofs: the interior factorization is redone only when they change.
+        if (newSubdomains || dofs != subdomains_[i]->interfaceDofs())
+          subdomains_[i]->setupPreconditioner(dofs, precType, solver);
+        // Freed one by one, so that K and the preconditioner's factors never coexist in full.
+        if (!params_.get<bool>("Keep subdomain matrices")) subdomains_[i]->releaseStiffness();
+      }
+    });
+    if (precType != PreconditionerType::None)
+      M_ = Teuchos::rcp(new DualPreconditioner(tearing_, subdomains_));
+  }
+  Kplus_ = Teuchos::rcp(new PseudoInverseOperator(tearing_.primalMap, subdomains_));
+  F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
+}
+
+void FetiSolver::buildDualRhs() {
+  PhaseTimer t(*comm_, timings_.dualRhs, &memory_, "dual_rhs");
+  f_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
+  {
+    auto f = f_->getDataNonConst(0);
+    std::size_t offset = 0;
+    for (const auto& s : subdomains_) {
+      for (int i = 0; i < s->numDofs(); ++i) f[offset + i] = s->load()[i];
+      offset += s->numDofs();
+    }
+  }
+  MultiVector Kf(tearing_.primalMap, 1);
+  Kplus_->apply(*f_, Kf);
+  d_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  tearing_.B->apply(Kf, *d_);
+  d_->update(-1.0, *tearing_.rhs, 1.0);  // d = B K+ f - c
+  lambda0_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  if (coarse_->dimension() > 0) {
+    Vector e(coarse_->coarseMap());
+    coarse_->applyKernelTranspose(*f_, e);
+    coarse_->particularSolution(e, *lambda0_);
+  }
+}
+
+void FetiSolver::update(const std::vector<std::vector<double>>& loads,
+                        const std::vector<InequalityRow>& inequalities,
+                        const std::vector<EqualityRow>& equalities) {
+  equalities_ = equalities;
+  update(loads, inequalities);
+}
+
+void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
+                                 const std::vector<std::vector<double>>& coords,
+                                 const std::vector<std::vector<double>>& loads,
+                                 const std::vector<InequalityRow>& inequalities,
+                                 const std::vector<EqualityRow>& equalities) {
+  equalities_ = equalities;
+  updateStiffness(std::move(K), coords, loads, inequalities);
+}
+
+void FetiSolver::update(const std::vector<std::vector<double>>& loads,
+                        const std::vector<InequalityRow>& inequalities) {
+  collectively(*comm_, [&] {
+    if (loads.size() != subdomains_.size())
+      throw std::invalid_argument("FetiSolver::update: " + std::to_string(loads.size()) +
+                                  " load vectors for " + std::to_string(subdomains_.size()) +
+                                  " local subdomains");
+    for (std::size_t i = 0; i < subdomains_.size(); ++i) subdomains_[i]->setLoad(loads[i]);
+  });
+  previousLambda_ = lambda_;
+  previousEqualityMultiplier_ = equalityMultiplier_;
+  previousNorm_ = normEstimate_;
+  buildConstraints(inequalities, false);
+  buildDualRhs();
+  u_vec_ = Teuchos::null;
+  lambda_ = Teuchos::null;
+  u_.clear();
+}
+
+void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
+                                 const std::vector<std::vector<double>>& coords,
+                                 const std::vector<std::vector<double>>& loads,
+                                 const std::vector<InequalityRow>& inequalities) {
+  collectively(*comm_, [&] {
+    if (K.size() != data_.size() || coords.size() != data_.size() || loads.size() != data_.size())
+      throw std::invalid_argument("FetiSolver::updateStiffness: expected " +
+                                  std::to_string(data_.size()) +
+                                  " matrices, coordinate sets and loads");
+    for (std::size_t i = 0; i < data_.size(); ++i) {
+      const std::string error = subdomainDataError(data_[i].mesh, coords[i], data_[i].dofsPerNode,
+                                                   K[i], loads[i], {}, numSubdomains_);
+      if (!error.empty()) throw std::invalid_argument("FetiSolver::updateStiffness: " + error);
+    }
+  });
+  for (std::size_t i = 0; i < data_.size(); ++i) {
+    data_[i].K = std::move(K[i]);
+    data_[i].f = loads[i];
+  }
+  previousLambda_ = lambda_;
+  previousEqualityMultiplier_ = equalityMultiplier_;
+  previousNorm_ = 0.0;  // a new K: estimate ||P F P|| again
+  buildSubdomains(coords);
+  buildConstraints(inequalities, true);
+  buildDualRhs();
+  u_vec_ = Teuchos::null;
+  lambda_ = Teuchos::null;
+  u_.clear();
+}
+
+void FetiSolver::requireNoRowOnEliminatedDofs() const {
+  std::string error;
+  for (std::size_t i = 0; i < data_.size() && error.empty(); ++i) {
+    const std::vector<int> eliminated = data_[i].mesh.dirichletDofs(data_[i].dofsPerNode);
+    for (const auto& e : tearing_.subdomainRows[i])
+      if (tearing_.isUserEquality(e.row) &&
+          std::binary_search(eliminated.begin(), eliminated.end(), e.dof)) {
+        error = "FetiSolver: an equality row of the caller touches dof " + std::to_string(e.dof) +
+                " of subdomain " + std::to_string(data_[i].mesh.id) +
+                ", a Dirichlet dof that the FETI formulation eliminates (held at zero); use "
+                "Formulation = TFETI or leave the node out of the mesh's Dirichlet nodes";
+        break;
+      }
+  }
+  throwIfAnyRankFailed(*comm_, error);
+}
+}  // namespace tfeti

@@ -1,0 +1,35 @@
+// FetiSolver::solve(): the dual problem by the chosen solver, then the primal solution. The
+// equality-only case (PCPG) is here; the QP of the inequality rows is in tfeti_FetiSolverQp.cpp,
+// the primal recovery in tfeti_PrimalRecovery.cpp.
+#include "tfeti_FetiSolver.hpp"
+#include "tfeti_PhaseTimer.hpp"
+
+namespace tfeti {
+
+DualResult FetiSolver::solve() {
+  const std::string method = dualSolverFor(params_, tearing_.numInequalityRows);
+  lambda_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  const DualResult result = method == "PCPG" ? solvePcpg() : solveQp(method);
+  recoverPrimal();
+  return result;
+}
+
+DualResult FetiSolver::solvePcpg() {
+  DualResult result;
+  Vector g(tearing_.multiplierMap);
+  PhaseTimer t(*comm_, timings_.solve, &memory_, "solve");
+  Tpetra::deep_copy(*lambda_, *lambda0_);
+  Pcpg pcpg(F_, *coarse_, M_, params_.sublist("PCPG"));
+  const long long before = F_->numApplies();
+  pcpg.setOutputStream(out_);
+  static_cast<PcpgResult&>(result) = pcpg.solve(*d_, *lambda_, g);
+  result.method = "PCPG";
+  // The same counters as the QP solvers, so that a tied and a contact solve compare directly.
+  result.qp.hessianMultiplications = F_->numApplies() - before;
+  result.qp.cgSteps = result.iterations;
+  result.qp.converged = result.converged;
+  result.qp.projectedGradientNorm = result.projectedGradientNorm;
+  return result;
+}
+
+}  // namespace tfeti

@@ -1,0 +1,336 @@
+#pragma once
+// SmalbeSolMgr's face phase ("Face solve" = pcpg): PCPG on a face of the box, SMALBE's final
+// test on its result and the primal-dual active-set steps between faces; and "Initial face" =
+// levels, the bisection over the level sets for the first face. Included by
+// tfeti_SmalbeSolMgr_def.hpp.
+#include <algorithm>
+#include <iomanip>
+#include <limits>
+#include <vector>
+
+#include "tfeti_BoundTraits.hpp"
+#include "tfeti_FaceGramian.hpp"
+#include "tfeti_FacePcpg.hpp"
+#include "tfeti_FaceProjector.hpp"
+#include "tfeti_SmalbeSolMgr_decl.hpp"
+#include "tfeti_TimedOperator.hpp"
+
+namespace tfeti {
+
+// What the faces of one face phase share: the operators, the work vectors and the tolerances.
+template <class S, class MV, class OP>
+struct SmalbeSolMgr<S, MV, OP>::FaceRun {
+  bool root = false;
+  Teuchos::RCP<const OP> A, M;  // the timed Hessian; the preconditioner (null: none)
+  Teuchos::RCP<MV> x, g;        // the face iterate and its gradient A x - b
+  Teuchos::RCP<MV> t, mu, phi, chopped;
+  magnitude_type gTol = 0, eTol = 0, scale = 0;
+  S tightTol = 0, looseTol = 0;
+  int maxIterations = 0;
+  // Faces whose loose verdict already moved the active set: a verdict that leads back to one of
+  // them (rows near a bound judged by a loose solution) is settled by the tight solve instead.
+  std::vector<std::vector<long long>> visited;
+};
+
+// SMALBE's final test on a face solve's result.
+template <class S, class MV, class OP>
+struct SmalbeSolMgr<S, MV, OP>::FaceOutcome {
+  magnitude_type gp = 0, qx = 0;  // ||g^P|| of the Lagrangian's gradient, ||Q x||
+  std::vector<S> sigma;           // the active rows' multipliers
+};
+
+template <class S, class MV, class OP>
+bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude_type gTol,
+                                        magnitude_type eTol, magnitude_type scale,
+                                        magnitude_type& gp, magnitude_type& qxNorm,
+                                        const MV* start) {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  FaceRun run = startFaceRun(gTol, eTol, scale, start);
+  while (face_.solves < params_.get<int>("Maximum face solves")) {
+    ++face_.solves;
+    FaceProjector<S, MV, OP> face(Q_, active, *run.x, gramian_.get());
+    qApplies_ += face.projectorApplications();
+    if (!face.valid()) {
+      if (out_.wants(Belos::IterationDetails) && run.root)
+        out_.write(
+            "SMALBE face: the active rows are dependent on the equality rows; no face "
+            "solve\n");
+      break;
+    }
+    const std::vector<S> r = enterFace(face, active, run);
+    // First to a loose tolerance (kFaceVerdictFactor): enough to tell whether the face holds (no
+    // free row leaves the box, no active row pulls). Only a face that holds is solved to the
+    // tight tolerance, from there; the active-set corrections before it cost loose solves only.
+    int steps = 0;
+    if (run.looseTol > run.tightTol && looseVerdictMoves(face, r, run, steps, active)) continue;
+    // "Face maximum iterations" limits the face's loose and tight steps together.
+    const FacePcpgResult<S> res = faceCg(face, run.tightTol, run.maxIterations - steps, run);
+    steps += res.iterations;
+    const FaceOutcome out = finalTestOnFace(face, active, r, run);
+    const bool passed = out.gp <= gTol && out.qx <= eTol;
+    std::vector<long long> next;
+    if (!passed) next = activeSetStep(*run.x, active, out.sigma);
+    reportFaceSolve(run, active.size(), steps, res.converged, out, passed, next.size());
+    if (passed) {
+      MVT::Assign(*run.x, *qp_.x);
+      MVT::Assign(*run.mu, *mu_);
+      gp = out.gp;
+      qxNorm = out.qx;
+      counters_.history.push_back(gp / scale);
+      face_.accepted = true;
+      return true;
+    }
+    if (next == active) break;  // the same face again would give the same result
+    run.visited.push_back(active);
+    ++face_.activeSetChanges;
+    active = std::move(next);
+  }
+  return false;  // SMALBE goes on from its own iterate (qp_.x and mu_ untouched)
+}
+
+template <class S, class MV, class OP>
+typename SmalbeSolMgr<S, MV, OP>::FaceRun SmalbeSolMgr<S, MV, OP>::startFaceRun(
+    magnitude_type gTol, magnitude_type eTol, magnitude_type scale, const MV* start) {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using BT = BoundTraits<S, MV>;
+  FaceRun run;
+  run.root = BT::commRank(*qp_.x) == 0;
+  run.A = TimedOperator<S, MV, OP>::wrap(qp_.A, solverTimer("tfeti: Hessian apply"));
+  run.M = params_.sublist("MPRGP").get<bool>("Preconditioning in face") ? P_ : Teuchos::null;
+  run.x = MVT::CloneCopy(start != nullptr ? *start : *qp_.x);
+  run.g = MVT::Clone(*qp_.x, 1), run.t = MVT::Clone(*qp_.x, 1), run.mu = MVT::Clone(*qp_.x, 1);
+  run.phi = MVT::Clone(*qp_.x, 1), run.chopped = MVT::Clone(*qp_.x, 1);
+  run.gTol = gTol;
+  run.eTol = eTol;
+  run.scale = scale;
+  run.tightTol = S(params_.get<double>("Face relative tolerance")) * gTol;
+  run.looseTol =
+      std::max(run.tightTol, std::min(S(kFaceVerdictFactor) * gTol, S(kLevelTolerance) * scale));
+  run.maxIterations = params_.get<int>("Face maximum iterations");
+  return run;
+}
+
+template <class S, class MV, class OP>
+std::vector<S> SmalbeSolMgr<S, MV, OP>::enterFace(const FaceProjector<S, MV, OP>& face,
+                                                  const std::vector<long long>& active,
+                                                  FaceRun& run) {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using OPT = Belos::OperatorTraits<S, MV, OP>;
+  using BT = BoundTraits<S, MV>;
+  const MV* upper = qp_.upper.get();
+  // The active rows' bound values: the upper bound where x reached it, else the lower one
+  // (rows that an active-set step added from outside the box go to the bound they crossed).
+  const std::vector<S> xa = BT::gatherAt(*run.x, active), la = BT::gatherAt(*qp_.lower, active);
+  std::vector<S> ua(active.size(), std::numeric_limits<S>::infinity());
+  if (upper != nullptr) ua = BT::gatherAt(*upper, active);
+  std::vector<S> r(active.size());
+  for (std::size_t i = 0; i < active.size(); ++i) r[i] = xa[i] >= ua[i] ? ua[i] : la[i];
+  face.projectAffine(r, *run.x);
+  OPT::Apply(*run.A, *run.x, *run.g);
+  MVT::MvAddMv(S(1), *run.g, S(-1), *qp_.b, *run.g);
+  ++counters_.hessianMultiplications;
+  return r;
+}
+
+template <class S, class MV, class OP>
+FacePcpgResult<S> SmalbeSolMgr<S, MV, OP>::faceCg(const FaceProjector<S, MV, OP>& face, S tol,
+                                                  int maxIterations, FaceRun& run) {
+  FacePcpg<S, MV, OP> pcpg(run.A, run.M, face, tol, maxIterations);
+  const FacePcpgResult<S> res = pcpg.solve(*run.x, *run.g);
+  counters_.hessianMultiplications += res.iterations;
+  face_.iterations += res.iterations;
+  return res;
+}
+
+template <class S, class MV, class OP>
+bool SmalbeSolMgr<S, MV, OP>::looseVerdictMoves(const FaceProjector<S, MV, OP>& face,
+                                                const std::vector<S>& r, FaceRun& run, int& steps,
+                                                std::vector<long long>& active) {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using BT = BoundTraits<S, MV>;
+  const FacePcpgResult<S> lr = faceCg(face, run.looseTol, run.maxIterations, run);
+  steps += lr.iterations;
+  auto xp = MVT::CloneCopy(*run.x);
+  BT::setAt(active, r, *xp);
+  BT::project(*xp, *qp_.lower, qp_.upper.get());
+  std::vector<long long> next = activeSetStep(*xp, active, face.activeMultipliers(*run.g));
+  const bool seen = std::find(run.visited.begin(), run.visited.end(), next) != run.visited.end();
+  // An unconverged loose solve gives no verdict; the tight one judges the face.
+  if (!lr.converged || next == active || seen) return false;
+  if (out_.wants(Belos::IterationDetails) && run.root) {
+    auto line = SolverOutput::line();
+    line << "SMALBE face " << face_.solves << ": " << active.size() << " active rows, "
+         << lr.iterations << " CG steps to the loose tolerance, next face " << next.size()
+         << " active rows\n";
+    out_.write(line);
+  }
+  run.visited.push_back(active);
+  ++face_.activeSetChanges;
+  active = std::move(next);
+  MVT::Assign(*xp, *run.x);
+  return true;
+}
+
+template <class S, class MV, class OP>
+typename SmalbeSolMgr<S, MV, OP>::FaceOutcome SmalbeSolMgr<S, MV, OP>::finalTestOnFace(
+    const FaceProjector<S, MV, OP>& face, const std::vector<long long>& active,
+    const std::vector<S>& r, FaceRun& run) {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using OPT = Belos::OperatorTraits<S, MV, OP>;
+  using BT = BoundTraits<S, MV>;
+  const MV* upper = qp_.upper.get();
+  MV& x = *run.x;
+  MV& g = *run.g;
+  MV& t = *run.t;
+  MV& mu = *run.mu;
+  FaceOutcome out;
+  std::vector<magnitude_type> n(1);
+  // The active components exactly at their bounds (P_F leaves rounding errors there, which
+  // would make them free, with their multiplier counted as a free gradient).
+  BT::setAt(active, r, x);
+  // The result as SMALBE's: feasible (projected onto the box), the gradient recomputed, the
+  // equality multiplier mu = -Q (g - E_A^T sigma) that leaves g + mu = P_F g + E_A^T sigma
+  // (zero on the free rows up to the tolerance, sigma on the active ones), then the final test.
+  BT::project(x, *qp_.lower, upper);
+  OPT::Apply(*run.A, x, g);
+  MVT::MvAddMv(S(1), g, S(-1), *qp_.b, g);
+  ++counters_.hessianMultiplications;
+  OPT::Apply(*Q_, x, t);
+  ++qApplies_;
+  MVT::MvNorm(t, n);
+  out.qx = n[0];
+  out.sigma = face.activeMultipliers(g);
+  MVT::Assign(g, t);
+  BT::addAt(active, out.sigma, S(-1), t);
+  OPT::Apply(*Q_, t, mu);
+  ++qApplies_;
+  MVT::MvScale(mu, S(-1));
+  MVT::MvAddMv(S(1), g, S(1), mu, t);  // the Lagrangian's gradient
+  BT::freeGradient(x, *qp_.lower, upper, t, *run.phi);
+  BT::choppedGradient(x, *qp_.lower, upper, t, *run.chopped);
+  MVT::MvAddMv(S(1), *run.phi, S(1), *run.chopped, *run.phi);
+  MVT::MvNorm(*run.phi, n);
+  out.gp = n[0];
+  return out;
+}
+
+template <class S, class MV, class OP>
+void SmalbeSolMgr<S, MV, OP>::reportFaceSolve(const FaceRun& run, std::size_t activeRows, int steps,
+                                              bool cgConverged, const FaceOutcome& out, bool passed,
+                                              std::size_t nextRows) {
+  if (!out_.wants(Belos::IterationDetails) || !run.root) return;
+  auto line = SolverOutput::line();
+  line << "SMALBE face " << face_.solves << ": " << activeRows << " active rows, " << steps
+       << " CG steps" << (cgConverged ? "" : " (not converged)") << std::scientific
+       << std::setprecision(3) << ", ||g^P||/||b|| = " << out.gp / run.scale
+       << "  ||A|| ||Qx||/||b|| = " << normA_ * out.qx / run.scale
+       << (passed ? ": accepted" : ": rejected");
+  if (!passed) line << ", next face " << nextRows << " active rows";
+  line << "\n";
+  out_.write(line);
+}
+
+// The primal-dual active-set step: the rows at a bound of the projected iterate xp, less the
+// face's own rows whose multiplier sigma has the wrong sign (a lower bound is held by sigma
+// >= 0, an upper one by sigma <= 0). A row that has just left the box joins whatever its
+// gradient at the projected point (which is not a multiplier: judging it would undo most of
+// the step, a few rows joining per face).
+template <class S, class MV, class OP>
+std::vector<long long> SmalbeSolMgr<S, MV, OP>::activeSetStep(const MV& xp,
+                                                              const std::vector<long long>& face,
+                                                              const std::vector<S>& sigma) const {
+  using BT = BoundTraits<S, MV>;
+  const MV* upper = qp_.upper.get();
+  const std::vector<long long> now = BT::activeIndices(xp, *qp_.lower, upper);
+  const std::vector<S> xn = BT::gatherAt(xp, now), ln = BT::gatherAt(*qp_.lower, now);
+  std::vector<S> un(now.size(), std::numeric_limits<S>::infinity());
+  if (upper != nullptr) un = BT::gatherAt(*upper, now);
+  std::vector<long long> next;
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    const auto it = std::lower_bound(face.begin(), face.end(), now[i]);
+    bool release = false;
+    if (it != face.end() && *it == now[i] && ln[i] < un[i]) {
+      const S si = sigma[static_cast<std::size_t>(it - face.begin())];
+      release = xn[i] <= ln[i] ? si < S(0) : si > S(0);
+    }
+    if (!release) next.push_back(now[i]);
+  }
+  return next;
+}
+
+template <class S, class MV, class OP>
+typename SmalbeSolMgr<S, MV, OP>::FaceVerdict SmalbeSolMgr<S, MV, OP>::trialFace(
+    const std::vector<long long>& active, magnitude_type tol, MV& x) {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using OPT = Belos::OperatorTraits<S, MV, OP>;
+  using BT = BoundTraits<S, MV>;
+  FaceVerdict v;
+  ++face_.levelSolves;
+  FaceProjector<S, MV, OP> face(Q_, active, x, gramian_.get());
+  qApplies_ += face.projectorApplications();
+  if (!face.valid()) return v;
+  v.valid = true;
+  face.projectAffine(BT::gatherAt(*qp_.lower, active), x);
+  const auto A = TimedOperator<S, MV, OP>::wrap(qp_.A, solverTimer("tfeti: Hessian apply"));
+  auto g = MVT::Clone(x, 1);
+  OPT::Apply(*A, x, *g);
+  MVT::MvAddMv(S(1), *g, S(-1), *qp_.b, *g);
+  ++counters_.hessianMultiplications;
+  const Teuchos::RCP<const OP> M =
+      params_.sublist("MPRGP").get<bool>("Preconditioning in face") ? P_ : Teuchos::null;
+  FacePcpg<S, MV, OP> pcpg(A, M, face, S(tol), params_.get<int>("Face maximum iterations"));
+  const FacePcpgResult<S> res = pcpg.solve(x, *g);
+  counters_.hessianMultiplications += res.iterations;
+  face_.iterations += res.iterations;
+  BT::setAt(active, BT::gatherAt(*qp_.lower, active), x);
+  v.leftBox = BT::countOutside(x, *qp_.lower, qp_.upper.get());
+  // A lower bound is held by a multiplier pushing x up: sigma >= 0 (g = sigma on the row).
+  for (const S s : face.activeMultipliers(*g))
+    if (s < S(0)) ++v.wrongSign;
+  if (out_.wants(Belos::IterationDetails) && BT::commRank(x) == 0) {
+    auto line = SolverOutput::line();
+    line << "SMALBE level face: " << active.size() << " active rows, " << res.iterations
+         << " CG steps, " << v.leftBox << " free rows outside the box, " << v.wrongSign
+         << " active rows with a multiplier of the wrong sign\n";
+    out_.write(line);
+  }
+  return v;
+}
+
+template <class S, class MV, class OP>
+std::vector<long long> SmalbeSolMgr<S, MV, OP>::levelFace(magnitude_type tol, MV& x, bool& found) {
+  using BT = BoundTraits<S, MV>;
+  // The candidates and their levels, the same on every rank and rank count.
+  const std::vector<long long> rows = BT::finiteIndices(*levels_);
+  const std::vector<S> level = BT::gatherAt(*levels_, rows);
+  std::vector<S> tau = level;
+  std::sort(tau.begin(), tau.end());
+  tau.erase(std::unique(tau.begin(), tau.end()), tau.end());
+  const auto faceAbove = [&](std::size_t k) {
+    std::vector<long long> a;
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      if (level[i] > tau[k]) a.push_back(rows[i]);
+    return a;  // sorted: rows is
+  };
+  // One level (the two membranes: every gap zero) says nothing about the face.
+  found = tau.size() > 1;
+  if (!found) return {};
+  // Level k holds the rows at or below tau[k] free: the larger k, the more free rows. Too many
+  // free rows leave the box (tension on a closed contact row), too few leave active rows with
+  // a multiplier of the wrong sign (penetration): bisect between the two.
+  std::size_t lo = 0, hi = tau.size() - 1;
+  while (lo < hi) {
+    const std::size_t k = lo + (hi - lo) / 2;
+    const FaceVerdict v = trialFace(faceAbove(k), tol, x);
+    if (!v.valid || (v.wrongSign > 0 && v.leftBox == 0)) {
+      lo = k + 1;  // too few free rows (or not enough to carry Q's rows)
+    } else if (v.leftBox > 0 && v.wrongSign == 0) {
+      hi = k;  // too many
+    } else {
+      return faceAbove(k);  // neither (the face) or both (the primal-dual steps go on from it)
+    }
+  }
+  return faceAbove(lo);
+}
+
+}  // namespace tfeti
