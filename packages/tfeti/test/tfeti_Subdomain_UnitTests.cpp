@@ -41,8 +41,9 @@ tfeti::SubdomainMesh distortedLShape() {
   for (int e = 0; e < block.numElements(); ++e) {
     const int i = e % ex, j = e / ex;
     if (i >= 3 && j >= 2) continue;
+    std::vector<int> quad;
     for (int a = 0; a < 4; ++a) {
-      const int n = block.quads[4 * e + a];
+      const int n = block.elements.nodes[4 * e + a];
       auto it = renumber.find(n);
       if (it == renumber.end()) {
         it = renumber.emplace(n, m.numNodes()).first;
@@ -51,8 +52,9 @@ tfeti::SubdomainMesh distortedLShape() {
         m.coords.push_back(y + 0.05 * std::cos(2.5 * x) + 0.03 * x * x);
         m.globalNode.push_back(block.globalNode[n]);
       }
-      m.quads.push_back(it->second);
+      quad.push_back(it->second);
     }
+    m.elements.add(quad);
   }
   return m;
 }
