@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tfeti_DenseUtils.hpp"
@@ -56,6 +57,16 @@ tfeti::SubdomainMesh distortedLShape() {
     }
     m.elements.add(quad);
   }
+  // The nodes that may be shared: those on the L's perimeter (an edge of one element only).
+  std::map<std::pair<int, int>, int> edges;
+  for (int e = 0; e < m.numElements(); ++e)
+    for (int a = 0; a < 4; ++a) {
+      const int p = m.elements.nodes[4 * e + a], q = m.elements.nodes[4 * e + (a + 1) % 4];
+      ++edges[{std::min(p, q), std::max(p, q)}];
+    }
+  for (const auto& [edge, count] : edges)
+    if (count == 1)
+      m.interfaceCandidates.insert(m.interfaceCandidates.end(), {edge.first, edge.second});
   return m;
 }
 
