@@ -56,7 +56,7 @@ tfeti::SubdomainData makeSubdomain(int s) {
   for (int j = 0; j < kEy; ++j)
     for (int a = 0; a < kEx; ++a) {
       const int q[4] = {localId(a, j), localId(a + 1, j), localId(a + 1, j + 1), localId(a, j + 1)};
-      d.mesh.quads.insert(d.mesh.quads.end(), q, q + 4);
+      d.mesh.elements.add({q[0], q[1], q[2], q[3]});
       for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c) {
           const tfeti::GO col = q[c];

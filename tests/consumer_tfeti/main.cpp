@@ -12,7 +12,8 @@
 #include "tfeti_StructuredMesh.hpp"
 
 namespace {
-// K and f of -Laplace u = 1 on the quads of a mesh of squares of side h.
+// K and f of -Laplace u = 1 on the elements (squares of side h, 4 nodes counter-clockwise) of a
+// mesh.
 void assemble(const tfeti::SubdomainMesh& m, double h, tfeti::CsrMatrix& K,
               std::vector<double>& f) {
   static const double ke[4][4] = {
@@ -20,15 +21,17 @@ void assemble(const tfeti::SubdomainMesh& m, double h, tfeti::CsrMatrix& K,
   std::vector<int> ri, ci;
   std::vector<double> v;
   f.assign(m.numNodes(), 0.0);
-  for (int e = 0; e < m.numElements(); ++e)
+  for (int e = 0; e < m.numElements(); ++e) {
+    const int* q = &m.elements.nodes[m.elements.offsets[e]];
     for (int a = 0; a < 4; ++a) {
-      f[m.quads[4 * e + a]] += h * h / 4;
+      f[q[a]] += h * h / 4;
       for (int b = 0; b < 4; ++b) {
-        ri.push_back(m.quads[4 * e + a]);
-        ci.push_back(m.quads[4 * e + b]);
+        ri.push_back(q[a]);
+        ci.push_back(q[b]);
         v.push_back(ke[a][b] / 6);
       }
     }
+  }
   K = tfeti::csrFromTriplets(m.numNodes(), m.numNodes(), ri, ci, v);
 }
 }  // namespace

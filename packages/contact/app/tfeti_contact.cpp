@@ -6,6 +6,8 @@
 // still written), 3 a nonlinear load step did not converge. --check is a dry run: the same
 // set-up and checks up to the first solve (meshing, partitioning, contact search), a report of
 // the problem and its estimated memory, nothing solved or written; exit code 0 or 1.
+// --help (-h) prints this program's options; --kokkos-help the options Kokkos reads (threads,
+// devices), which Kokkos would otherwise print first whenever it sees --help.
 #include <Teuchos_CommandLineProcessor.hpp>
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
@@ -15,13 +17,31 @@
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "contact_Driver.hpp"
 #include "contact_DriverCommon.hpp"
 #include "tfeti_StrictParameters.hpp"
 
 int main(int argc, char** argv) {
-  Tpetra::ScopeGuard tpetra(&argc, &argv);
+  // --help and -h are ours: Kokkos (initialized by the ScopeGuard) would print its own options
+  // on --help before ours. --kokkos-help goes to Kokkos, which prints its options and removes it.
+  bool help = false;
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i > 0 && (a == "--help" || a == "-h"))
+      help = true;
+    else
+      args.push_back(argv[i]);
+  }
+  bool kokkosHelp = false;
+  for (char* a : args) kokkosHelp = kokkosHelp || std::string(a) == "--kokkos-help";
+  int nargs = static_cast<int>(args.size());
+  args.push_back(nullptr);
+  char** argvLeft = args.data();
+  Tpetra::ScopeGuard tpetra(&nargs, &argvLeft);
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
 
@@ -29,7 +49,10 @@ int main(int argc, char** argv) {
   std::string echo;
   bool printParameters = false, check = false;
   Teuchos::CommandLineProcessor clp(false, true);
-  clp.setDocString("Total FETI solver for the reference paper's problems.");
+  clp.setDocString(
+      "Total FETI solver for the reference paper's problems and elastic, nonlinear and "
+      "frictional contact: reads the ParameterList --input, writes summary.json and VTU files "
+      "into --output. Kokkos' own options (threads, devices): --kokkos-help.");
   clp.setOption("input", &input, "ParameterList XML file");
   clp.setOption("output", &output, "output directory (created if missing)");
   clp.setOption("print-parameters", "no-print-parameters", &printParameters,
@@ -41,7 +64,13 @@ int main(int argc, char** argv) {
                 "summary.json holds them too");
   clp.recogniseAllOptions(true);
   clp.throwExceptions(false);
-  const auto parse = clp.parse(argc, argv);
+  const std::string program = std::filesystem::path(argv[0]).filename().string();
+  if (help) {
+    if (root) clp.printHelpMessage(program.c_str(), std::cout);
+    return 0;
+  }
+  if (kokkosHelp) return 0;  // Kokkos has printed its options
+  const auto parse = clp.parse(nargs, argvLeft);
   if (parse == Teuchos::CommandLineProcessor::PARSE_HELP_PRINTED) return 0;
   if (parse != Teuchos::CommandLineProcessor::PARSE_SUCCESSFUL) return 1;
   if (printParameters) {

@@ -51,11 +51,12 @@ Membrane assembleMembrane(int which, int NX, int NY) {
   rect.setDirichletAtX0(false);
   Membrane m;
   m.mesh = rect.wholeMesh();
-  plasticity::Q1Mesh q{m.mesh.coords, m.mesh.quads, 2};
+  plasticity::Q1Mesh q{m.mesh.coords, m.mesh.elements.nodes, 2};
   std::vector<double> source(m.mesh.numElements());
   for (int e = 0; e < m.mesh.numElements(); ++e) {
     double yc = 0.0;
-    for (int a = 0; a < 4; ++a) yc += 0.25 * m.mesh.coords[2 * m.mesh.quads[4 * e + a] + 1];
+    for (int a = 0; a < 4; ++a)
+      yc += 0.25 * m.mesh.coords[2 * m.mesh.elements.nodes[4 * e + a] + 1];
     source[e] = sourceAt(which, yc);
   }
   plasticity::ElasticLaw unused;

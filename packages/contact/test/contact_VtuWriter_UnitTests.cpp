@@ -75,4 +75,27 @@ TEUCHOS_UNIT_TEST(VtuWriter, InconsistentCellsAreAnError) {
   TEST_THROW(contact::writeVtu(*comm, dir, "bad", p), std::invalid_argument);
 }
 
+// The FETI driver lists its quadrilaterals as general cells (one code path with the hexahedra of
+// 3D): the file is the one the quads list gives.
+TEUCHOS_UNIT_TEST(VtuWriter, QuadsAsGeneralCellsWriteTheSameFile) {
+  auto comm = Tpetra::getDefaultComm();
+  const std::string dir = std::filesystem::temp_directory_path() / "contact_vtu_test";
+  std::filesystem::create_directories(dir);
+  contact::VtuPiece quads;
+  for (int i = 0; i < 6; ++i)
+    quads.points.insert(quads.points.end(), {0.5 * (i % 3), 0.5 * (i / 3)});
+  quads.quads = {0, 1, 4, 3, 1, 2, 5, 4};
+  quads.pointData.push_back({"displacement", 3, std::vector<double>(18, 0.25)});
+  quads.cellData.push_back({"subdomain", 1, {0, 1}});
+  contact::VtuPiece general = quads;
+  general.quads.clear();
+  general.cellTypes = {contact::kVtkQuad, contact::kVtkQuad};
+  general.cellPoints = quads.quads;
+  contact::writeVtu(*comm, dir, "as_quads", quads);
+  contact::writeVtu(*comm, dir, "as_cells", general);
+  const std::string a = slurp(dir + "/as_quads_0.vtu"), b = slurp(dir + "/as_cells_0.vtu");
+  TEST_ASSERT(!a.empty());
+  TEST_ASSERT(a == b);
+}
+
 }  // namespace

@@ -343,10 +343,10 @@ TEUCHOS_UNIT_TEST(InputChecks, BrokenOrUnsymmetricStiffness) {
 
 TEUCHOS_UNIT_TEST(InputChecks, MeshListsAndDofsPerNode) {
   std::string m = spoiledSquare(
-      tfeti_test::poisson(), 2, [](tfeti::SubdomainData& d) { d.mesh.quads[5] = 25; }, out,
+      tfeti_test::poisson(), 2, [](tfeti::SubdomainData& d) { d.mesh.elements.nodes[5] = 25; }, out,
       success);
   TEST_ASSERT(contains(m,
-                       "subdomain 2: quads has local node 25 (entry 5), but the mesh has 25 "
+                       "subdomain 2: elements has local node 25 (entry 5), but the mesh has 25 "
                        "nodes"));
   m = spoiledSquare(
       tfeti_test::poisson(), 1,

@@ -176,7 +176,8 @@ TEUCHOS_UNIT_TEST(Kernel, TwoQuadsTouchingAtANodeIn2d) {
   m.id = 9;
   m.coords = {0, 0, 1, 0, 1, 1, 0, 1, 2, 1, 2, 2, 1, 2};
   m.globalNode = {0, 1, 2, 3, 4, 5, 6};
-  m.quads = {0, 1, 2, 3, 2, 4, 5, 6};
+  m.elements.add({0, 1, 2, 3});
+  m.elements.add({2, 4, 5, 6});
   for (const auto& ph : {tfeti_test::elasticity(), tfeti_test::poisson()}) {
     const tfeti::SubdomainData d = tfeti_test::subdomainData(m, ph);
     tfeti::KernelOptions k;

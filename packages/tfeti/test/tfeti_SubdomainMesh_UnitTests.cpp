@@ -70,7 +70,7 @@ TEUCHOS_UNIT_TEST(StructuredRectangle, SubdomainsTileTheWholeMesh) {
     for (int e = 0; e < m.numElements(); ++e) {  // counter-clockwise: positive signed area
       double a = 0.0;
       for (int k = 0; k < 4; ++k) {
-        const int p = m.quads[4 * e + k], q = m.quads[4 * e + (k + 1) % 4];
+        const int p = m.elements.nodes[4 * e + k], q = m.elements.nodes[4 * e + (k + 1) % 4];
         a += m.coords[2 * p] * m.coords[2 * q + 1] - m.coords[2 * q] * m.coords[2 * p + 1];
       }
       if (!(a > 0.0)) ++negativeArea;
@@ -100,7 +100,7 @@ TEUCHOS_UNIT_TEST(StructuredRectangle, InvalidArgumentsThrow) {
   TEST_THROW(rect.subdomain(-1), std::out_of_range);
 }
 
-TEUCHOS_UNIT_TEST(SubdomainMesh, BoundaryNodesOfAnLShape) {
+TEUCHOS_UNIT_TEST(SubdomainMesh, BoundaryNodesAreTheInterfaceCandidatesOrEveryNode) {
   // 3 elements in an L: nodes of the 2x2 block minus the top-right element.
   //   6 7
   //   3 4 5
@@ -108,25 +108,30 @@ TEUCHOS_UNIT_TEST(SubdomainMesh, BoundaryNodesOfAnLShape) {
   tfeti::SubdomainMesh m;
   m.coords = {0, 0, 1, 0, 2, 0, 0, 1, 1, 1, 2, 1, 0, 2, 1, 2};
   m.globalNode = {0, 1, 2, 3, 4, 5, 6, 7};
-  m.quads = {0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 7, 6};
-  const std::vector<int> b = m.boundaryNodes();
-  // Every node is on the boundary, the re-entrant corner 4 included.
-  TEST_EQUALITY(static_cast<int>(b.size()), 8);
-  // A 3x3 block has 4 interior nodes.
-  tfeti::SubdomainMesh q;
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      q.coords.insert(q.coords.end(), {double(i), double(j)});
-      q.globalNode.push_back(4 * j + i);
-    }
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) {
-      const int n = 4 * j + i;
-      q.quads.insert(q.quads.end(), {n, n + 1, n + 5, n + 4});
-    }
+  m.elements.add({0, 1, 4, 3});
+  m.elements.add({1, 2, 5, 4});
+  m.elements.add({3, 4, 7, 6});
+  TEST_EQUALITY(m.numElements(), 3);
+  // No candidates listed: every node may be shared.
+  TEST_COMPARE_ARRAYS(m.boundaryNodes(), std::vector<int>({0, 1, 2, 3, 4, 5, 6, 7}));
+  // Candidates: sorted, each once.
+  m.interfaceCandidates = {7, 2, 0, 2, 5};
+  TEST_COMPARE_ARRAYS(m.boundaryNodes(), std::vector<int>({0, 2, 5, 7}));
+}
+
+TEUCHOS_UNIT_TEST(StructuredRectangle, SubdomainsListTheirQuadrilateralsAndBlockSides) {
+  // A block of 3 x 3 elements: its 12 side nodes are the candidates (the 4 interior ones not),
+  // its elements the Q1 cells in VTK order, counter-clockwise.
+  const tfeti::StructuredRectangle rect(0, 3, 0, 3, 2, 1, 3, 3);
+  const tfeti::SubdomainMesh q = rect.subdomain(1);
+  TEST_EQUALITY(q.numElements(), 9);
+  TEST_COMPARE_ARRAYS(q.elements.nodes, rect.subdomainCells());
+  for (int e = 0; e < q.numElements(); ++e)
+    TEST_EQUALITY(q.elements.offsets[e + 1] - q.elements.offsets[e], 4);
   const std::vector<int> qb = q.boundaryNodes();
   TEST_EQUALITY(static_cast<int>(qb.size()), 12);
   for (int n : {5, 6, 9, 10}) TEST_ASSERT(std::find(qb.begin(), qb.end(), n) == qb.end());
+  TEST_ASSERT(std::is_sorted(qb.begin(), qb.end()));
 }
 
 TEUCHOS_UNIT_TEST(StructuredMesh, BoxSubdomainsTileTheWholeMesh) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tfeti_DenseUtils.hpp"
@@ -41,8 +42,9 @@ tfeti::SubdomainMesh distortedLShape() {
   for (int e = 0; e < block.numElements(); ++e) {
     const int i = e % ex, j = e / ex;
     if (i >= 3 && j >= 2) continue;
+    std::vector<int> quad;
     for (int a = 0; a < 4; ++a) {
-      const int n = block.quads[4 * e + a];
+      const int n = block.elements.nodes[4 * e + a];
       auto it = renumber.find(n);
       if (it == renumber.end()) {
         it = renumber.emplace(n, m.numNodes()).first;
@@ -51,9 +53,20 @@ tfeti::SubdomainMesh distortedLShape() {
         m.coords.push_back(y + 0.05 * std::cos(2.5 * x) + 0.03 * x * x);
         m.globalNode.push_back(block.globalNode[n]);
       }
-      m.quads.push_back(it->second);
+      quad.push_back(it->second);
     }
+    m.elements.add(quad);
   }
+  // The nodes that may be shared: those on the L's perimeter (an edge of one element only).
+  std::map<std::pair<int, int>, int> edges;
+  for (int e = 0; e < m.numElements(); ++e)
+    for (int a = 0; a < 4; ++a) {
+      const int p = m.elements.nodes[4 * e + a], q = m.elements.nodes[4 * e + (a + 1) % 4];
+      ++edges[{std::min(p, q), std::max(p, q)}];
+    }
+  for (const auto& [edge, count] : edges)
+    if (count == 1)
+      m.interfaceCandidates.insert(m.interfaceCandidates.end(), {edge.first, edge.second});
   return m;
 }
 

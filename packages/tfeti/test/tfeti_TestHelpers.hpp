@@ -45,7 +45,7 @@ inline Physics elasticity() {
 inline plasticity::Q1Mesh quadMesh(const tfeti::SubdomainMesh& m) {
   plasticity::Q1Mesh q;
   q.coords = m.coords;
-  q.cells = m.quads;
+  q.cells = m.elements.nodes;  // Q1: 4 (or 8) nodes per element
   return q;
 }
 

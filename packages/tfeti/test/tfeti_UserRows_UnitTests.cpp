@@ -125,9 +125,8 @@ tfeti::SubdomainData rectangleSubdomain(int id, double x0, int ex, int ey, doubl
     }
   for (int j = 0; j < ey; ++j)
     for (int a = 0; a < ex; ++a)
-      for (int node : {j * (ex + 1) + a, j * (ex + 1) + a + 1, (j + 1) * (ex + 1) + a + 1,
-                       (j + 1) * (ex + 1) + a})
-        d.mesh.quads.push_back(node);
+      d.mesh.elements.add({j * (ex + 1) + a, j * (ex + 1) + a + 1, (j + 1) * (ex + 1) + a + 1,
+                           (j + 1) * (ex + 1) + a});
   const auto ph = tfeti_test::poisson();
   d.K = plasticity::assembleStiffness(tfeti_test::quadMesh(d.mesh), ph.field, ph.law);
   d.f.assign(d.mesh.numNodes(), 0.0);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
+#include <string>
 
 namespace contact {
 
@@ -126,24 +127,44 @@ Json memoryJson(const tfeti::MemoryLog& log, long long unknowns) {
   return j;
 }
 
+namespace {
+// The VTK type of a linear element of the FETI mesh: triangles and quadrilaterals in 2D,
+// tetrahedra and hexahedra in 3D (corners in VTK's order, as the structured mesh lists them).
+int vtkLinearCell(int dim, int nodes) {
+  if (dim == 2 && (nodes == 3 || nodes == 4)) return nodes == 3 ? kVtkTriangle : kVtkQuad;
+  if (dim == 3 && (nodes == 4 || nodes == 8)) return nodes == 4 ? kVtkTetra : kVtkHexahedron;
+  throw std::invalid_argument("VTU output: no linear " + std::to_string(dim) + "D cell of " +
+                              std::to_string(nodes) + " nodes");
+}
+}  // namespace
+
 VtuPiece vtuPiece(const tfeti::FetiSolver& solver) {
   VtuPiece piece;
   VtuField u{"u", 1, {}}, sub{"subdomain", 1, {}};
-  const bool vec = !solver.data().empty() && solver.data().front().dofsPerNode == 2;
+  if (!solver.data().empty()) piece.dim = solver.data().front().mesh.dim;
+  // One value per node (Poisson) or dim components (elasticity), written with 3 components.
+  const bool vec = !solver.data().empty() && solver.data().front().dofsPerNode > 1;
   if (vec) u = VtuField{"displacement", 3, {}};
   for (std::size_t i = 0; i < solver.data().size(); ++i) {
-    const auto& mesh = solver.data()[i].mesh;
-    const int base = static_cast<int>(piece.points.size() / 2);
+    const auto& data = solver.data()[i];
+    const auto& mesh = data.mesh;
+    const int base = static_cast<int>(piece.points.size() / piece.dim);
     piece.points.insert(piece.points.end(), mesh.coords.begin(), mesh.coords.end());
-    for (int q : mesh.quads) piece.quads.push_back(base + q);
+    const auto& el = mesh.elements;
+    for (int e = 0; e < el.size(); ++e) {
+      piece.cellTypes.push_back(vtkLinearCell(mesh.dim, el.offsets[e + 1] - el.offsets[e]));
+      for (int k = el.offsets[e]; k < el.offsets[e + 1]; ++k)
+        piece.cellPoints.push_back(base + el.nodes[k]);
+    }
     const auto& us = solver.solution(i);
+    const int dpn = data.dofsPerNode;
     for (int n = 0; n < mesh.numNodes(); ++n) {
       if (vec)
-        u.values.insert(u.values.end(), {us[2 * n], us[2 * n + 1], 0.0});
+        for (int c = 0; c < 3; ++c) u.values.push_back(c < dpn ? us[dpn * n + c] : 0.0);
       else
         u.values.push_back(us[n]);
     }
-    sub.values.insert(sub.values.end(), mesh.numElements(), static_cast<double>(mesh.id));
+    sub.values.insert(sub.values.end(), el.size(), static_cast<double>(mesh.id));
   }
   piece.pointData.push_back(std::move(u));
   piece.cellData.push_back(std::move(sub));

@@ -25,7 +25,8 @@ double peakRssMb(const tfeti::Comm& comm);
 // the peak so far, the largest over the ranks and the sum over them (MiB); the peak per rank and
 // over all ranks, and the peak over all ranks in bytes per unknown.
 Json memoryJson(const tfeti::MemoryLog& log, long long unknowns);
-// The solved subdomains of this rank: u (or displacement) per node, subdomain id per cell.
+// The solved subdomains of this rank (2D or 3D, their elements as cells): u (or displacement)
+// per node, subdomain id per cell.
 VtuPiece vtuPiece(const tfeti::FetiSolver& solver);
 
 // The solver's dimensions and counters after a solve; feti: its FETI parameters (formulation,

@@ -289,10 +289,6 @@ int runStructured(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& pa
   const StructuredProblem sp = problemFrom(params, field);
   const auto& out = params.sublist("Output");
   const int verbosity = out.get<int>("Verbosity");
-  if (sp.dim() == 3 && out.get<bool>("VTU"))
-    throw std::invalid_argument(
-        "Output: \"VTU\" is not available for 3D structured problems in this release; set it "
-        "to false");
 
   // Memory per phase: the libraries and parameters, this rank's subdomains meshed and
   // assembled, the solver's phases, the output.

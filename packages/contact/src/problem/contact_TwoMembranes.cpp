@@ -45,11 +45,12 @@ ContactProblemData buildTwoMembranes(const TwoMembranes& problem, const tfeti::C
     sd.mesh.id = s;
     // The membranes are separate bodies: their nodes never glue, even at x = 1.
     for (auto& g : sd.mesh.globalNode) g += which * m[0].numGlobalNodes();
-    plasticity::Q1Mesh q{sd.mesh.coords, sd.mesh.quads, 2};
+    plasticity::Q1Mesh q{sd.mesh.coords, sd.mesh.elements.nodes, 2};
     std::vector<double> source(sd.mesh.numElements());
     for (int e = 0; e < sd.mesh.numElements(); ++e) {
       double yc = 0.0;
-      for (int a = 0; a < 4; ++a) yc += 0.25 * sd.mesh.coords[2 * sd.mesh.quads[4 * e + a] + 1];
+      for (int a = 0; a < 4; ++a)
+        yc += 0.25 * sd.mesh.coords[2 * sd.mesh.elements.nodes[4 * e + a] + 1];
       source[e] = sourceAt(which, yc);
     }
     plasticity::ElasticLaw unused;

@@ -47,7 +47,7 @@ namespace tfeti {
 // What the physics layer hands over for one subdomain.
 // mesh.dim is the spatial dimension (coords: dim per node); dofsPerNode is 1 (scalar) or
 // mesh.dim (elasticity), or anything with a kernel given. The kernel of K is found from
-// mesh.quads / mesh.elements (or the graph of K) unless `kernel` is given.
+// mesh.elements (or the graph of K) unless `kernel` is given.
 // FetiSolver moves K and f into its subdomains: its data() keeps them empty.
 struct SubdomainData {
   SubdomainMesh mesh;

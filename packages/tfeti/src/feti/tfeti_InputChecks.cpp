@@ -68,9 +68,6 @@ std::string subdomainDataError(const SubdomainMesh& m, const std::vector<double>
   if (!kernel.empty() && (dofs == 0 || kernel.size() % dofs != 0))
     return name + ": the kernel has " + std::to_string(kernel.size()) +
            " values, not whole columns of " + std::to_string(dofs) + " dofs";
-  if (m.quads.size() % 4 != 0)
-    return name + ": quads has " + std::to_string(m.quads.size()) + " entries, not 4 per element";
-  if (std::string e = nodeRangeError(m.quads, n, "quads"); !e.empty()) return name + ": " + e;
   const auto& off = m.elements.offsets;
   if (off.empty() || off.front() != 0 || off.back() != static_cast<int>(m.elements.nodes.size()) ||
       !std::is_sorted(off.begin(), off.end()))

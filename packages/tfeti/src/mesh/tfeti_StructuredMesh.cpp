@@ -106,17 +106,14 @@ SubdomainMesh StructuredMesh::block(const std::vector<int>& first,
         if (g[0] == 0 && dirichletAtX0_) m.dirichletNodes.push_back(local);
         const bool onFace = i == 0 || i == nn[0] - 1 || j == 0 || j == nn[1] - 1 ||
                             (dim_ == 3 && (k == 0 || k == nn[2] - 1));
-        if (dim_ == 3 && onFace) m.interfaceCandidates.push_back(local);
+        if (onFace) m.interfaceCandidates.push_back(local);
       }
   m.dim = dim_;
-  if (dim_ == 2) {
-    m.quads = cells(n);
-  } else {
-    // The hexahedra tell the kernel detection which nodes are rigidly connected.
-    const std::vector<int> hexes = cells(n);
-    for (std::size_t e = 0; e < hexes.size(); e += 8)
-      m.elements.add(std::vector<int>(hexes.begin() + e, hexes.begin() + e + 8));
-  }
+  // The quadrilaterals or hexahedra tell the kernel detection which nodes are rigidly connected.
+  const int npe = 1 << dim_;
+  const std::vector<int> c = cells(n);
+  for (std::size_t e = 0; e < c.size(); e += npe)
+    m.elements.add(std::vector<int>(c.begin() + e, c.begin() + e + npe));
   return m;
 }
 

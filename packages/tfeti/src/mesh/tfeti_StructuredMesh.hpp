@@ -28,9 +28,9 @@ class StructuredMesh {
   int elementsAlong(int axis) const { return sub_[axis] * elem_[axis]; }
   GO numGlobalNodes() const;
   GO numGlobalElements() const;
-  // Subdomain s with its own node copies and dim. In 2D its quads are set; in 3D its elements
-  // are the hexahedra (as subdomainCells()) and its interfaceCandidates the nodes on the
-  // block's faces.
+  // Subdomain s with its own node copies and dim: its elements are the quadrilaterals or
+  // hexahedra (as subdomainCells()), its interfaceCandidates the nodes on the block's sides
+  // (faces in 3D).
   SubdomainMesh subdomain(int s) const;
   // The untorn mesh as one "subdomain" (id -1): for reference solves of the whole problem.
   SubdomainMesh wholeMesh() const;

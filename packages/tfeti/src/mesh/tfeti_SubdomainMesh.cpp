@@ -1,7 +1,6 @@
 #include "tfeti_SubdomainMesh.hpp"
 
 #include <algorithm>
-#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -9,37 +8,12 @@
 namespace tfeti {
 
 std::vector<int> SubdomainMesh::boundaryNodes() const {
-  if (quads.empty()) {
-    std::vector<int> nodes = interfaceCandidates;
-    if (nodes.empty())
-      for (int n = 0; n < numNodes(); ++n) nodes.push_back(n);
-    std::sort(nodes.begin(), nodes.end());
-    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-    return nodes;
-  }
-  std::map<std::pair<int, int>, int> edgeCount;
-  for (int e = 0; e < numElements(); ++e)
-    for (int a = 0; a < 4; ++a) {
-      int p = quads[4 * e + a], q = quads[4 * e + (a + 1) % 4];
-      edgeCount[{std::min(p, q), std::max(p, q)}]++;
-    }
-  std::vector<char> onBoundary(numNodes(), 0);
-  for (const auto& [edge, count] : edgeCount)
-    if (count == 1) onBoundary[edge.first] = onBoundary[edge.second] = 1;
-  std::vector<int> nodes;
-  for (int n = 0; n < numNodes(); ++n)
-    if (onBoundary[n]) nodes.push_back(n);
+  std::vector<int> nodes = interfaceCandidates;
+  if (nodes.empty())
+    for (int n = 0; n < numNodes(); ++n) nodes.push_back(n);
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;
-}
-
-ElementConnectivity SubdomainMesh::connectivity() const {
-  ElementConnectivity c;
-  for (int e = 0; e < numElements(); ++e)
-    c.add({quads[4 * e], quads[4 * e + 1], quads[4 * e + 2], quads[4 * e + 3]});
-  c.nodes.insert(c.nodes.end(), elements.nodes.begin(), elements.nodes.end());
-  for (int e = 0; e < elements.size(); ++e)
-    c.offsets.push_back(c.offsets.back() + elements.offsets[e + 1] - elements.offsets[e]);
-  return c;
 }
 
 std::vector<int> SubdomainMesh::dirichletMasks(int dofsPerNode) const {

@@ -29,26 +29,26 @@ struct SubdomainMesh {
   // problem are 1 (scalar) or dim (elasticity).
   int dim = 2;
   std::vector<double> coords;  // x0, y0[, z0], x1, y1[, z1], ... per local node
-  std::vector<int> quads;      // 2D structured Q1: 4 local nodes per element, counter-clockwise
-  // Any other mesh (2D or 3D): its elements. With quads or elements the kernel of K is found
-  // from the rigidly connected pieces of the mesh (pieces touching at a node or an edge are
-  // handled); with neither, from the connected components of the graph of K.
+  // The elements (any type, 2D or 3D; the structured mesh lists its Q1 quadrilaterals or
+  // hexahedra here). With elements the kernel of K is found from the rigidly connected pieces of
+  // the mesh (pieces touching at a node or an edge are handled); without, from the connected
+  // components of the graph of K.
   ElementConnectivity elements;
   std::vector<GO> globalNode;       // untorn id of each local node
   std::vector<int> dirichletNodes;  // local nodes where every component is prescribed zero
   // Single components prescribed zero, (local node, component): symmetry conditions, e.g. the
   // normal displacement on a symmetry line.
   std::vector<std::pair<int, int>> fixedComponents;
-  // Meshes other than the structured Q1 one (quads empty) list the nodes that may be shared
-  // with other subdomains here; boundaryNodes() returns them (every node when the list is empty:
-  // correct for any mesh, only more data for the tearing to gather).
+  // The nodes that may be shared with other subdomains; boundaryNodes() returns them (every
+  // node when the list is empty: correct for any mesh, only more data for the tearing to
+  // gather). The structured mesh lists the nodes on the faces of its blocks.
   std::vector<int> interfaceCandidates;
   int numNodes() const { return static_cast<int>(globalNode.size()); }
-  int numElements() const { return static_cast<int>(quads.size() / 4); }
-  // quads and elements as one list (quads first).
-  ElementConnectivity connectivity() const;
-  // Local nodes that may be shared with another subdomain: for quads those on an element edge
-  // that no other element of the subdomain shares; otherwise interfaceCandidates (or all).
+  int numElements() const { return elements.size(); }
+  // The elements (the list the kernel detection reads).
+  ElementConnectivity connectivity() const { return elements; }
+  // Local nodes that may be shared with another subdomain: interfaceCandidates, sorted without
+  // repeats (all nodes when empty).
   std::vector<int> boundaryNodes() const;
   // Prescribed dofs (dofsPerNode * node + component), sorted: every component of the Dirichlet
   // nodes and the fixed components.
