@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "contact_Driver.hpp"
-#include "contact_DriverCommon.hpp"
+#include "contact_RunSummary.hpp"
 #include "tfeti_StrictParameters.hpp"
 
 int main(int argc, char** argv) {

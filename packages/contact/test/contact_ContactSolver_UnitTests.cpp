@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "contact_ContactSolver.hpp"
-#include "contact_DriverCommon.hpp"
+#include "contact_RunSummary.hpp"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include "contact_ContactOutput.hpp"
 #include "contact_ContactParameters.hpp"
 #include "contact_Driver.hpp"
-#include "contact_DriverCommon.hpp"
+#include "contact_RunSummary.hpp"
 #include "contact_FrictionStep.hpp"
 #include "contact_LoadStepControl.hpp"
 #include "contact_NonlinearIteration.hpp"

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "contact_DriverCommon.hpp"
+#include "contact_RunSummary.hpp"
 #include "contact_DryRun.hpp"
 #include "contact_PrescribedDisplacement.hpp"
 #include "contact_StructuredProblem.hpp"

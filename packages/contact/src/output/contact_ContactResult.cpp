@@ -1,7 +1,7 @@
 #include "contact_ContactResult.hpp"
 #include "contact_Materials.hpp"
 
-#include "contact_DriverCommon.hpp"
+#include "contact_RunSummary.hpp"
 
 namespace contact {
 

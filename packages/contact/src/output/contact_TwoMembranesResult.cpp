@@ -1,6 +1,6 @@
 #include "contact_TwoMembranesResult.hpp"
 
-#include "contact_DriverCommon.hpp"
+#include "contact_RunSummary.hpp"
 
 namespace contact {
 

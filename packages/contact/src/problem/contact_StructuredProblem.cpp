@@ -180,4 +180,25 @@ double relativeErrorAgainstDirectSolve(const StructuredProblem& problem,
   return maxRef > 0.0 ? globalErr / maxRef : globalErr;
 }
 
+void checkGridSize(const Teuchos::ParameterList& mesh) {
+  const auto subs = mesh.get<Teuchos::Array<int>>("Subdomains");
+  const auto elems = mesh.get<Teuchos::Array<int>>("Elements per subdomain");
+  // Node numbers are ints: (elements per side + 1)^2 must stay far below 2^31, and so must the
+  // dofs of all nodes of a box (up to 3 per node).
+  const long long perSide = 1 << 15, nodes = 1LL << 29;
+  long long total = 1;
+  for (int d = 0; d < subs.size() && d < elems.size(); ++d) {
+    const long long n = static_cast<long long>(subs[d]) * elems[d];
+    if (n > perSide)
+      throw std::invalid_argument(
+          "Mesh: \"Subdomains\" x \"Elements per subdomain\" = " + std::to_string(subs[d]) + " x " +
+          std::to_string(elems[d]) + " elements along " + std::string(1, "xyz"[d % 3]) +
+          "; at most " + std::to_string(perSide) + " per side");
+    total *= n + 1;
+  }
+  if (total > nodes)
+    throw std::invalid_argument("Mesh: \"Subdomains\" x \"Elements per subdomain\" give " +
+                                std::to_string(total) + " nodes; at most " + std::to_string(nodes));
+}
+
 }  // namespace contact

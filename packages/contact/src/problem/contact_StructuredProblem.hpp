@@ -56,4 +56,8 @@ std::vector<tfeti::SubdomainData> buildLocalSubdomains(const StructuredProblem& 
 double relativeErrorAgainstDirectSolve(const StructuredProblem& problem,
                                        const tfeti::FetiSolver& solver);
 
+// Mesh/Subdomains times Mesh/Elements per subdomain within what the structured grids can number
+// (throws std::invalid_argument naming the parameters).
+void checkGridSize(const Teuchos::ParameterList& mesh);
+
 }  // namespace contact

@@ -1,6 +1,8 @@
 #pragma once
-// Pieces every study of the driver shares: timings and summary output, memory, the VTU piece of
-// a solved FETI problem.
+// The pieces of summary.json every run shares (the contact runs, the structured problems, the two
+// membranes): timings, memory, the FETI dimensions and the dual solve, the QP counters, the
+// constraint report, the validated parameters and the file itself; and the VTU piece of a solved
+// FETI problem.
 #include <string>
 
 #include "contact_ContactResult.hpp"
@@ -11,8 +13,6 @@
 namespace contact {
 
 Json timingsJson(const tfeti::FetiTimings& t, int iterations);
-// Mesh/Subdomains times Mesh/Elements per subdomain within what the structured grids can number.
-void checkGridSize(const Teuchos::ParameterList& mesh);
 // The validated parameter list (defaults filled in) as JSON: sublists as objects, arrays as
 // arrays.
 Json parametersJson(const Teuchos::ParameterList& params);
