@@ -13,7 +13,6 @@
 #include "contact_ContactOutput.hpp"
 #include "contact_ContactParameters.hpp"
 #include "contact_Driver.hpp"
-#include "contact_RunSummary.hpp"
 #include "contact_FrictionStep.hpp"
 #include "contact_LoadStepControl.hpp"
 #include "contact_NonlinearIteration.hpp"
@@ -22,6 +21,7 @@
 #include "contact_NonlinearSetup.hpp"
 #include "contact_NonlinearStepOutput.hpp"
 #include "contact_PrescribedDisplacement.hpp"
+#include "contact_RunSummary.hpp"
 
 namespace contact {
 

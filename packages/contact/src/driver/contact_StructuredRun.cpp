@@ -9,9 +9,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "contact_RunSummary.hpp"
 #include "contact_DryRun.hpp"
 #include "contact_PrescribedDisplacement.hpp"
+#include "contact_RunSummary.hpp"
 #include "contact_StructuredProblem.hpp"
 #include "contact_StructuredResult.hpp"
 #include "contact_VtuWriter.hpp"

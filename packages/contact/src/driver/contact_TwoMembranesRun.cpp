@@ -11,9 +11,9 @@
 #include <map>
 #include <sstream>
 
+#include "contact_DryRun.hpp"
 #include "contact_RunSummary.hpp"
 #include "contact_StructuredProblem.hpp"
-#include "contact_DryRun.hpp"
 #include "contact_TwoMembranes.hpp"
 #include "contact_TwoMembranesResult.hpp"
 #include "tfeti_Gather.hpp"
