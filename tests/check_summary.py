@@ -84,6 +84,13 @@
                                           a one-step nonlinear run of a linear elastic material
                                           against the elastic contact run: p_max and the contact
                                           extent within T, the force within 1e-6
+  check_summary.py newton NEWTON REFERENCE [--tol T]
+                                          the same problem with the tangent refactorized
+                                          (Stiffness iteration or step) and with the paper's
+                                          initial stiffness: both reach load factor 1 with the
+                                          same steps; the final p_max, contact extent, force
+                                          and von Mises agree to T (1e-4), the plastic strain
+                                          to 100 T; the tangent needs fewer iterations
   check_summary.py plastic DIR            plastic strain > 0, von Mises within 1 % of the yield
                                           surface sigma_Y + H alpha at every step
   check_summary.py plastic_vs_elastic PLASTIC ELASTIC
@@ -777,6 +784,34 @@ def nonlinear_vs_elastic(ndir, edir, tol):
           f"{ce[extent]:.6e}, force {cn['force']:.8e} vs {ce['force']:.8e}")
 
 
+
+def newton(ndir, rdir, tol):
+    """A run whose tangent is refactorized (its kernel, the rigid modes of the reference positions
+    in small strain and of the current ones in total Lagrangian, checked by the solver) against
+    the paper's initial stiffness on the same problem: the same solution to the stopping
+    tolerances, in fewer iterations."""
+    n, r = load(ndir), load(rdir)
+    for s, d in ((n, ndir), (r, rdir)):
+        if not s["converged"] or s["nonlinear"]["load_factor"] != 1:
+            fail(f"{d}: did not reach load factor 1")
+    if n["nonlinear"]["stiffness"] == "initial" or r["nonlinear"]["stiffness"] != "initial":
+        fail("the first run must refactorize its tangent, the second keep the initial stiffness")
+    if [s["load_factor"] for s in n["steps"]] != [s["load_factor"] for s in r["steps"]]:
+        fail("the runs took different load steps")
+    extent = "contact_radius" if "contact_radius" in r["contact"] else "half_width"
+    pairs = [(k, n["contact"][k], r["contact"][k], tol) for k in ("p_max", extent, "force")]
+    pairs += [("max_von_mises", n["max_von_mises"], r["max_von_mises"], tol),
+              ("max_plastic_strain", n["max_plastic_strain"], r["max_plastic_strain"], 100 * tol)]
+    for key, a, b, t in pairs:
+        if abs(a - b) > t * abs(b):
+            fail(f"{key}: {a:.8e} ({ndir}) against {b:.8e} ({rdir}): more than {t:.0e} apart")
+    ni, ri = n["nonlinear"]["total_iterations"], r["nonlinear"]["total_iterations"]
+    if not ni < ri:
+        fail(f"the tangent took {ni} iterations, the initial stiffness {ri}")
+    print(f"OK: {n['nonlinear']['stiffness']}: {ni} iterations against {ri}; p_max "
+          f"{n['contact']['p_max']:.6e} vs {r['contact']['p_max']:.6e}, force "
+          f"{n['contact']['force']:.6e} vs {r['contact']['force']:.6e}")
+
 def plastic(d):
     """A plastic run beyond yield: plastic strain > 0 and the von Mises stress within the yield
     surface sigma_Y + H alpha_max (1 % for the Cauchy stress of a law that acts on the second
@@ -1160,6 +1195,8 @@ if __name__ == "__main__":
         same_nonlinear(args)
     elif mode == "nonlinear_vs_elastic":
         nonlinear_vs_elastic(args[0], args[1], option(args, "--tol", 1e-3))
+    elif mode == "newton":
+        newton(args[0], args[1], float(option(args, "--tol", 1e-4)))
     elif mode == "plastic":
         plastic(args[0])
     elif mode == "plastic_vs_elastic":

@@ -85,8 +85,9 @@ tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field&
   // rows of the reference geometry, the prescribed rows at their full value).
   if (options_.linear && iteration == 1) return solver_.solve();
   if (refactor)
-    solver_.updateStiffness(model_.tangent(u, options_.kinematics), model_.currentCoordinates(u),
-                            rhs, model_.problem.inequalities, prescribed);
+    solver_.updateStiffness(model_.tangent(u, options_.kinematics),
+                            model_.kernelCoordinates(u, options_.kinematics), rhs,
+                            model_.problem.inequalities, prescribed);
   else
     solver_.update(rhs, model_.problem.inequalities, prescribed);
   return solver_.solve();

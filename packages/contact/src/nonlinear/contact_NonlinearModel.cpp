@@ -57,6 +57,13 @@ Field NonlinearModel::currentCoordinates(const Field& disp) const {
   return x;
 }
 
+Field NonlinearModel::kernelCoordinates(const Field& disp, plasticity::Kinematics kin) const {
+  if (kin == plasticity::Kinematics::TotalLagrangian) return currentCoordinates(disp);
+  Field x;
+  for (std::size_t i = 0; i < disp.size(); ++i) x.push_back(problem.localElements[i].coords);
+  return x;
+}
+
 Field NonlinearModel::internalForce(const Field& disp, plasticity::Kinematics kin) const {
   Field f;
   for (std::size_t i = 0; i < laws.size(); ++i)

@@ -38,6 +38,14 @@ struct NonlinearModel {
   Field internalForce(const Field& disp, plasticity::Kinematics kin) const;
   // The material tangent (without the initial-stress part, see tangentStiffness) per subdomain.
   std::vector<tfeti::CsrMatrix> tangent(const Field& disp, plasticity::Kinematics kin) const;
+  // The positions whose rigid motions are the kernel of tangent(disp, kin):
+  //  - small strain: the reference positions X. The strain is the symmetric gradient of the
+  //    displacement, zero for a translation and for an infinitesimal rotation about X, whatever
+  //    the (elastic or plastic) material tangent; a rotation about X + u is not in the kernel.
+  //  - total Lagrangian: the current positions X + u. The Green-Lagrange strain's variation
+  //    sym(F^T grad du) vanishes for du = W (X + u) with W skew; the initial-stress part, which
+  //    does not, is left out of tangent().
+  Field kernelCoordinates(const Field& disp, plasticity::Kinematics kin) const;
 
   void commit();  // trial history -> committed (a converged step)
   void revert();  // committed -> trial (a rejected attempt)
