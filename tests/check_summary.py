@@ -91,6 +91,10 @@
                                           same steps; the final p_max, contact extent, force
                                           and von Mises agree to T (1e-4), the plastic strain
                                           to 100 T; the tangent needs fewer iterations
+  check_summary.py same_indentation DIR1 DIR2 [--tol T]
+                                          two runs of one indentation (e.g. gaps along the
+                                          normal and along a fixed direction): both reached
+                                          load factor 1; contact force and extent agree to T
   check_summary.py plastic DIR            plastic strain > 0, von Mises within 1 % of the yield
                                           surface sigma_Y + H alpha at every step
   check_summary.py plastic_vs_elastic PLASTIC ELASTIC
@@ -812,6 +816,23 @@ def newton(ndir, rdir, tol):
           f"{n['contact']['p_max']:.6e} vs {r['contact']['p_max']:.6e}, force "
           f"{n['contact']['force']:.6e} vs {r['contact']['force']:.6e}")
 
+
+def same_indentation(d1, d2, tol):
+    """Two formulations of one indentation by a prescribed obstacle motion: the same contact force
+    and contact zone to tol (what separates them, e.g. the gap along the normal and along a fixed
+    direction, is of the order of (a / R)^2)."""
+    a, b = load(d1), load(d2)
+    for s, d in ((a, d1), (b, d2)):
+        if not s["converged"] or s["nonlinear"]["load_factor"] != 1:
+            fail(f"{d}: did not reach load factor 1")
+    extent = "contact_radius" if "contact_radius" in a["contact"] else "half_width"
+    for key in ("force", extent):
+        x, y = a["contact"][key], b["contact"][key]
+        if abs(x - y) > tol * abs(y):
+            fail(f"{key}: {x:.8e} ({d1}) against {y:.8e} ({d2}): more than {tol:.0e} apart")
+    print(f"OK: force {a['contact']['force']:.6e} vs {b['contact']['force']:.6e}, {extent} "
+          f"{a['contact'][extent]:.6e} vs {b['contact'][extent]:.6e}")
+
 def plastic(d):
     """A plastic run beyond yield: plastic strain > 0 and the von Mises stress within the yield
     surface sigma_Y + H alpha_max (1 % for the Cauchy stress of a law that acts on the second
@@ -1197,6 +1218,8 @@ if __name__ == "__main__":
         nonlinear_vs_elastic(args[0], args[1], option(args, "--tol", 1e-3))
     elif mode == "newton":
         newton(args[0], args[1], float(option(args, "--tol", 1e-4)))
+    elif mode == "same_indentation":
+        same_indentation(args[0], args[1], float(option(args, "--tol", 1e-3)))
     elif mode == "plastic":
         plastic(args[0])
     elif mode == "plastic_vs_elastic":

@@ -199,6 +199,59 @@ std::vector<int> nodesOf(const contact::GmshBoundary& g) {
   return v;
 }
 
+// The height-function gap (Gap direction) against hand calculations: step-42's sphere (R = 0.6,
+// centre (0.5, 0.5, 1.59)) above nodes of the top face z = 1, gaps measured vertically:
+// g(x, y) = 1.59 - sqrt(R^2 - r^2) - z with r the horizontal distance to the axis, row u_z <= g;
+// a node whose vertical misses the sphere gets no row; off the axis the vertical gap exceeds the
+// closest-point one. A 2D line y = 1 + x/2 with gaps along +y from y = 0: g = 1 + x/2.
+TEUCHOS_UNIT_TEST(RigidObstacle, HeightFunctionAgainstHandCalculation) {
+  RigidObstacle s = ball(3, {0.5, 0.5, 1.59}, 0.6);
+  s.gapDirection = {0.0, 0.0, 2.0};  // any length
+  // Nodes on z = 1 at r = 0, 0.3 (along x), 0.5 (along the diagonal), 0.7 (misses: r > R).
+  const double h = 0.5 / std::sqrt(2.0);
+  const std::vector<double> x = {0.5,     0.5,     1.0, 0.8, 0.5, 1.0,
+                                 0.5 + h, 0.5 + h, 1.0, 1.2, 0.5, 1.0};
+  const ContactRowsResult r = contact::computeObstacleRows(s, x, {0, 1, 2, 3}, radius(1.0));
+  TEST_EQUALITY(static_cast<int>(r.rows.size()), 3);
+  TEST_EQUALITY(r.beyondRadius, 1LL);
+  const double radii[3] = {0.0, 0.3, 0.5};
+  for (int k = 0; k < 3; ++k) {
+    const auto& row = r.rows[k];
+    const double g = 1.59 - std::sqrt(0.36 - radii[k] * radii[k]) - 1.0;
+    TEST_FLOATING_EQUALITY(row.gap, g, 1e-14);
+    // Only u_z, coefficient +1: u_z <= g.
+    TEST_EQUALITY(static_cast<int>(row.entries.size()), 3);
+    for (const auto& e : row.entries)
+      TEST_COMPARE(std::abs(e.coef - (e.component == 2 ? 1.0 : 0.0)), <, 1e-15);
+    TEST_FLOATING_EQUALITY(row.point[2], 1.0 + g, 1e-14);
+  }
+  // Off the axis the vertical gap exceeds the closest-point one (the normal is tilted).
+  const ContactRowsResult normal =
+      contact::computeObstacleRows(ball(3, {0.5, 0.5, 1.59}, 0.6), x, {2}, radius(1.0));
+  TEST_COMPARE(normal.rows[0].gap, <, r.rows[2].gap);
+
+  // The line y = 1 + x/2 (outward normal along (1/2, -1)), nodes at y = 0.
+  RigidObstacle line = halfSpace(2, {0.0, 1.0, 0.0}, {0.5, -1.0, 0.0});
+  line.gapDirection = {0.0, 1.0, 0.0};
+  const ContactRowsResult l =
+      contact::computeObstacleRows(line, {0.0, 0.0, 1.0, 0.0, -2.0, 0.0}, {0, 1, 2}, radius(10));
+  TEST_EQUALITY(static_cast<int>(l.rows.size()), 3);
+  const double xs[3] = {0.0, 1.0, -2.0};
+  for (int k = 0; k < 3; ++k) {
+    TEST_COMPARE(std::abs(l.rows[k].gap - (1.0 + xs[k] / 2.0)), <, 1e-14);
+    TEST_COMPARE(std::abs(l.rows[k].normal[1] + 1.0), <, 1e-15);
+  }
+
+  // A direction that points out of a half-space, and a 2D direction with a z component, are
+  // errors naming the gap direction.
+  RigidObstacle away = halfSpace(3, {0, 0, 1}, {0, 0, -1});
+  away.gapDirection = {0, 0, -1};
+  TEST_THROW(contact::computeObstacleRows(away, {0, 0, 0}, {0}, radius(1)), std::invalid_argument);
+  RigidObstacle flat = ball(2, {0, 1, 0}, 0.5);
+  flat.gapDirection = {0, 1, 1};
+  TEST_THROW(contact::computeObstacleRows(flat, {0, 0}, {0}, radius(1)), std::invalid_argument);
+}
+
 TEUCHOS_UNIT_TEST(ContactMaster, OneInterfaceForSegmentsFacesAndObstacles) {
   // 2D: the cylinder's nodes against the block's top.
   const contact::GmshMesh m2 = contact::loadMesh(kMeshDir + "/cylinder_on_block.geo");

@@ -147,6 +147,18 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     } else {
       o.radius = ro.get<double>("Radius");
     }
+    const auto direction = vec(ro.get<Array<double>>("Gap direction"));
+    if (!direction.empty()) {
+      if (static_cast<int>(direction.size()) != o.dim)
+        throw std::invalid_argument("Contact problem/Rigid obstacle: \"Gap direction\" needs " +
+                                    std::to_string(o.dim) + " values " + xyz + " for a " + type +
+                                    " (or none: the gap along the normal)");
+      for (int c = 0; c < o.dim; ++c) o.gapDirection[c] = direction[c];
+      if (!o.heightFunction())
+        throw std::invalid_argument(
+            "Contact problem/Rigid obstacle: \"Gap direction\" is zero (leave it empty for the "
+            "gap along the normal)");
+    }
     spec.obstacle = o;
   }
   spec.distribution = cp.get<std::string>("Subdomain distribution");
@@ -217,6 +229,10 @@ void addElasticContactParameters(ParameterList& pl) {
   ro.set("Normal", Array<double>(), "line/plane: {nx, ny[, nz]}, pointing out of the obstacle");
   ro.set("Centre", Array<double>(), "circle/sphere: {x, y[, z]} of its centre");
   ro.set("Radius", 0.0, "circle/sphere: its radius (> 0)");
+  ro.set("Gap direction", Array<double>(),
+         "empty: gaps along the obstacle's normal (closest point); {dx, dy[, dz]}: gaps measured "
+         "along this fixed direction from the body towards the obstacle, as a height function "
+         "(the classical Signorini form of deal.II's step-41/42)");
   cp.set("Contact zone", "auto",
          "the contact zone's shape, how its extent is measured and which Hertz solution it is "
          "compared with: line (a line contact along z, as in 2D or in a 3D plane-strain slab: "

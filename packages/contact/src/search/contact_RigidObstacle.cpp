@@ -11,6 +11,46 @@ std::string vectorName(const char* field, int component) {
   return std::string("rigid obstacle: ") + field + "[" + std::to_string(component) + "]";
 }
 
+std::array<double, 3> unit(const std::array<double, 3>& v, int dim) {
+  double len = 0.0;
+  for (int i = 0; i < dim; ++i) len += v[i] * v[i];
+  len = std::sqrt(len);
+  std::array<double, 3> u{};
+  for (int i = 0; i < dim; ++i) u[i] = v[i] / len;
+  return u;
+}
+
+// The height-function gap of the node at x along the unit direction d: the first t with x + t d
+// on the obstacle's surface (negative when x is inside it); row normal -d. False when the line
+// misses a ball.
+bool gapAlong(const RigidObstacle& o, const std::array<double, 3>& x,
+              const std::array<double, 3>& d, ContactRow& row) {
+  const int dim = o.dim;
+  double t = 0.0;
+  if (o.shape == RigidObstacle::Shape::HalfSpace) {
+    const std::array<double, 3> n = unit(o.normal, dim);
+    double xn = 0.0, dn = 0.0;
+    for (int i = 0; i < dim; ++i) xn += (x[i] - o.point[i]) * n[i], dn += d[i] * n[i];
+    t = -xn / dn;  // dn < 0 (validate)
+  } else {
+    // |x + t d - c|^2 = R^2: t^2 + 2 (w . d) t + |w|^2 - R^2 = 0 with w = x - c.
+    double wd = 0.0, ww = 0.0;
+    for (int i = 0; i < dim; ++i) {
+      const double w = x[i] - o.point[i];
+      wd += w * d[i], ww += w * w;
+    }
+    const double disc = wd * wd - (ww - o.radius * o.radius);
+    if (disc < 0.0) return false;
+    t = -wd - std::sqrt(disc);
+  }
+  row.gap = t;
+  for (int i = 0; i < dim; ++i) {
+    row.normal[i] = -d[i];
+    row.point[i] = x[i] + t * d[i];
+  }
+  return true;
+}
+
 }  // namespace
 
 void RigidObstacle::validate() const {
@@ -23,6 +63,19 @@ void RigidObstacle::validate() const {
                                   " is not finite");
     if (!std::isfinite(normal[i]))
       throw std::invalid_argument(vectorName("normal", i) + " is not finite");
+    if (!std::isfinite(gapDirection[i]))
+      throw std::invalid_argument(vectorName("gap direction", i) + " is not finite");
+  }
+  if (dim == 2 && gapDirection[2] != 0.0)
+    throw std::invalid_argument("rigid obstacle: a 2D obstacle's gap direction has no z component");
+  if (heightFunction() && shape == Shape::HalfSpace) {
+    double dn = 0.0;
+    for (int i = 0; i < 3; ++i) dn += gapDirection[i] * normal[i];
+    if (!(dn < 0.0))
+      throw std::invalid_argument(
+          "rigid obstacle: the gap direction must point into the half-space (against its "
+          "outward normal): gap direction . normal = " +
+          std::to_string(dn));
   }
   if (dim == 2 && (point[2] != 0.0 || (shape == Shape::HalfSpace && normal[2] != 0.0)))
     throw std::invalid_argument("rigid obstacle: a 2D obstacle has no z component");
@@ -61,12 +114,9 @@ ContactRowsResult computeObstacleRows(const RigidObstacle& obstacle,
                                 std::to_string(dim) + " values per node");
   const int numNodes = static_cast<int>(coords.size()) / dim;
   std::array<double, 3> n0{};
-  if (obstacle.shape == RigidObstacle::Shape::HalfSpace) {
-    double len = 0.0;
-    for (int i = 0; i < dim; ++i) len += obstacle.normal[i] * obstacle.normal[i];
-    len = std::sqrt(len);
-    for (int i = 0; i < dim; ++i) n0[i] = obstacle.normal[i] / len;
-  }
+  if (obstacle.shape == RigidObstacle::Shape::HalfSpace) n0 = unit(obstacle.normal, dim);
+  const bool along = obstacle.heightFunction();
+  const std::array<double, 3> d = along ? unit(obstacle.gapDirection, dim) : n0;
   ContactRowsResult result;
   result.allPairs = static_cast<long long>(slaveNodes.size());
   for (int s : slaveNodes) {
@@ -79,7 +129,12 @@ ContactRowsResult computeObstacleRows(const RigidObstacle& obstacle,
       x[i] = coords[dim * s + i] + (displacement.empty() ? 0.0 : displacement[dim * s + i]);
     ContactRow row;
     row.slaveNode = s;
-    if (obstacle.shape == RigidObstacle::Shape::HalfSpace) {
+    if (along) {
+      if (!gapAlong(obstacle, x, d, row)) {
+        ++result.beyondRadius;  // the line along d misses the ball
+        continue;
+      }
+    } else if (obstacle.shape == RigidObstacle::Shape::HalfSpace) {
       row.normal = n0;
       for (int i = 0; i < dim; ++i) row.gap += (x[i] - obstacle.point[i]) * n0[i];
       for (int i = 0; i < dim; ++i) row.point[i] = x[i] - row.gap * n0[i];

@@ -6,6 +6,11 @@
 //   half-space: g = (x - p) . n, n the obstacle's outward unit normal, p a point on its plane;
 //   ball:       g = |x - c| - R, n = (x - c) / |x - c|, c its centre, R its radius;
 // row -(n . u_s) <= g (the linearized g + n . u_s >= 0), multiplier >= 0.
+// With a gap direction d (a unit vector from the body towards the obstacle) the gap is measured
+// along d instead, as a height function: g = t with x + t d on the obstacle's surface (the first
+// point along d), and the row is d . u_s <= g (n = -d): the classical Signorini form, in which a
+// node may only approach the obstacle along d (deal.II's step-41/42). A node whose line along d
+// misses a ball gets no row (counted beyond the search radius).
 // A moving obstacle (e.g. a tool pressed in by a prescribed displacement) is the same obstacle
 // with its point or centre moved: the caller builds it for each configuration.
 #include <array>
@@ -23,6 +28,14 @@ struct RigidObstacle {
   std::array<double, 3> point{};   // half-space: a point on its boundary; ball: the centre
   std::array<double, 3> normal{};  // half-space: outward normal (any length > 0)
   double radius = 0.0;             // ball: > 0
+  // Zero: the gap along the surface's normal (closest point). Otherwise the direction (any
+  // length > 0) from the body towards the obstacle along which gaps are measured; for a
+  // half-space it must point into it (against its outward normal).
+  std::array<double, 3> gapDirection{};
+
+  bool heightFunction() const {
+    return gapDirection[0] != 0.0 || gapDirection[1] != 0.0 || gapDirection[2] != 0.0;
+  }
 
   // Throws std::invalid_argument naming the obstacle's field that is wrong (dimension, a
   // non-finite value, a zero normal, a non-positive radius, a 2D obstacle with a z component).
