@@ -567,7 +567,7 @@ void updateContact(ElasticContactProblem& p, const std::vector<double>& displace
     throw std::invalid_argument(
         "no slave node of \"" + slaveName + "\" is within the search radius of " +
         (masterName.empty() ? std::string("the rigid obstacle (Contact problem/Rigid obstacle: its "
-                                          "Point or Centre, Normal, Radius)")
+                                          "Point or Centre, Normal, Radius, Gap direction)")
                             : "\"" + masterName + "\""));
   const int dim = p.dim();
   auto dofOf = [&](int node, int component) {

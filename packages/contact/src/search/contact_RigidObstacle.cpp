@@ -1,5 +1,6 @@
 #include "contact_RigidObstacle.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -11,12 +12,15 @@ std::string vectorName(const char* field, int component) {
   return std::string("rigid obstacle: ") + field + "[" + std::to_string(component) + "]";
 }
 
+// v / |v|, scaled by its largest component first so that |v|^2 cannot overflow (1e300).
 std::array<double, 3> unit(const std::array<double, 3>& v, int dim) {
-  double len = 0.0;
-  for (int i = 0; i < dim; ++i) len += v[i] * v[i];
-  len = std::sqrt(len);
+  double big = 0.0;
+  for (int i = 0; i < dim; ++i) big = std::max(big, std::abs(v[i]));
   std::array<double, 3> u{};
-  for (int i = 0; i < dim; ++i) u[i] = v[i] / len;
+  double len = 0.0;
+  for (int i = 0; i < dim; ++i) u[i] = v[i] / big, len += u[i] * u[i];
+  len = std::sqrt(len);
+  for (int i = 0; i < dim; ++i) u[i] /= len;
   return u;
 }
 
@@ -114,7 +118,12 @@ ContactRowsResult computeObstacleRows(const RigidObstacle& obstacle,
                                 std::to_string(dim) + " values per node");
   const int numNodes = static_cast<int>(coords.size()) / dim;
   std::array<double, 3> n0{};
-  if (obstacle.shape == RigidObstacle::Shape::HalfSpace) n0 = unit(obstacle.normal, dim);
+  if (obstacle.shape == RigidObstacle::Shape::HalfSpace) {
+    double len = 0.0;
+    for (int i = 0; i < dim; ++i) len += obstacle.normal[i] * obstacle.normal[i];
+    len = std::sqrt(len);
+    for (int i = 0; i < dim; ++i) n0[i] = obstacle.normal[i] / len;
+  }
   const bool along = obstacle.heightFunction();
   const std::array<double, 3> d = along ? unit(obstacle.gapDirection, dim) : n0;
   ContactRowsResult result;
