@@ -833,6 +833,22 @@ def same_indentation(d1, d2, tol):
     print(f"OK: force {a['contact']['force']:.6e} vs {b['contact']['force']:.6e}, {extent} "
           f"{a['contact'][extent]:.6e} vs {b['contact'][extent]:.6e}")
 
+def reference_force(dirs, expected, tol):
+    """Runs against a contact force another code computed on the same discrete problem (e.g.
+    deal.II's step-42, tests/inputs/step42_16*.xml say how the value was obtained): each run's
+    force within tol (relative) of it."""
+    for d in dirs:
+        s = load(d)
+        if not s["converged"]:
+            fail(f"{d}: did not converge")
+        f = s["contact"]["force"]
+        if abs(f - expected) > tol * abs(expected):
+            fail(f"{d}: contact force {f:.8e} against the reference {expected:.8e}: more than "
+                 f"{tol:.0e} apart ({abs(f - expected) / abs(expected):.2e})")
+        print(f"OK: {d}: contact force {f:.8e}, reference {expected:.8e} "
+              f"({abs(f - expected) / abs(expected):.1e} apart)")
+
+
 def plastic(d):
     """A plastic run beyond yield: plastic strain > 0 and the von Mises stress within the yield
     surface sigma_Y + H alpha_max (1 % for the Cauchy stress of a law that acts on the second
@@ -1220,6 +1236,11 @@ if __name__ == "__main__":
         newton(args[0], args[1], float(option(args, "--tol", 1e-4)))
     elif mode == "same_indentation":
         same_indentation(args[0], args[1], float(option(args, "--tol", 1e-3)))
+    elif mode == "reference_force":
+        flags = {"--expected", "--tol"}
+        reference_force([a for i, a in enumerate(args) if a not in flags and
+                         (i == 0 or args[i - 1] not in flags)],
+                        option(args, "--expected", float("nan")), option(args, "--tol", 1e-4))
     elif mode == "plastic":
         plastic(args[0])
     elif mode == "plastic_vs_elastic":

@@ -252,6 +252,26 @@ TEUCHOS_UNIT_TEST(RigidObstacle, HeightFunctionAgainstHandCalculation) {
   TEST_THROW(contact::computeObstacleRows(flat, {0, 0}, {0}, radius(1)), std::invalid_argument);
 }
 
+// Small strain reads the height at the reference position: a displaced node's gap is the
+// reference gap minus its displacement along d (the classical Signorini form); at the current
+// position (heightAtReference false) the horizontal displacement moves it under another part of
+// the sphere.
+TEUCHOS_UNIT_TEST(RigidObstacle, HeightAtTheReferencePosition) {
+  RigidObstacle s = ball(3, {0.5, 0.5, 1.59}, 0.6);
+  s.gapDirection = {0.0, 0.0, 1.0};
+  const std::vector<double> x = {0.8, 0.5, 1.0};
+  const std::vector<double> u = {0.05, -0.02, 0.003};
+  const double g0 = 1.59 - std::sqrt(0.36 - 0.3 * 0.3) - 1.0;
+  s.heightAtReference = true;
+  const ContactRowsResult ref = contact::computeObstacleRows(s, x, {0}, radius(1.0), u);
+  TEST_EQUALITY(static_cast<int>(ref.rows.size()), 1);
+  TEST_FLOATING_EQUALITY(ref.rows[0].gap, g0 - 0.003, 1e-13);
+  s.heightAtReference = false;
+  const ContactRowsResult cur = contact::computeObstacleRows(s, x, {0}, radius(1.0), u);
+  const double r2 = 0.35 * 0.35 + 0.02 * 0.02;
+  TEST_FLOATING_EQUALITY(cur.rows[0].gap, 1.59 - std::sqrt(0.36 - r2) - 1.003, 1e-13);
+}
+
 TEUCHOS_UNIT_TEST(ContactMaster, OneInterfaceForSegmentsFacesAndObstacles) {
   // 2D: the cylinder's nodes against the block's top.
   const contact::GmshMesh m2 = contact::loadMesh(kMeshDir + "/cylinder_on_block.geo");

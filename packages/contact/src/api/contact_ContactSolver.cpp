@@ -150,6 +150,11 @@ void ContactSolver::setup() {
   if (!r.linear) checkNonlinearParameters(params);
   if (!r.linear) r.options = nonlinearOptionsFrom(params);
   r.spec = r.linear ? elasticContactSpec(params) : nonlinearContactSpec(params);
+  // Small strain reads a height-function obstacle at the reference positions: the gap is then
+  // linear in u, as the kinematics are.
+  if (r.spec.obstacle && !r.linear)
+    r.spec.obstacle->heightAtReference =
+        r.options.kinematics == plasticity::Kinematics::SmallStrain;
   r.friction = frictionSpec(params, r.spec.slave, r.spec.master);
   r.feti = fetiParameters(params, r.spec);
   if (!dir_.empty() && comm_->getRank() == 0) std::filesystem::create_directories(dir_);

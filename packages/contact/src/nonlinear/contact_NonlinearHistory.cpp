@@ -93,6 +93,10 @@ void writeRestartState(const std::string& restartDir, const NonlinearHistory& h)
       out << r.step << " " << r.loadFactor << " " << r.iteration << " " << r.relativeResidual << " "
           << r.relativeIncrement << " " << r.solutionNorm << " " << r.mprgpIterations << " "
           << r.hessianMultiplications << " " << (r.accepted ? 1 : 0) << "\n";
+    // Added later: read back when present (older restart files end above).
+    out << "iteration_extras " << h.iterations.size() << "\n";
+    for (const auto& r : h.iterations)
+      out << r.qpToleranceFactor << " " << r.lineSearchStep << "\n";
     if (!out) throw std::runtime_error("cannot write " + tmp);
   }
   std::filesystem::rename(tmp, path);
@@ -129,17 +133,26 @@ NonlinearHistory readRestartState(const std::string& restartDir) {
     r.accepted = accepted != 0;
   }
   if (!in) throw std::runtime_error(path + ": truncated or malformed restart state");
+  std::string extras;
+  if (in >> extras) {
+    if (extras != "iteration_extras" || !(in >> n) || n != h.iterations.size())
+      throw std::runtime_error(path + ": malformed iteration_extras section");
+    for (auto& r : h.iterations) in >> r.qpToleranceFactor >> r.lineSearchStep;
+    if (!in) throw std::runtime_error(path + ": truncated iteration_extras section");
+  }
   return h;
 }
 
 void writeIterationsCsv(const std::string& path, const NonlinearHistory& h) {
   std::ofstream out = openForWriting(path);
   out << "step,load_factor,iteration,relative_residual,relative_increment,solution_norm,"
-         "mprgp_iterations,hessian_multiplications,accepted\n";
+         "mprgp_iterations,hessian_multiplications,accepted,qp_tolerance_factor,"
+         "line_search_step\n";
   for (const auto& r : h.iterations)
     out << r.step << "," << r.loadFactor << "," << r.iteration << "," << r.relativeResidual << ","
         << r.relativeIncrement << "," << r.solutionNorm << "," << r.mprgpIterations << ","
-        << r.hessianMultiplications << "," << (r.accepted ? 1 : 0) << "\n";
+        << r.hessianMultiplications << "," << (r.accepted ? 1 : 0) << "," << r.qpToleranceFactor
+        << "," << r.lineSearchStep << "\n";
 }
 
 void writeStepsCsv(const std::string& path, const NonlinearHistory& h) {

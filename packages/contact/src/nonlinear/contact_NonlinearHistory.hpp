@@ -22,7 +22,9 @@ struct IterationRecord {
   double solutionNorm = 0.0;       // ||u||
   long long mprgpIterations = 0;   // MPRGP steps of this iteration's QP solve
   long long hessianMultiplications = 0;
-  bool accepted = false;  // part of a converged step (not of a cut-back attempt)
+  bool accepted = false;           // part of a converged step (not of a cut-back attempt)
+  double qpToleranceFactor = 1.0;  // the QP stopped at this factor times its tolerances
+  double lineSearchStep = 1.0;     // the fraction of the Newton step taken
 };
 
 struct StepRecord {

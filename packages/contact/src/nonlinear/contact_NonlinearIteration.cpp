@@ -1,5 +1,6 @@
 #include "contact_NonlinearIteration.hpp"
 
+#include <algorithm>
 #include <utility>
 
 #include "contact_ContactMaster.hpp"
@@ -84,6 +85,8 @@ tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field&
   // The linear problem's only increment is the one the solver was built with (loads f, the
   // rows of the reference geometry, the prescribed rows at their full value).
   if (options_.linear && iteration == 1) return solver_.solve();
+  // Inexact solves and partial steps leave jumps in u: the next increment closes them.
+  if (inexact()) solver_.setIncrementOrigin(u);
   if (refactor)
     solver_.updateStiffness(model_.tangent(u, options_.kinematics),
                             model_.kernelCoordinates(u, options_.kinematics), rhs,
@@ -91,6 +94,42 @@ tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field&
   else
     solver_.update(rhs, model_.problem.inequalities, prescribed);
   return solver_.solve();
+}
+
+bool LoadStepIteration::inexact() const {
+  return !options_.linear && (options_.inexactQpFactor > 1.0 || options_.lineSearch);
+}
+
+double LoadStepIteration::loadNormAt(const Field& load, double t) const {
+  // With ramped loads the load's norm at t is the scale; proportional loading keeps t ||f||
+  // (the same number, computed as it always was).
+  return model_.problem.rampedLoads.empty() ? t * loadNorm_
+         : loadNorm_ > 0.0                  ? globalNorm(*comm_, load)
+                                            : 0.0;
+}
+
+LoadStepIteration::Trial LoadStepIteration::tryStep(const Field& u, const Field& du, double alpha,
+                                                    const Field& forces,
+                                                    const Field& previousForces, double t) const {
+  Trial trial;
+  trial.alpha = alpha;
+  trial.u = u;
+  trial.du = du;
+  trial.forces = forces;
+  for (std::size_t i = 0; i < u.size(); ++i)
+    for (std::size_t k = 0; k < u[i].size(); ++k) {
+      trial.du[i][k] *= alpha;
+      trial.u[i][k] += trial.du[i][k];
+      // The multipliers move with the step: B^T lambda from the previous iteration's towards
+      // this QP's.
+      if (alpha != 1.0)
+        trial.forces[i][k] = previousForces[i][k] + alpha * (forces[i][k] - previousForces[i][k]);
+    }
+  trial.fint = model_.internalForce(trial.u, options_.kinematics);
+  const Field load = loadAt(model_.problem, t);
+  trial.check = checkResidual(*comm_, load, trial.forces, trial.fint, trial.u, trial.du,
+                              loadNormAt(load, t), options_);
+  return trial;
 }
 
 StepOutcome LoadStepIteration::attempt(int step, double t) const {
@@ -102,8 +141,14 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
     Field fint = options_.linear ? Field(u.size()) : model_.internalForce(u, options_.kinematics);
     for (std::size_t i = 0; i < fint.size() && options_.linear; ++i)
       fint[i].assign(u[i].size(), 0.0);
+    // Inexact Newton: the first QP of a step at the loosest tolerance, later ones from the
+    // residual they start from.
+    double factor = options_.linear ? 1.0 : options_.inexactQpFactor;
+    Field previousForces;
+    double previousResidual = 0.0;
     for (int it = 1; it <= options_.maxIterations; ++it) {
       if (!options_.linear) updateContact(u, t);
+      solver_.setToleranceFactor(factor);
       out.qp = solveIncrement(u, fint, t, it);
       const tfeti::DualResult& qp = out.qp;
       IterationRecord rec;
@@ -112,6 +157,7 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
       rec.iteration = it;
       rec.mprgpIterations = qp.iterations;
       rec.hessianMultiplications = qp.qp.hessianMultiplications;
+      rec.qpToleranceFactor = factor;
       if (!qp.converged && !options_.linear) {
         out.iterations.push_back(rec);
         out.reason = "the contact QP did not converge in iteration " + std::to_string(it) + " (" +
@@ -119,22 +165,30 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
         return out;
       }
       Field du(u.size());
-      for (std::size_t i = 0; i < u.size(); ++i) {
-        du[i] = solver_.solution(i);
-        for (std::size_t k = 0; k < u[i].size(); ++k) u[i][k] += du[i][k];
+      for (std::size_t i = 0; i < u.size(); ++i) du[i] = solver_.solution(i);
+      const Field forces = solver_.multiplierForces();
+      Trial trial = tryStep(u, du, 1.0, forces, forces, t);
+      // Backtracking (not on a step's first iteration, which has no residual to compare with):
+      // the first halving that decreases ||res||, else the smallest residual tried.
+      if (options_.lineSearch && it > 1 && trial.check.relativeResidual >= previousResidual) {
+        Trial best = trial;
+        double alpha = 1.0;
+        for (int cut = 1; cut <= options_.lineSearchCuts; ++cut) {
+          alpha *= 0.5;
+          Trial half = tryStep(u, du, alpha, forces, previousForces, t);
+          const bool decreases = half.check.relativeResidual < previousResidual;
+          if (half.check.relativeResidual < best.check.relativeResidual) best = std::move(half);
+          if (decreases) break;
+        }
+        trial = std::move(best);
       }
-      fint = model_.internalForce(u, options_.kinematics);
-      // With ramped loads the load's norm at t is the scale; proportional loading keeps
-      // t ||f|| (the same number, computed as it always was).
-      const Field load = loadAt(model_.problem, t);
-      const double loadNorm = model_.problem.rampedLoads.empty() ? t * loadNorm_
-                              : loadNorm_ > 0.0                  ? globalNorm(*comm_, load)
-                                                                 : 0.0;
-      const ResidualCheck check =
-          checkResidual(*comm_, load, solver_.multiplierForces(), fint, u, du, loadNorm, options_);
+      u = std::move(trial.u);
+      fint = std::move(trial.fint);
+      const ResidualCheck& check = trial.check;
       rec.solutionNorm = check.solutionNorm;
       rec.relativeIncrement = check.relativeIncrement;
       rec.relativeResidual = check.relativeResidual;
+      rec.lineSearchStep = trial.alpha;
       out.iterations.push_back(rec);
       if (onIteration) onIteration(rec);
       if (options_.linear) {
@@ -144,10 +198,16 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
         if (!qp.converged) out.reason = "the contact QP did not converge (" + qp.qp.message + ")";
         return out;
       }
-      if (check.converged) {
+      // Only a full step of an exact QP ends a step: the multipliers reported are that QP's.
+      if (check.converged && factor == 1.0 && trial.alpha == 1.0) {
         out.converged = true;
         return out;
       }
+      factor = check.converged ? 1.0
+                               : std::clamp(check.relativeResidual / options_.eta2, 1.0,
+                                            options_.inexactQpFactor);
+      previousForces = std::move(trial.forces);
+      previousResidual = check.relativeResidual;
     }
     out.reason = "no convergence in " + std::to_string(options_.maxIterations) + " iterations";
   } catch (const plasticity::InvertedDeformationError& e) {

@@ -9,6 +9,8 @@
 //   residual check    res = t f - B^T lambda - f_int(u); converged when ||du|| / ||u|| < eta1
 //                     and ||res|| / ||t f|| < eta2 (||f_int|| when no load is applied: a
 //                     prescribed obstacle motion alone).
+// Options: inexact QPs whose tolerance follows the residual (forcing terms) and a backtracking
+// line search on ||res||; a step then converges only on a full step of an exactly solved QP.
 // Step control (contact_LoadStepControl.hpp) decides the load factors and the cut-backs.
 // NonlinearOptions::linear makes it the one-step case of a linear problem: one increment from
 // u = 0 with the solver's own loads and rows, no contact update, no f_int(0).
@@ -76,6 +78,19 @@ class LoadStepIteration {
   // The prescribed displacements' rows of the increment, c_E(t) - B_E u, and the kinematic
   // couplings' rows.
   std::vector<tfeti::EqualityRow> prescribedIncrementRows(const Field& u, double t) const;
+
+  // Inexact QPs or partial steps: increments then also close the jumps left in u.
+  bool inexact() const;
+  // ||f(t)|| as the residual's scale (contact_NonlinearIteration.cpp).
+  double loadNormAt(const Field& load, double t) const;
+  // u + alpha du with the multipliers' forces moved by the same fraction, f_int and the residual.
+  struct Trial {
+    double alpha = 1.0;
+    Field u, du, forces, fint;
+    ResidualCheck check;
+  };
+  Trial tryStep(const Field& u, const Field& du, double alpha, const Field& forces,
+                const Field& previousForces, double t) const;
 
   Teuchos::RCP<const tfeti::Comm> comm_;
   NonlinearModel& model_;

@@ -27,6 +27,9 @@ NonlinearOptions nonlinearOptionsFrom(const ParameterList& params) {
   o.stiffness = nl.get<std::string>("Stiffness");
   o.restart = nl.get<bool>("Restart");
   o.vtuEveryStep = nl.get<bool>("VTU every step");
+  o.inexactQpFactor = nl.get<double>("Inexact QP factor");
+  o.lineSearch = nl.get<std::string>("Line search") == "backtracking";
+  o.lineSearchCuts = nl.get<int>("Line search cuts");
   const auto& ex = nl.sublist("Contact extent");
   o.rule.angle = ex.get<std::string>("Measure") == "angle";
   const auto c = ex.get<Array<double>>("Centre"), d = ex.get<Array<double>>("Direction"),
@@ -51,6 +54,8 @@ NonlinearOptions nonlinearOptionsFrom(const ParameterList& params) {
     throw std::invalid_argument("Nonlinear: \"Maximum iterations\" must be >= 1");
   if (o.maxCutbacks < 0)
     throw std::invalid_argument("Nonlinear: \"Maximum cutbacks\" must be >= 0");
+  if (!(o.inexactQpFactor >= 1.0) || !std::isfinite(o.inexactQpFactor))
+    throw std::invalid_argument("Nonlinear: \"Inexact QP factor\" must be >= 1 and finite");
   if (!(o.eta1 > 0.0) || !(o.eta2 > 0.0))
     throw std::invalid_argument("Nonlinear: \"Eta 1\" and \"Eta 2\" must be positive");
   return o;
@@ -96,6 +101,18 @@ void addNonlinearContactParameters(ParameterList& pl) {
          "iteration (both refactorize)",
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
              Teuchos::tuple<std::string>("initial", "step", "iteration"), "Stiffness")));
+  nl.set("Inexact QP factor", 1.0,
+         "inexact Newton: an iteration's QP stops at up to this factor times the FETI solver's "
+         "tolerances, min(this, ||res|| / (Eta 2 ||f||)) from the previous iteration's residual "
+         "(this for a step's first iteration); a step converges only on an iteration solved to "
+         "the tolerances themselves. 1: every QP as configured",
+         tfeti::strict::positive());
+  nl.set("Line search", "none",
+         "none: full Newton steps; backtracking: halve the step (and the multipliers' change) "
+         "until ||res|| decreases, at most \"Line search cuts\" times",
+         Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+             Teuchos::tuple<std::string>("none", "backtracking"), "Line search")));
+  nl.set("Line search cuts", 5, "halvings of a step the line search tries", tfeti::strict::count());
   nl.set("Restart", false,
          "continue from the last converged load step saved in the output directory's restart/");
   nl.set("Stop after step", 0,

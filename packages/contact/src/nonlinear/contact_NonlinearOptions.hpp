@@ -23,6 +23,14 @@ struct NonlinearOptions {
   // "Obstacle displacement": the rigid obstacle's motion at load factor 1 (it moves by t times
   // it); empty: the obstacle stays where it is.
   std::vector<double> obstacleDisplacement;
+  // Inexact Newton ("Inexact QP factor"): an iteration's QP stops at f times the FETI
+  // tolerances, f = min(inexactQpFactor, ||res|| / (eta2 ||f||)) from the previous iteration's
+  // residual (the first iteration of a step: inexactQpFactor); 1: every QP as configured.
+  double inexactQpFactor = 1.0;
+  // "Line search": none, or backtracking on the residual norm (halving the step up to
+  // lineSearchCuts times until the residual decreases).
+  bool lineSearch = false;
+  int lineSearchCuts = 5;
   // The linear problem (elastic_contact, the loop's one-step case): small strain, linear laws
   // and the contact rows of the reference geometry, so that one increment from u = 0 solves it.
   // The iteration then neither searches the contact again nor evaluates f_int(0) = 0, solves

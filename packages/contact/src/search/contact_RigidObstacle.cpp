@@ -136,6 +136,12 @@ ContactRowsResult computeObstacleRows(const RigidObstacle& obstacle,
     std::array<double, 3> x{};
     for (int i = 0; i < dim; ++i)
       x[i] = coords[dim * s + i] + (displacement.empty() ? 0.0 : displacement[dim * s + i]);
+    if (along && obstacle.heightAtReference && !displacement.empty()) {
+      // Only the displacement along d moves the node relative to the height function.
+      double ud = 0.0;
+      for (int i = 0; i < dim; ++i) ud += displacement[dim * s + i] * d[i];
+      for (int i = 0; i < dim; ++i) x[i] = coords[dim * s + i] + ud * d[i];
+    }
     ContactRow row;
     row.slaveNode = s;
     if (along) {

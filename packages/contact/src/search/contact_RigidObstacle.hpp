@@ -32,6 +32,11 @@ struct RigidObstacle {
   // length > 0) from the body towards the obstacle along which gaps are measured; for a
   // half-space it must point into it (against its outward normal).
   std::array<double, 3> gapDirection{};
+  // Height function only: where on the obstacle the gap is read. true: at the node's reference
+  // position X, so that the row is d . u <= h(X) - d . X, linear in u (the classical Signorini
+  // form of small-strain codes, deal.II's step-41/42); false: at the current position X + u
+  // (large displacements). The nonlinear driver sets it from the kinematics.
+  bool heightAtReference = false;
 
   bool heightFunction() const {
     return gapDirection[0] != 0.0 || gapDirection[1] != 0.0 || gapDirection[2] != 0.0;

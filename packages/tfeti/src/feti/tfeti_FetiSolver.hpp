@@ -134,6 +134,17 @@ class FetiSolver {
   // Teuchos::FancyOStream; null (default): std::cout. Its format state is never changed.
   void setOutputStream(Teuchos::RCP<std::ostream> os) { out_ = std::move(os); }
 
+  // Inexact solves, for a Newton method's forcing terms: the following solve() calls stop at
+  // `factor` (>= 1) times the configured relative tolerances (PCPG's, SMALBE's relative and
+  // equality tolerances, MPRGP's); 1, the default, solves as configured.
+  void setToleranceFactor(double factor);
+  double toleranceFactor() const { return toleranceFactor_; }
+  // For increments du of a nonlinear method from the state u (per local subdomain, as the loads):
+  // from the next update() or updateStiffness() on, the rows the solver owns (gluing and zero
+  // Dirichlet rows) read B du = -B u, so that each increment also closes the jumps and the
+  // Dirichlet error an inexact earlier solve left in u. Empty (the default): B du = 0.
+  void setIncrementOrigin(std::vector<std::vector<double>> u);
+
   // For nonlinear drivers, which keep K (and its factorizations) and change the rest between
   // solves: new loads f for the local subdomains and new inequality rows (contact rows on the
   // current geometry). Tearing, coarse space and right-hand sides are rebuilt; the Dirichlet
@@ -264,11 +275,15 @@ class FetiSolver {
   Teuchos::RCP<const Vector> previousLambda_, previousEqualityMultiplier_;
   Teuchos::RCP<Vector> equalityMultiplier_;
   double normEstimate_ = 0.0, previousNorm_ = 0.0;
+  Teuchos::RCP<Vector> normVector_;  // the last power iterate ("Warm power iterations")
   Teuchos::RCP<MultiVector> f_, u_vec_;
   std::vector<std::vector<double>> u_;
   FetiTimings timings_;
   MemoryLog memory_;
   Teuchos::RCP<std::ostream> out_;
+  double toleranceFactor_ = 1.0;
+  std::vector<std::vector<double>> incrementOrigin_;
+  void shiftOwnRowsByOrigin();  // c -= B u on the solver's own rows (setIncrementOrigin)
 };
 
 Formulation parseFormulation(const std::string& name);

@@ -202,6 +202,12 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
             "false: free each subdomain matrix K once its preconditioner is set up (a linear "
             "solve needs it no more; about 200 bytes per unknown in 2D); update() then cannot "
             "rebuild a preconditioner whose interface dofs changed");
+    pl->set("Warm power iterations", 0,
+            "after a refactorization (a Newton method's new tangent) estimate ||P F P|| by this "
+            "many power iterations from the last estimate's vector, when the dual dimension is "
+            "unchanged, instead of SMALBE's / Penalty's \"Power iterations\" from a fixed "
+            "start; 0: always from the fixed start",
+            strict::count(0));
     pl->set("Warm start", true,
             "SMALBE / penalty after update(): start from the multipliers of the previous solve "
             "(projected onto G lambda = e and the bounds) when the dual dimension is unchanged");

@@ -137,7 +137,24 @@ double FetiSolver::projectedNormEstimate(const Operator& PFP, const MultiVector&
   if (norm <= 0.0 && warm && previousNorm_ > 0.0) norm = previousNorm_;
   if (norm <= 0.0) {
     const int its = smalbe ? sp.get<int>("Power iterations") : pen.get<int>("Power iterations");
-    norm = MprgpSolMgr<Scalar, MultiVector, Operator>::estimateNorm(PFP, b, its);
+    // A new tangent moves the dominant eigenvector little: a few power iterations from the
+    // last one estimate its norm.
+    const int warmIts = params_.get<int>("Warm power iterations");
+    const auto map = tearing_.multiplierMap;
+    int sameLocal = !normVector_.is_null() &&
+                            normVector_->getGlobalLength() == map->getGlobalNumElements() &&
+                            normVector_->getLocalLength() == map->getNodeNumElements()
+                        ? 1
+                        : 0,
+        same = 0;
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, 1, &sameLocal, &same);
+    const bool fromLast = warmIts > 0 && same == 1;
+    if (!fromLast) normVector_ = Teuchos::rcp(new Vector(map));  // zero: the fixed start
+    auto start = Teuchos::rcp(new Vector(map));
+    Tpetra::deep_copy(*start, *normVector_);
+    norm = MprgpSolMgr<Scalar, MultiVector, Operator>::estimateNorm(
+        PFP, b, fromLast ? warmIts : its, nullptr, start.get());
+    normVector_ = start;
   }
   return norm;
 }
@@ -155,6 +172,8 @@ Belos::ReturnType FetiSolver::solveSmalbe(DualQp& dual, QpCounters& counters) {
   dual.qp.A = dual.PFP;
   Teuchos::ParameterList sp = params_.sublist("SMALBE");
   sp.set("Norm of A", dual.norm);
+  for (const char* tol : {"Relative tolerance", "Equality tolerance"})
+    sp.set(tol, toleranceFactor_ * sp.get<double>(tol));
   sp.sublist("MPRGP").set(kPreconditioningInFace, !dual.prec.is_null());
   SmalbeSolMgr<Scalar, MultiVector, Operator> solver(dual.qp, dual.Q, sp, dual.prec);
   solver.setOutputStream(out_);
@@ -214,6 +233,7 @@ Teuchos::RCP<Vector> FetiSolver::contactGapLevels() const {
 Belos::ReturnType FetiSolver::solvePenalty(DualQp& dual, QpCounters& counters) {
   dual.qp.A = dual.H;
   Teuchos::ParameterList mp = params_.sublist("MPRGP");
+  mp.set("Relative tolerance", toleranceFactor_ * mp.get<double>("Relative tolerance"));
   // ||P F P + rho Q|| = max(||P F P||, rho): P and Q are complementary orthogonal projectors.
   if (mp.get<double>("Norm of A") == 0.0) mp.set("Norm of A", std::max(dual.norm, dual.rho));
   mp.set(kPreconditioningInFace, !dual.prec.is_null());

@@ -4,6 +4,9 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "tfeti_FetiSolver.hpp"
 #include "tfeti_InputChecks.hpp"
@@ -157,6 +160,7 @@ void FetiSolver::buildDualRhs() {
   }
   MultiVector Kf(tearing_.primalMap, 1);
   Kplus_->apply(*f_, Kf);
+  shiftOwnRowsByOrigin();
   d_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
   tearing_.B->apply(Kf, *d_);
   d_->update(-1.0, *tearing_.rhs, 1.0);  // d = B K+ f - c
@@ -166,6 +170,55 @@ void FetiSolver::buildDualRhs() {
     coarse_->applyKernelTranspose(*f_, e);
     coarse_->particularSolution(e, *lambda0_);
   }
+}
+
+void FetiSolver::setToleranceFactor(double factor) {
+  if (!(factor >= 1.0) || !std::isfinite(factor))
+    throw std::invalid_argument("FetiSolver::setToleranceFactor: the factor must be >= 1, got " +
+                                std::to_string(factor));
+  toleranceFactor_ = factor;
+}
+
+void FetiSolver::setIncrementOrigin(std::vector<std::vector<double>> u) {
+  collectively(*comm_, [&] {
+    if (u.empty()) return;
+    if (u.size() != data_.size())
+      throw std::invalid_argument("FetiSolver::setIncrementOrigin: " + std::to_string(u.size()) +
+                                  " displacement vectors for " + std::to_string(data_.size()) +
+                                  " local subdomains");
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      const int n = subdomains_[i]->numDofs();
+      if (static_cast<int>(u[i].size()) != n)
+        throw std::invalid_argument("FetiSolver::setIncrementOrigin: subdomain " +
+                                    std::to_string(data_[i].mesh.id) + " has " + std::to_string(n) +
+                                    " dofs, the displacement " + std::to_string(u[i].size()));
+    }
+  });
+  incrementOrigin_ = std::move(u);
+}
+
+void FetiSolver::shiftOwnRowsByOrigin() {
+  int any = 0, local = incrementOrigin_.empty() ? 0 : 1;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &local, &any);
+  if (any == 0) return;
+  MultiVector u(tearing_.primalMap, 1);
+  {
+    auto v = u.getDataNonConst(0);
+    std::size_t offset = 0;
+    for (std::size_t s = 0; s < subdomains_.size(); ++s) {
+      const int n = subdomains_[s]->numDofs();
+      for (int i = 0; i < n && !incrementOrigin_.empty(); ++i)
+        v[offset + i] = incrementOrigin_[s][i];
+      offset += n;
+    }
+  }
+  Vector Bu(tearing_.multiplierMap);
+  tearing_.B->apply(u, Bu);
+  auto c = tearing_.rhs->getDataNonConst();
+  auto bu = Bu.getData();
+  const auto map = tearing_.multiplierMap;
+  for (std::size_t i = 0; i < map->getNodeNumElements(); ++i)
+    if (map->getGlobalElement(static_cast<LO>(i)) < tearing_.firstUserEqualityRow) c[i] -= bu[i];
 }
 
 void FetiSolver::update(const std::vector<std::vector<double>>& loads,

@@ -19,7 +19,9 @@ DualResult FetiSolver::solvePcpg() {
   Vector g(tearing_.multiplierMap);
   PhaseTimer t(*comm_, timings_.solve, &memory_, "solve");
   Tpetra::deep_copy(*lambda_, *lambda0_);
-  Pcpg pcpg(F_, *coarse_, M_, params_.sublist("PCPG"));
+  Teuchos::ParameterList pp = params_.sublist("PCPG");
+  pp.set("Relative tolerance", toleranceFactor_ * pp.get<double>("Relative tolerance"));
+  Pcpg pcpg(F_, *coarse_, M_, pp);
   const long long before = F_->numApplies();
   pcpg.setOutputStream(out_);
   static_cast<PcpgResult&>(result) = pcpg.solve(*d_, *lambda_, g);

@@ -104,9 +104,11 @@ class MprgpSolMgr {
   magnitude_type achievedTol() const { return achievedTol_; }
 
   // ||A v_k|| * 1.05 after k power iterations from a deterministic start (see above); adds the k
-  // multiplications to *multiplications when given.
+  // multiplications to *multiplications when given. start (optional, like's map): a non-zero
+  // start replaces the deterministic one; on return it holds the last unit iterate v_k (to
+  // start the estimate of a nearby operator from).
   static magnitude_type estimateNorm(const OP& A, const MV& like, int iterations,
-                                     long long* multiplications = nullptr);
+                                     long long* multiplications = nullptr, MV* start = nullptr);
 
  private:
   BoundConstrainedQp<S, MV, OP> qp_;

@@ -158,12 +158,16 @@ void MprgpSolMgr<S, MV, OP>::setNormOfA(magnitude_type normA) {
 
 template <class S, class MV, class OP>
 typename MprgpSolMgr<S, MV, OP>::magnitude_type MprgpSolMgr<S, MV, OP>::estimateNorm(
-    const OP& A, const MV& like, int iterations, long long* multiplications) {
+    const OP& A, const MV& like, int iterations, long long* multiplications, MV* start) {
   using MVT = Belos::MultiVecTraits<S, MV>;
   auto v = MVT::Clone(like, 1);
   auto w = MVT::Clone(like, 1);
-  BoundTraits<S, MV>::fillDeterministic(*v);
   std::vector<magnitude_type> n(1);
+  if (start != nullptr) MVT::MvNorm(*start, n);
+  if (start != nullptr && n[0] > magnitude_type(0) && std::isfinite(n[0]))
+    MVT::MvAddMv(S(1), *start, S(0), *start, *v);
+  else
+    BoundTraits<S, MV>::fillDeterministic(*v);
   MVT::MvNorm(*v, n);
   MVT::MvScale(*v, S(1) / n[0]);
   magnitude_type est = 0;
@@ -179,6 +183,7 @@ typename MprgpSolMgr<S, MV, OP>::magnitude_type MprgpSolMgr<S, MV, OP>::estimate
   }
   if (!(est > magnitude_type(0)))
     throw std::runtime_error("MPRGP: the estimate of ||A|| is zero (A = 0 on the start vector)");
+  if (start != nullptr) MVT::MvAddMv(S(1), *v, S(0), *v, *start);
   return magnitude_type(1.05) * est;
 }
 
