@@ -276,6 +276,8 @@ void reportStructured(const Teuchos::RCP<const tfeti::Comm>& comm, const Paramet
   if (!sp.prescribed.empty())
     lines.push_back("prescribed rows: " + std::to_string(allPrescribed) +
                     " (one per subdomain copy of a prescribed node and component)");
+  lines.push_back(explicitDualLine(comm, sp.numSubdomains(), local, run.sublist("FETI"), {},
+                                   prescribedRows(sp, local)));
   printDryRunReport(*comm, lines, local, -1, out);
 }
 

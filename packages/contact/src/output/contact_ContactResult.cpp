@@ -90,6 +90,7 @@ Json elasticSummary(const ContactResult& r) {
   s["residual_history"] = std::move(history);
   s["dual_operator_applies"] = r.feti.dualOperatorApplies;
   s["factor_bytes"] = r.feti.factorBytes;
+  addDualOperatorSummary(s, r.feti);
   s["contact_type"] = r.contactType;
   addMaterialSummary(s, r.materials);
   s["qp"] = qpJson(r.qp);

@@ -167,6 +167,19 @@ std::size_t FetiSolver::globalPreconditionerFactorBytes() const {
   return all;
 }
 
+FetiSolver::ExplicitDualBytes FetiSolver::explicitDualBytes() const {
+  const auto& ex = F_->explicitPart();
+  const unsigned long long mine = ex ? ex->bytes() : 0;
+  ExplicitDualBytes b;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &mine, &b.total);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &mine, &b.maxPerRank);
+  return b;
+}
+
+std::string FetiSolver::dualOperatorKind() const {
+  return F_->explicitPart() ? "explicit" : "implicit";
+}
+
 Teuchos::RCP<MultiVector> FetiSolver::solution(const Teuchos::RCP<const Map>& untornMap) const {
   TEUCHOS_TEST_FOR_EXCEPTION(u_.size() != data_.size(), std::logic_error,
                              "FetiSolver::solution: no solution yet (call solve() first)");
