@@ -148,6 +148,7 @@ StructuredRunResult solvedResult(const tfeti::Comm& comm, const StructuredProble
 void timeDualOperator(const tfeti::FetiSolver& solver, StructuredRunResult& r) {
   const double t = solver.timeDualApply(10);
   r.dualApplySeconds = t;
+  r.iterationParts = solver.timeIterationParts(10);
   r.dualApplyBandwidthGbS = 2.0 * static_cast<double>(solver.globalFactorBytes()) / t / 1e9;
 }
 

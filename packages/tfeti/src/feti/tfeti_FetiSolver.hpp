@@ -194,6 +194,13 @@ class FetiSolver {
 
   // Mean wall time of one application of F over `repeats` applications (slowest rank).
   double timeDualApply(int repeats) const;
+  // The rest of a PCPG iteration, timed like timeDualApply: one projection P (two coarse
+  // solves' worth: G^T, the replicated (G G^T)^-1, G), one preconditioner apply (0 without one)
+  // and the vector work of an iteration (two dot products and three axpy on the multipliers).
+  struct IterationParts {
+    double projector = 0.0, preconditioner = 0.0, vectorUpdates = 0.0;
+  };
+  IterationParts timeIterationParts(int repeats) const;
 
   // Primal solution of the i-th local subdomain (after solve()).
   const std::vector<double>& solution(std::size_t i) const { return u_[i]; }
