@@ -16,8 +16,10 @@
                                           FETI "Dual operator" = explicit against implicit:
                                           dual_operator and the F_s bytes reported (0 when
                                           implicit; total >= largest rank's > 0 when explicit),
-                                          the same iterations (PCPG) or outer iterations and
-                                          Hessian multiplications (QP), the same solution norm,
+                                          the same iterations (PCPG), outer iterations and
+                                          Hessian multiplications (QP) or nonlinear iterations
+                                          and multiplications to 1 % (nonlinear_contact), the
+                                          same contact force, solution norm,
                                           max |u| and contact.csv (when written) to T (1e-10)
                                           relative to their scale
   check_summary.py prescribed DIR (--reaction R | --contact-force) [--tol T] [--residual E]
@@ -312,6 +314,9 @@ def same_dual_operator(dirs, tol):
              f"{ref.get('explicit_dual_bytes')}: expected implicit, 0")
 
     def counts(s):
+        if "nonlinear" in s:
+            n = s["nonlinear"]
+            return (n["total_iterations"], n["total_hessian_multiplications"])
         q = s.get("qp")
         return (q["outer_iterations"], q["hessian_multiplications"]) if q else (s["iterations"],)
 
@@ -325,8 +330,17 @@ def same_dual_operator(dirs, tol):
         if s.get("dual_operator") != "explicit" or not 0 < most <= total:
             fail(f"{d}: dual_operator {s.get('dual_operator')}, F_s bytes {total} (largest rank "
                  f"{most}): expected explicit with 0 < largest rank <= total")
-        if not s["converged"] or counts(s) != counts(ref):
-            fail(f"{d}: converged {s['converged']}, counts {counts(s)}; implicit {counts(ref)}")
+        a, b = counts(s), counts(ref)
+        # A nonlinear run solves a QP per iteration, whose discrete choices (MPRGP's steps) can
+        # flip with the rounding of F: the same iterations, the multiplications to 1 %.
+        same = a == b if "nonlinear" not in s else \
+            a[0] == b[0] and abs(a[1] - b[1]) <= 0.01 * b[1]
+        if not s["converged"] or not same:
+            fail(f"{d}: converged {s['converged']}, counts {a}; implicit {b}")
+        if "contact" in ref and "force" in ref["contact"] and \
+                not close(s["contact"]["force"], ref["contact"]["force"],
+                          abs(ref["contact"]["force"])):
+            fail(f"{d}: contact force {s['contact']['force']} vs {ref['contact']['force']}")
         for key in ("solution_norm2", "max_abs_u"):
             if key in ref and not close(s[key], ref[key], abs(ref[key])):
                 fail(f"{d}: {key} {s[key]:.15e} vs {ref[key]:.15e} (implicit)")

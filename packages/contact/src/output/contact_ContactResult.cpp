@@ -110,6 +110,7 @@ Json nonlinearSummary(const ContactResult& r) {
   s["primal_dim"] = r.feti.primal;
   s["dual_dim"] = r.feti.dual;
   s["contact_rows"] = r.feti.contactRows;
+  addDualOperatorSummary(s, r.feti);  // the last solve's operator
   s["converged"] = r.converged;
   const NonlinearOutcome& o = r.nonlinear;
   addMaterialSummary(s, r.materials);

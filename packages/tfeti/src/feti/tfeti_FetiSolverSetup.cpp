@@ -175,6 +175,18 @@ void FetiSolver::buildDualOperator() {
   // over (update() with new contact rows); a refactorized subdomain's block is assembled anew.
   std::shared_ptr<const ExplicitDualOperator> previous;
   if (!F_.is_null()) previous = F_->explicitPart();
+  // After updateStiffness() no block can be taken over: free the old ones (and the old F) before
+  // the new ones are assembled, so that both never take memory at once.
+  const auto reusable = [&] {
+    for (const auto& b : previous->blocks())
+      for (const auto& sub : subdomains_)
+        if (sub->id() == b.subdomainId && sub->factorVersion() == b.version) return true;
+    return false;
+  };
+  if (previous && !reusable()) {
+    previous.reset();
+    F_ = Teuchos::null;
+  }
   std::shared_ptr<const ExplicitDualOperator> ex;
   {
     PhaseTimer t(*comm_, timings_.dualOperator, &memory_, "dual_operator");
