@@ -12,6 +12,16 @@
   check_summary.py same DIR1 DIR2 ...     identical iteration counts, residual histories and
                                           solution norms to rounding (different rank counts)
   check_summary.py diverged DIR           the run reported non-convergence (converged = false)
+  check_summary.py same_dual_operator IMPLICIT EXPLICIT [EXPLICIT2 ...] [--tol T]
+                                          FETI "Dual operator" = explicit against implicit:
+                                          dual_operator and the F_s bytes reported (0 when
+                                          implicit; total >= largest rank's > 0 when explicit),
+                                          the same iterations (PCPG), outer iterations and
+                                          Hessian multiplications (QP) or nonlinear iterations
+                                          and multiplications to 1 % (nonlinear_contact), the
+                                          same contact force, solution norm,
+                                          max |u| and contact.csv (when written) to T (1e-10)
+                                          relative to their scale
   check_summary.py prescribed DIR (--reaction R | --contact-force) [--tol T] [--residual E]
                                           prescribed displacements: converged, B_E u = c_E to
                                           E (1e-8) of max |u|, the first prescribed entry's reaction
@@ -108,6 +118,7 @@
 import csv
 import json
 import math
+import os
 import sys
 
 # The reference paper, "Numerical experiments: Scalability": (1/H, 1/h) -> primal, FETI, TFETI.
@@ -294,6 +305,56 @@ def contact(d, force_tol):
           f"{q['hessian_multiplications']} Hessian multiplications; {c['active_rows']} of "
           f"{c['rows']} contact rows active, force {c['force']:.10f}; " +
           ", ".join(f"{n} {v:.1e}" for n, v, _ in checks))
+
+
+def same_dual_operator(dirs, tol):
+    ref = load(dirs[0])
+    if ref.get("dual_operator") != "implicit" or ref.get("explicit_dual_bytes") != 0:
+        fail(f"{dirs[0]}: dual_operator {ref.get('dual_operator')}, explicit_dual_bytes "
+             f"{ref.get('explicit_dual_bytes')}: expected implicit, 0")
+
+    def counts(s):
+        if "nonlinear" in s:
+            n = s["nonlinear"]
+            return (n["total_iterations"], n["total_hessian_multiplications"])
+        q = s.get("qp")
+        return (q["outer_iterations"], q["hessian_multiplications"]) if q else (s["iterations"],)
+
+    def close(a, b, scale):
+        return abs(a - b) <= tol * max(scale, 1e-300)
+
+    ref_rows = contact_rows(dirs[0]) if os.path.exists(dirs[0] + "/contact.csv") else None
+    for d in dirs[1:]:
+        s = load(d)
+        total, most = s.get("explicit_dual_bytes", 0), s.get("explicit_dual_bytes_max_rank", 0)
+        if s.get("dual_operator") != "explicit" or not 0 < most <= total:
+            fail(f"{d}: dual_operator {s.get('dual_operator')}, F_s bytes {total} (largest rank "
+                 f"{most}): expected explicit with 0 < largest rank <= total")
+        a, b = counts(s), counts(ref)
+        # A nonlinear run solves a QP per iteration, whose discrete choices (MPRGP's steps) can
+        # flip with the rounding of F: the same iterations, the multiplications to 1 %.
+        same = a == b if "nonlinear" not in s else \
+            a[0] == b[0] and abs(a[1] - b[1]) <= 0.01 * b[1]
+        if not s["converged"] or not same:
+            fail(f"{d}: converged {s['converged']}, counts {a}; implicit {b}")
+        if "contact" in ref and "force" in ref["contact"] and \
+                not close(s["contact"]["force"], ref["contact"]["force"],
+                          abs(ref["contact"]["force"])):
+            fail(f"{d}: contact force {s['contact']['force']} vs {ref['contact']['force']}")
+        for key in ("solution_norm2", "max_abs_u"):
+            if key in ref and not close(s[key], ref[key], abs(ref[key])):
+                fail(f"{d}: {key} {s[key]:.15e} vs {ref[key]:.15e} (implicit)")
+        if ref_rows is not None:
+            rows = contact_rows(d)
+            scale = [max(abs(r[k]) for r in ref_rows) for k in range(len(ref_rows[0]))]
+            if len(rows) != len(ref_rows):
+                fail(f"{d}: {len(rows)} contact rows, {len(ref_rows)} implicit")
+            for a, b in zip(ref_rows, rows):
+                for k in range(len(a)):
+                    if not close(a[k], b[k], scale[k]):
+                        fail(f"{d}: contact.csv column {k}: {b[k]:.15e} vs {a[k]:.15e}")
+        print(f"OK: {d}: explicit F_s {total} bytes ({most} on the largest rank), counts "
+              f"{counts(s)} and the solution as implicit to {tol}")
 
 
 def contact_rows(d):
@@ -1194,6 +1255,9 @@ if __name__ == "__main__":
         single(args[0], option(args, "--max-error", 1e-6))
     elif mode == "same":
         same(args)
+    elif mode == "same_dual_operator":
+        same_dual_operator([a for i, a in enumerate(args) if a != "--tol" and
+                            (i == 0 or args[i - 1] != "--tol")], option(args, "--tol", 1e-10))
     elif mode == "diverged":
         diverged(args[0])
     elif mode == "prescribed":

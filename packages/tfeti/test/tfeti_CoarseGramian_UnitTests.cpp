@@ -26,14 +26,8 @@ tfeti::FetiSolver boxSolver(const std::string& formulation, int subdomainsPerSid
   const tfeti_test::Box3d box(n, n, n, e, e, e, false);
   tfeti_test::Material3d mat;
   mat.dofsPerNode = 3;
-  std::vector<tfeti::SubdomainData> local;
-  for (int s : tfeti::subdomainsOfRank(comm->getRank(), box.numSubdomains(), comm->getSize())) {
-    tfeti::SubdomainData d;
-    d.mesh = box.subdomain(s);
-    d.dofsPerNode = 3;
-    tfeti_test::assemble3d(d.mesh.coords, d.mesh.elements, mat, {0, 0, -1}, d.K, d.f);
-    local.push_back(std::move(d));
-  }
+  std::vector<tfeti::SubdomainData> local =
+      tfeti_test::localBoxSubdomains(box, mat, {0, 0, -1}, *comm);
   Teuchos::ParameterList params;
   params.set("Formulation", formulation);
   return tfeti::FetiSolver(comm, box.numSubdomains(), std::move(local), params);

@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "tfeti_CsrMatrix.hpp"
+#include "tfeti_FetiSolver.hpp"
 #include "tfeti_LocalSolver.hpp"
+#include "tfeti_SubdomainDistribution.hpp"
 #include "tfeti_SubdomainMesh.hpp"
 #include "tfeti_TestHelpers.hpp"
 
@@ -221,6 +223,22 @@ inline std::vector<double> referenceSolution3d(const Box3d& box, const Material3
   std::vector<double> f;
   assemble3d(whole.coords, whole.elements, mat, force, K, f);
   return solveWithDirichlet(std::move(K), std::move(f), whole.dirichletDofs(mat.dofsPerNode));
+}
+
+// The subdomains of `box` on this rank (increasing id), assembled with the kernels above under
+// the constant body load `force` (one value per dof of a node).
+inline std::vector<tfeti::SubdomainData> localBoxSubdomains(const Box3d& box, const Material3d& mat,
+                                                            const std::vector<double>& force,
+                                                            const tfeti::Comm& comm) {
+  std::vector<tfeti::SubdomainData> local;
+  for (int s : tfeti::subdomainsOfRank(comm.getRank(), box.numSubdomains(), comm.getSize())) {
+    tfeti::SubdomainData d;
+    d.mesh = box.subdomain(s);
+    d.dofsPerNode = mat.dofsPerNode;
+    assemble3d(d.mesh.coords, d.mesh.elements, mat, force, d.K, d.f);
+    local.push_back(std::move(d));
+  }
+  return local;
 }
 
 }  // namespace tfeti_test

@@ -102,7 +102,8 @@ Teuchos::RCP<const ParameterList> validDriverParameters() {
           "iteration and per SMALBE outer iteration",
           tfeti::strict::count(0));
   out.set("Time dual operator", false,
-          "time 10 extra applications of F and report the bandwidth they achieve (benchmarks)");
+          "time 10 extra applications of F and report the bandwidth they achieve, and 10 of "
+          "the projector, the preconditioner and an iteration's vector updates (benchmarks)");
   auto& sc = pl->sublist("Scalability", false, "Study = scalability");
   const auto atLeastOne = tfeti::strict::positiveInts(0);
   atLeastOne->lengthBetween(1, std::numeric_limits<int>::max());

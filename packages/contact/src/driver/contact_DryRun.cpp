@@ -59,6 +59,36 @@ std::size_t choleskyFactorEntries(const tfeti::CsrMatrix& K, const std::vector<i
   return entries;
 }
 
+std::string explicitDualLine(const Teuchos::RCP<const tfeti::Comm>& comm, int numSubdomains,
+                             const std::vector<tfeti::SubdomainData>& local,
+                             const Teuchos::ParameterList& feti,
+                             const std::vector<tfeti::InequalityRow>& inequalities,
+                             const std::vector<tfeti::EqualityRow>& equalities) {
+  const std::vector<long long> rows = tfeti::FetiSolver::dualRowsPerSubdomain(
+      comm, numSubdomains, local, feti, inequalities, equalities);
+  const auto param = [&](const char* name, const char* fallback) {
+    return feti.isParameter(name) ? feti.get<std::string>(name) : std::string(fallback);
+  };
+  const bool packed = param("Explicit storage", "packed") == "packed";
+  double mine[2] = {0.0, 0.0}, total = 0.0, maxRank = 0.0, largest = 0.0;  // bytes, largest m_s
+  for (long long m : rows) {
+    const double md = static_cast<double>(m);
+    mine[0] += packed ? 4.0 * md * (md + 1.0) : 8.0 * md * md;
+    mine[1] = std::max(mine[1], md);
+  }
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine[0], &total);
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &mine[0], &maxRank);
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &mine[1], &largest);
+  const double mb = 1024.0 * 1024.0;
+  std::ostringstream s;
+  const std::string kind = param("Dual operator", "implicit");
+  s << "dual operator: " << kind << "; " << (kind == "explicit" ? "" : "explicit would take ")
+    << "dense local F_s (" << (packed ? "packed" : "full") << ") " << std::fixed
+    << std::setprecision(3) << total / mb << " MiB, largest rank " << maxRank / mb
+    << " MiB, largest F_s " << static_cast<long long>(largest) << " rows";
+  return s.str();
+}
+
 void printDryRunReport(const tfeti::Comm& comm, const std::vector<std::string>& lines,
                        const std::vector<tfeti::SubdomainData>& local, long long contactRows,
                        std::ostream& out) {

@@ -23,6 +23,15 @@ std::vector<int> fillReducingOrder(const tfeti::CsrMatrix& K);
 // pattern of K eliminated in the given order (elimination tree and row subtrees).
 std::size_t choleskyFactorEntries(const tfeti::CsrMatrix& K, const std::vector<int>& order);
 
+// The line of the explicit dual operator (collective): the bytes its dense local F_s take, or
+// would take, with FETI "Dual operator" = explicit, over all ranks and on the largest rank, from
+// the rows of B that the set-up would build (FetiSolver::dualRowsPerSubdomain).
+std::string explicitDualLine(const Teuchos::RCP<const tfeti::Comm>& comm, int numSubdomains,
+                             const std::vector<tfeti::SubdomainData>& local,
+                             const Teuchos::ParameterList& feti,
+                             const std::vector<tfeti::InequalityRow>& inequalities = {},
+                             const std::vector<tfeti::EqualityRow>& equalities = {});
+
 // Rank 0 prints `lines` (the problem's own report), then the subdomains of every rank, the
 // unknowns and the estimated memory of the subdomain matrices and their Cholesky factors (the
 // largest per rank and the total), from this rank's subdomains. `contactRows` < 0: no contact.

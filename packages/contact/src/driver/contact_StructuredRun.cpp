@@ -148,6 +148,7 @@ StructuredRunResult solvedResult(const tfeti::Comm& comm, const StructuredProble
 void timeDualOperator(const tfeti::FetiSolver& solver, StructuredRunResult& r) {
   const double t = solver.timeDualApply(10);
   r.dualApplySeconds = t;
+  r.iterationParts = solver.timeIterationParts(10);
   r.dualApplyBandwidthGbS = 2.0 * static_cast<double>(solver.globalFactorBytes()) / t / 1e9;
 }
 
@@ -276,6 +277,8 @@ void reportStructured(const Teuchos::RCP<const tfeti::Comm>& comm, const Paramet
   if (!sp.prescribed.empty())
     lines.push_back("prescribed rows: " + std::to_string(allPrescribed) +
                     " (one per subdomain copy of a prescribed node and component)");
+  lines.push_back(explicitDualLine(comm, sp.numSubdomains(), local, run.sublist("FETI"), {},
+                                   prescribedRows(sp, local)));
   printDryRunReport(*comm, lines, local, -1, out);
 }
 

@@ -90,6 +90,7 @@ Json elasticSummary(const ContactResult& r) {
   s["residual_history"] = std::move(history);
   s["dual_operator_applies"] = r.feti.dualOperatorApplies;
   s["factor_bytes"] = r.feti.factorBytes;
+  addDualOperatorSummary(s, r.feti);
   s["contact_type"] = r.contactType;
   addMaterialSummary(s, r.materials);
   s["qp"] = qpJson(r.qp);
@@ -109,6 +110,7 @@ Json nonlinearSummary(const ContactResult& r) {
   s["primal_dim"] = r.feti.primal;
   s["dual_dim"] = r.feti.dual;
   s["contact_rows"] = r.feti.contactRows;
+  addDualOperatorSummary(s, r.feti);  // the last solve's operator
   s["converged"] = r.converged;
   const NonlinearOutcome& o = r.nonlinear;
   addMaterialSummary(s, r.materials);

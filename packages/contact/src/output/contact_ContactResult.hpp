@@ -57,6 +57,10 @@ struct FetiDimensions {
   long long largestScalingGroup = 0;
   long long dualOperatorApplies = 0;
   unsigned long long factorBytes = 0;
+  // FETI "Dual operator" and, when explicit, the bytes of the dense local F_s (all ranks, and
+  // the largest rank's).
+  std::string dualOperator = "implicit";
+  unsigned long long explicitDualBytes = 0, explicitDualBytesMaxRank = 0;
 };
 
 // nonlinear_contact: how the load steps went ("nonlinear" object; the steps are in history).

@@ -19,6 +19,7 @@ Json timingsJson(const tfeti::FetiTimings& t, int iterations) {
   j["coarse_s"] = t.coarse;
   j["preconditioner_s"] = t.preconditioner;
   j["dual_rhs_s"] = t.dualRhs;
+  j["dual_operator_s"] = t.dualOperator;
   j["setup_s"] = t.setup();
   j["solve_s"] = t.solve;
   j["recovery_s"] = t.recovery;
@@ -164,7 +165,17 @@ FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::Pa
   d.largestScalingGroup = solver.largestScalingGroup();
   d.dualOperatorApplies = solver.dualOperatorApplies();
   d.factorBytes = static_cast<unsigned long long>(solver.globalFactorBytes());
+  d.dualOperator = solver.dualOperatorKind();
+  const auto bytes = solver.explicitDualBytes();
+  d.explicitDualBytes = bytes.total;
+  d.explicitDualBytesMaxRank = bytes.maxPerRank;
   return d;
+}
+
+void addDualOperatorSummary(Json& s, const FetiDimensions& feti) {
+  s["dual_operator"] = feti.dualOperator;
+  s["explicit_dual_bytes"] = feti.explicitDualBytes;
+  s["explicit_dual_bytes_max_rank"] = feti.explicitDualBytesMaxRank;
 }
 
 void addSolverSummary(Json& s, const FetiDimensions& feti, const tfeti::DualResult& result,
@@ -188,6 +199,7 @@ void addSolverSummary(Json& s, const FetiDimensions& feti, const tfeti::DualResu
   s["residual_history"] = std::move(history);
   s["dual_operator_applies"] = feti.dualOperatorApplies;
   s["factor_bytes"] = feti.factorBytes;
+  addDualOperatorSummary(s, feti);
   s["memory"] = memoryJson(memory, feti.primal);
 }
 

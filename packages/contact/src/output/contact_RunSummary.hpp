@@ -32,6 +32,9 @@ VtuPiece vtuPiece(const tfeti::FetiSolver& solver);
 // The solver's dimensions and counters after a solve; feti: its FETI parameters (formulation,
 // preconditioner, local solver).
 FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::ParameterList& feti);
+// "dual_operator" (implicit | explicit), "explicit_dual_bytes" (the dense local F_s on all ranks)
+// and "explicit_dual_bytes_max_rank" (the largest rank's): 0 when implicit.
+void addDualOperatorSummary(Json& summary, const FetiDimensions& feti);
 // The keys every single-run summary of a structured problem or the two membranes shares:
 // formulation, preconditioner, local and dual solver, dimensions, convergence, iterations,
 // residual history, F applications, factor bytes and the memory per phase.

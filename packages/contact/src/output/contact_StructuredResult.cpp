@@ -52,6 +52,9 @@ Json summaryJson(const StructuredRunResult& r) {
   s["timings"] = timingsJson(r.timings, r.solve.iterations);
   if (r.dualApplySeconds) {
     s["timings"]["dual_apply_s"] = *r.dualApplySeconds;
+    s["timings"]["projector_apply_s"] = r.iterationParts.projector;
+    s["timings"]["preconditioner_apply_s"] = r.iterationParts.preconditioner;
+    s["timings"]["vector_updates_s"] = r.iterationParts.vectorUpdates;
     s["dual_apply_bandwidth_gb_s"] = r.dualApplyBandwidthGbS.value_or(0.0);
   }
   s["peak_rss_mb"] = r.peakRssMb;

@@ -28,6 +28,8 @@ struct StructuredRunResult {
   tfeti::FetiTimings timings;
   // Output/Time dual operator: the time of one F apply and the bandwidth it achieves.
   std::optional<double> dualApplySeconds, dualApplyBandwidthGbS;
+  // With it: the other parts of an iteration (FetiSolver::timeIterationParts).
+  tfeti::FetiSolver::IterationParts iterationParts;
   double peakRssMb = 0.0;
   double solutionNorm2 = 0.0;  // over all subdomain copies
   double maxAbsU = 0.0;

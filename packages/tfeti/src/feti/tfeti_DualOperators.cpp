@@ -34,18 +34,23 @@ void PseudoInverseOperator::apply(const MultiVector& X, MultiVector& Y,
   }
 }
 
-DualOperator::DualOperator(Teuchos::RCP<const CrsMatrix> B, Teuchos::RCP<const Operator> Kplus)
-    : B_(std::move(B)), Kplus_(std::move(Kplus)) {}
+DualOperator::DualOperator(Teuchos::RCP<const CrsMatrix> B, Teuchos::RCP<const Operator> Kplus,
+                           std::shared_ptr<const ExplicitDualOperator> explicitDual)
+    : B_(std::move(B)), Kplus_(std::move(Kplus)), explicit_(std::move(explicitDual)) {}
 
 void DualOperator::apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp /*mode: symmetric*/,
                          Scalar alpha, Scalar beta) const {
+  applies_ += static_cast<long long>(X.getNumVectors());
+  if (explicit_) {
+    explicit_->apply(X, Y, alpha, beta);
+    return;
+  }
   // One primal work vector: K+ applies in place (each subdomain's block is read before it is
   // written), which saves a vector of the primal size.
   ensure(p1_, B_->getDomainMap(), X.getNumVectors());
   B_->apply(X, *p1_, Teuchos::TRANS);
   Kplus_->apply(*p1_, *p1_);
   B_->apply(*p1_, Y, Teuchos::NO_TRANS, alpha, beta);
-  applies_ += static_cast<long long>(X.getNumVectors());
 }
 
 DualPreconditioner::DualPreconditioner(const Tearing& tearing, SubdomainList subdomains)

@@ -87,9 +87,12 @@ struct FetiTimings {
   double coarse = 0;          // G, G G^T and its factorization
   double preconditioner = 0;  // interior factorizations (Dirichlet) or K_bb blocks (lumped)
   double dualRhs = 0;         // d, e, lambda0
+  double dualOperator = 0;    // "Dual operator" = explicit: the assembly of the local F_s
   double solve = 0;           // PCPG
   double recovery = 0;        // primal solution
-  double setup() const { return factorization + tearing + coarse + preconditioner + dualRhs; }
+  double setup() const {
+    return factorization + tearing + coarse + preconditioner + dualRhs + dualOperator;
+  }
 };
 
 class FetiSolver {
@@ -97,8 +100,9 @@ class FetiSolver {
   // "Formulation" (TFETI | FETI), "Kernel tolerance" (1e-8), "Gluing" (nonredundant | redundant),
   // "Gluing at Dirichlet nodes" (true), "Inequality row scaling" (joined | separate),
   // "Preconditioner" (none | lumped | dirichlet), "Local solver" (cholmod | klu2 | tacho), "Dual
-  // solver" (auto | PCPG | SMALBE | penalty), "Keep subdomain matrices" (true; false frees K after
-  // the preconditioner's set-up) and the
+  // solver" (auto | PCPG | SMALBE | penalty), "Dual operator" (implicit | explicit, with
+  // "Explicit storage" and "Explicit export file"; docs/dual_operator.md), "Keep subdomain
+  // matrices" (true; false frees K after the preconditioner's set-up) and the
   // sublists "PCPG", "MPRGP", "SMALBE" and "Penalty".
   static Teuchos::RCP<const Teuchos::ParameterList> validParameters();
   // "Preconditioning in face" is a parameter of the FETI list only: the solver sets it for MPRGP
@@ -118,6 +122,16 @@ class FetiSolver {
   // "Inequality rows" = equalities: the inequality rows are held with equality (B_I u = c_I,
   // lambda_I of either sign), e.g. a tied contact pair.
   static bool inequalitiesTied(const Teuchos::ParameterList& feti);
+
+  // The dry run's count (collective, nothing factorized): the rows of B touching each of the
+  // local subdomains, m_s, as the solver would build them from `local` (meshes and sizes only),
+  // the FETI list (validated here, on a copy) and the caller's rows. The explicit F_s takes 8 m_s^2
+  // bytes (full) or 4 m_s (m_s + 1) (packed).
+  static std::vector<long long> dualRowsPerSubdomain(
+      const Teuchos::RCP<const Comm>& comm, int numSubdomains,
+      const std::vector<SubdomainData>& local, const Teuchos::ParameterList& feti,
+      const std::vector<InequalityRow>& inequalities = {},
+      const std::vector<EqualityRow>& equalities = {});
 
   // local: the subdomains assigned to this rank (see subdomainsOfRank), in increasing id order.
   // Every size and index of `local` is checked first (tfeti_InputChecks.hpp); an error found on
@@ -191,6 +205,13 @@ class FetiSolver {
 
   // Mean wall time of one application of F over `repeats` applications (slowest rank).
   double timeDualApply(int repeats) const;
+  // The rest of a PCPG iteration, timed like timeDualApply: one projection P (two coarse
+  // solves' worth: G^T, the replicated (G G^T)^-1, G), one preconditioner apply (0 without one)
+  // and the vector work of an iteration (two dot products and three axpy on the multipliers).
+  struct IterationParts {
+    double projector = 0.0, preconditioner = 0.0, vectorUpdates = 0.0;
+  };
+  IterationParts timeIterationParts(int repeats) const;
 
   // Primal solution of the i-th local subdomain (after solve()).
   const std::vector<double>& solution(std::size_t i) const { return u_[i]; }
@@ -219,6 +240,14 @@ class FetiSolver {
   // Bytes of all subdomain factors on all ranks (K+ and, if any, the preconditioner's).
   std::size_t globalFactorBytes() const;
   std::size_t globalPreconditionerFactorBytes() const;
+  // "Dual operator" = explicit: bytes of the dense local F_s, summed over all ranks and the
+  // largest rank's (0 and 0 when implicit). Collective.
+  struct ExplicitDualBytes {
+    unsigned long long total = 0, maxPerRank = 0;
+  };
+  ExplicitDualBytes explicitDualBytes() const;
+  // "implicit" or "explicit": how F is applied.
+  std::string dualOperatorKind() const;
   const Tearing& tearing() const { return tearing_; }
   const Teuchos::RCP<DualOperator>& dualOperator() const { return F_; }
   const CoarseSpace& coarseSpace() const { return *coarse_; }
@@ -245,6 +274,7 @@ class FetiSolver {
   void buildConstraints(const std::vector<InequalityRow>& inequalities, bool newSubdomains);
   void requireNoRowOnEliminatedDofs() const;
   void buildDualRhs();
+  void buildDualOperator();
   // The dual solve: PCPG (tfeti_FetiSolverSolve.cpp), the QP of the inequality rows
   // (tfeti_FetiSolverQp.cpp).
   DualResult solvePcpg();

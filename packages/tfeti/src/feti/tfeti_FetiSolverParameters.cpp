@@ -59,6 +59,18 @@ void addMethodChoices(Teuchos::ParameterList& pl) {
          "(equality constraints only); SMALBE: augmented Lagrangian with MPRGP inner solves; "
          "penalty: MPRGP on P F P + rho Q (the reference paper's choice)",
          choice({"auto", "PCPG", "SMALBE", "penalty"}));
+  pl.set("Dual operator", "implicit",
+         "how F = B K+ B^T is applied: implicit: B^T, the subdomain factors' triangular solves, "
+         "B; explicit: every subdomain's F_s = B_s K_s+ B_s^T assembled once as a dense "
+         "matrix and applied by BLAS-2 (docs/dual_operator.md)",
+         choice({"implicit", "explicit"}));
+  pl.set("Explicit storage", "packed",
+         "Dual operator = explicit: the dense F_s as the packed upper triangle (half the "
+         "bytes) or the full square (docs/dual_operator.md)",
+         choice({"packed", "full"}));
+  pl.set("Explicit export file", "",
+         "Dual operator = explicit: when not empty, every rank writes its F_s to "
+         "<value>.rank<r>.bin after each assembly (the format of gpu/README.md)");
   pl.set("Inequality rows", "inequalities",
          "inequalities: B_I u <= c_I with lambda_I >= 0 (frictionless contact); equalities: "
          "B_I u = c_I with lambda_I free (the pair tied: bonded bodies, the gap closed), a "

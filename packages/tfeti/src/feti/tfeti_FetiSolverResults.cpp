@@ -153,6 +153,30 @@ double FetiSolver::timeDualApply(int repeats) const {
   return seconds / repeats;
 }
 
+FetiSolver::IterationParts FetiSolver::timeIterationParts(int repeats) const {
+  Vector x(tearing_.multiplierMap), y(tearing_.multiplierMap), z(tearing_.multiplierMap);
+  x.randomize();
+  z.randomize();
+  IterationParts p;
+  const auto mean = [&](double& into, const auto& f) {
+    {
+      PhaseTimer t(*comm_, into);
+      for (int r = 0; r < repeats; ++r) f();
+    }
+    into /= repeats;
+  };
+  mean(p.projector, [&] { coarse_->project(x, y); });
+  if (!M_.is_null()) mean(p.preconditioner, [&] { M_->apply(x, y); });
+  double sink = 0.0;
+  mean(p.vectorUpdates, [&] {
+    sink += x.dot(z) + y.dot(z);
+    y.update(1e-3, x, 1.0);
+    z.update(-1e-3, y, 1.0);
+    x.update(1e-3, z, 1.0);
+  });
+  return p;
+}
+
 std::size_t FetiSolver::globalFactorBytes() const {
   unsigned long long mine = 0, all = 0;
   for (const auto& s : subdomains_) mine += s->factorBytes();
@@ -165,6 +189,19 @@ std::size_t FetiSolver::globalPreconditionerFactorBytes() const {
   for (const auto& s : subdomains_) mine += s->preconditionerFactorBytes();
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &mine, &all);
   return all;
+}
+
+FetiSolver::ExplicitDualBytes FetiSolver::explicitDualBytes() const {
+  const auto& ex = F_->explicitPart();
+  const unsigned long long mine = ex ? ex->bytes() : 0;
+  ExplicitDualBytes b;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &mine, &b.total);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &mine, &b.maxPerRank);
+  return b;
+}
+
+std::string FetiSolver::dualOperatorKind() const {
+  return F_->explicitPart() ? "explicit" : "implicit";
 }
 
 Teuchos::RCP<MultiVector> FetiSolver::solution(const Teuchos::RCP<const Map>& untornMap) const {

@@ -49,6 +49,28 @@ std::vector<TearingInput> tearingInput(const std::vector<SubdomainData>& data) {
 }
 }  // namespace
 
+std::vector<long long> FetiSolver::dualRowsPerSubdomain(
+    const Teuchos::RCP<const Comm>& comm, int numSubdomains,
+    const std::vector<SubdomainData>& local, const Teuchos::ParameterList& feti,
+    const std::vector<InequalityRow>& inequalities, const std::vector<EqualityRow>& equalities) {
+  Teuchos::ParameterList valid = feti;
+  rejectMisplacedParameters(valid);
+  applySolverAliases(valid);
+  valid.validateParametersAndSetDefaults(*validParameters());
+  int localDpn = local.empty() ? 0 : local.front().dofsPerNode, dpn = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &localDpn, &dpn);
+  const Tearing t = buildTearing(comm, numSubdomains, tearingInput(local), dpn,
+                                 tearingOptions(valid), inequalities, equalities);
+  std::vector<long long> rows;
+  for (const auto& entries : t.subdomainRows) {
+    std::vector<GO> r;
+    for (const auto& e : entries) r.push_back(e.row);
+    std::sort(r.begin(), r.end());
+    rows.push_back(std::unique(r.begin(), r.end()) - r.begin());
+  }
+  return rows;
+}
+
 FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                        std::vector<SubdomainData> local, const Teuchos::ParameterList& params,
                        const std::vector<InequalityRow>& inequalities,
@@ -144,7 +166,47 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
       M_ = Teuchos::rcp(new DualPreconditioner(tearing_, subdomains_));
   }
   Kplus_ = Teuchos::rcp(new PseudoInverseOperator(tearing_.primalMap, subdomains_));
-  F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
+  buildDualOperator();
+}
+
+void FetiSolver::buildDualOperator() {
+  if (params_.get<std::string>("Dual operator") != "explicit") {
+    F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
+    return;
+  }
+  // The blocks of the operator being replaced whose factor and rows are unchanged are taken
+  // over (update() with new contact rows); a refactorized subdomain's block is assembled anew.
+  std::shared_ptr<const ExplicitDualOperator> previous;
+  if (!F_.is_null()) previous = F_->explicitPart();
+  // After updateStiffness() no block can be taken over: free the old ones (and the old F) before
+  // the new ones are assembled, so that both never take memory at once.
+  const auto reusable = [&] {
+    for (const auto& b : previous->blocks())
+      for (const auto& sub : subdomains_)
+        if (sub->id() == b.subdomainId && sub->factorVersion() == b.version) return true;
+    return false;
+  };
+  if (previous && !reusable()) {
+    previous.reset();
+    F_ = Teuchos::null;
+  }
+  std::shared_ptr<const ExplicitDualOperator> ex;
+  {
+    PhaseTimer t(*comm_, timings_.dualOperator, &memory_, "dual_operator");
+    const DenseStorage storage = parseDenseStorage(params_.get<std::string>("Explicit storage"));
+    collectively(*comm_, [&] {
+      ex = std::make_shared<const ExplicitDualOperator>(tearing_, subdomains_, storage,
+                                                        previous.get());
+    });
+  }
+  previous.reset();
+  F_ = Teuchos::null;
+  F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_, ex));
+  const std::string file = params_.get<std::string>("Explicit export file");
+  if (!file.empty())
+    collectively(*comm_, [&] {
+      ex->exportBlocks(file + ".rank" + std::to_string(comm_->getRank()) + ".bin");
+    });
 }
 
 void FetiSolver::buildDualRhs() {

@@ -1,6 +1,7 @@
 #include "tfeti_Subdomain.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -31,6 +32,12 @@ std::vector<double>& scratch(int which, std::size_t size) {
   thread_local std::vector<double> buffers[2];
   buffers[which].resize(size);
   return buffers[which];
+}
+
+// A new factorization's version: process-wide, never reused (see factorVersion()).
+unsigned long long nextFactorVersion() {
+  static std::atomic<unsigned long long> counter{0};
+  return ++counter;
 }
 
 // Replaces rows and columns of the given dofs by their diagonal: decouples them while keeping
@@ -112,6 +119,7 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
   factor_ = createLocalSolver(localSolver);
   try {
     factor_->factorize(fixing_.empty() ? K_ : decoupleDofs(K_, fixing_));
+    factorVersion_ = nextFactorVersion();
   } catch (const std::exception& e) {
     throw std::runtime_error(name() + ": K with its " + std::to_string(kernelDim_) +
                              " kernel dofs fixed is not positive definite, so K has a larger "
@@ -120,6 +128,19 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
   }
   numDofs_ = K_.rows;
   checkNoExtraKernel();
+}
+
+void Subdomain::refactorize(CsrMatrix K, double kernelTolerance) {
+  if (const std::string e = csrError(K, "K"); !e.empty())
+    throw std::invalid_argument(name() + ": refactorize: " + e);
+  if (K.rows != numDofs_ || K.cols != numDofs_)
+    throw std::invalid_argument(name() + ": refactorize: K is " + std::to_string(K.rows) + " x " +
+                                std::to_string(K.cols) + ", the subdomain has " +
+                                std::to_string(numDofs_) + " dofs");
+  K_ = dirichlet_.empty() ? std::move(K) : decoupleDofs(K, dirichlet_);
+  checkKernelResidual(kernelTolerance);
+  factor_->factorize(fixing_.empty() ? K_ : decoupleDofs(K_, fixing_));
+  factorVersion_ = nextFactorVersion();
 }
 
 void Subdomain::releaseStiffness() {

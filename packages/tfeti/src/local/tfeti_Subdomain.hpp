@@ -74,6 +74,11 @@ class Subdomain {
   // vector that R misses.
   double regularizedConditionEstimate() const { return lambdaMinRelative_; }
 
+  // New values of K on the same pattern of dofs, kernel and Dirichlet dofs (a new material
+  // tangent): ||K R|| is checked as in the constructor and K+ is refactorized in place, which
+  // renews factorVersion(). The preconditioner is not rebuilt (call setupPreconditioner()).
+  void refactorize(CsrMatrix K, double kernelTolerance = 1e-8);
+
   // x = K+ b for nrhs columns (leading dimension numDofs()).
   void applyPseudoInverse(const double* b, double* x, int nrhs = 1);
 
@@ -87,6 +92,10 @@ class Subdomain {
 
   std::size_t factorBytes() const;
   std::size_t preconditionerFactorBytes() const;
+  // Identifies the factorization behind K+: unique over every subdomain of the process and
+  // renewed by every (re)factorization, so that what is derived from K+ (the explicit local dual
+  // operator B_s K_s+ B_s^T, tfeti_ExplicitDualOperator.hpp) can tell that it is stale.
+  unsigned long long factorVersion() const { return factorVersion_; }
 
  private:
   void computeKernel(const std::vector<double>& coords, const KernelOptions& options,
@@ -109,6 +118,7 @@ class Subdomain {
   std::vector<int> fixing_;
   double kernelResidual_ = 0.0, lambdaMinRelative_ = 0.0;
   std::unique_ptr<LocalSolver> factor_;
+  unsigned long long factorVersion_ = 0;
 
   PreconditionerType precType_ = PreconditionerType::None;
   std::vector<int> interface_, interior_;

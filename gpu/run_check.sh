@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Configures, builds and runs the standalone check of the batched explicit dual operator
+# (gpu/README.md) in a few minutes. Exit status 0 with "skipped: ..." where there is no CUDA
+# compiler or no GPU (the host check still runs); non-zero when a check fails.
+#   gpu/run_check.sh [BUILD_DIR]      (default: gpu/build next to this script)
+# Environment: BLOCKS (512), ROWS (1158), REPEATS (20), EXPORT_FILES (exported blocks, space-
+# separated, instead of synthetic ones), CUDA_ARCH ("80;90").
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+build="${1:-$here/build}"
+blocks="${BLOCKS:-512}" rows="${ROWS:-1158}" repeats="${REPEATS:-20}"
+args=("--blocks=$blocks" "--rows=$rows" "--repeats=$repeats")
+for f in ${EXPORT_FILES:-}; do args+=("--file=$f"); done
+
+nvcc_path="$(command -v nvcc || true)"
+for c in /usr/local/cuda/bin/nvcc /usr/local/cuda-*/bin/nvcc; do
+  [[ -z "$nvcc_path" && -x "$c" ]] && nvcc_path="$c"
+done
+cmake_args=(-S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release)
+[[ -n "$nvcc_path" ]] && cmake_args+=("-DCMAKE_CUDA_COMPILER=$nvcc_path" "-DCMAKE_CUDA_ARCHITECTURES=${CUDA_ARCH:-80;90}")
+cmake "${cmake_args[@]}" > "$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+cmake --build "$build" -j "$(nproc)" > "$build.build.log" 2>&1 || { cat "$build.build.log"; exit 1; }
+
+has_gpu=0
+if [[ -x "$build/dual_apply_check_cuda" ]] && command -v nvidia-smi > /dev/null &&
+   nvidia-smi -L 2> /dev/null | grep -q GPU; then
+  has_gpu=1
+fi
+if [[ $has_gpu == 1 ]]; then
+  nvidia-smi --query-gpu=name,memory.total,clocks.max.memory --format=csv,noheader || true
+  timeout 480 "$build/dual_apply_check_cuda" "${args[@]}"
+  # fp64 and fp32 at other block sizes (2D-like and larger 3D subdomains), synthetic only.
+  if [[ -z "${EXPORT_FILES:-}" ]]; then
+    timeout 120 "$build/dual_apply_check_cuda" --blocks=4096 --rows=256 --repeats="$repeats"
+    timeout 120 "$build/dual_apply_check_cuda" --blocks=128 --rows=2400 --repeats="$repeats"
+  fi
+  exit 0
+fi
+# No device: the host check on a smaller batch (the same code path and reference), then skip.
+small=("--blocks=$(( blocks < 32 ? blocks : 32 ))" "--rows=$rows" "--repeats=3")
+[[ -n "${EXPORT_FILES:-}" ]] && small=("${args[@]}")
+timeout 300 "$build/dual_apply_check_cpu" "${small[@]}"
+if [[ -z "$nvcc_path" ]]; then
+  echo "skipped: no CUDA compiler (host check only; the device figures need a machine with CUDA and a GPU)"
+else
+  echo "skipped: no GPU (dual_apply_check_cuda built with $nvcc_path; run this script on a machine with a GPU for the device figures)"
+fi
+exit 0

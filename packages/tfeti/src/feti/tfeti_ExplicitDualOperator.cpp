@@ -1,0 +1,226 @@
+#include "tfeti_ExplicitDualOperator.hpp"
+
+#include <Tpetra_Import.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <tuple>
+
+// The system BLAS that Trilinos links (Teuchos::BLAS offers no symmetric matrix-vector product).
+extern "C" {
+void dspmv_(const char* uplo, const int* n, const double* alpha, const double* ap, const double* x,
+            const int* incx, const double* beta, double* y, const int* incy);
+void dsymv_(const char* uplo, const int* n, const double* alpha, const double* a, const int* lda,
+            const double* x, const int* incx, const double* beta, double* y, const int* incy);
+}
+
+namespace tfeti {
+
+namespace {
+// Right-hand sides per multi-column solve: enough for CHOLMOD's supernodal BLAS-3 solve, small
+// enough that the dense block of B_s^T and its solution (2 x n x 128 doubles) stay a few MiB.
+constexpr int kColumnsPerSolve = 128;
+
+using Entry = std::tuple<GO, int, double>;  // global row, dof, coefficient
+
+// The subdomain's rows as a block: entries sorted by (row, dof), rows numbered locally.
+ExplicitDualOperator::Block blockPattern(int id, const std::vector<RowEntry>& rows,
+                                         std::vector<GO>& globalRows) {
+  std::vector<Entry> e;
+  e.reserve(rows.size());
+  for (const auto& r : rows) e.emplace_back(r.row, r.dof, r.coef);
+  std::sort(e.begin(), e.end());
+  ExplicitDualOperator::Block b;
+  b.subdomainId = id;
+  globalRows.clear();
+  for (const auto& [row, dof, coef] : e) {
+    if (globalRows.empty() || globalRows.back() != row) globalRows.push_back(row);
+    b.entryRow.push_back(static_cast<int>(globalRows.size()) - 1);
+    b.entryDof.push_back(dof);
+    b.entryCoef.push_back(coef);
+  }
+  return b;
+}
+
+bool samePattern(const ExplicitDualOperator::Block& a, const ExplicitDualOperator::Block& b) {
+  return a.entryRow == b.entryRow && a.entryDof == b.entryDof && a.entryCoef == b.entryCoef;
+}
+
+std::size_t storedSize(DenseStorage s, std::size_t m) {
+  return s == DenseStorage::Packed ? m * (m + 1) / 2 : m * m;
+}
+}  // namespace
+
+DenseStorage parseDenseStorage(const std::string& name) {
+  if (name == "packed") return DenseStorage::Packed;
+  if (name == "full") return DenseStorage::Full;
+  throw std::invalid_argument("explicit dual operator storage \"" + name +
+                              "\" is not one of: packed, full");
+}
+
+ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
+                                           std::vector<std::shared_ptr<Subdomain>> subdomains,
+                                           DenseStorage storage,
+                                           const ExplicitDualOperator* previous)
+    : subdomains_(std::move(subdomains)), storage_(storage), multiplierMap_(tearing.multiplierMap) {
+  if (tearing.subdomainRows.size() != subdomains_.size())
+    throw std::logic_error("ExplicitDualOperator: " + std::to_string(subdomains_.size()) +
+                           " subdomains, rows for " + std::to_string(tearing.subdomainRows.size()));
+  std::vector<std::vector<GO>> rowsOf(subdomains_.size());
+  std::vector<GO> all;
+  for (std::size_t i = 0; i < subdomains_.size(); ++i) {
+    blocks_.push_back(blockPattern(subdomains_[i]->id(), tearing.subdomainRows[i], rowsOf[i]));
+    all.insert(all.end(), rowsOf[i].begin(), rowsOf[i].end());
+  }
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  overlapMap_ =
+      Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                           Teuchos::ArrayView<const GO>(all), 0, multiplierMap_->getComm()));
+  import_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(multiplierMap_, overlapMap_));
+  std::map<int, const Block*> old;
+  if (previous && previous->storage_ == storage_)
+    for (const auto& b : previous->blocks_) old[b.subdomainId] = &b;
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    Block& b = blocks_[i];
+    for (GO row : rowsOf[i]) b.overlap.push_back(overlapMap_->getLocalElement(row));
+    const auto it = old.find(b.subdomainId);
+    if (it != old.end() && it->second->version == subdomains_[i]->factorVersion() &&
+        samePattern(*it->second, b)) {
+      b.F = it->second->F;
+      b.version = it->second->version;
+    } else {
+      assemble(i);
+    }
+  }
+}
+
+void ExplicitDualOperator::assemble(std::size_t i) const {
+  const auto start = std::chrono::steady_clock::now();
+  Block& b = blocks_[i];
+  Subdomain& s = *subdomains_[i];
+  const int n = s.numDofs(), m = b.rows();
+  // Where each local row's entries start (entries are sorted by row).
+  std::vector<std::size_t> first(m + 1, 0);
+  for (int r : b.entryRow) ++first[r + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<double> full(static_cast<std::size_t>(m) * m, 0.0);
+  std::vector<double> rhs, sol;
+  for (int c0 = 0; c0 < m; c0 += kColumnsPerSolve) {
+    const int w = std::min(kColumnsPerSolve, m - c0);
+    rhs.assign(static_cast<std::size_t>(n) * w, 0.0);
+    sol.resize(rhs.size());
+    for (int c = 0; c < w; ++c)
+      for (std::size_t k = first[c0 + c]; k < first[c0 + c + 1]; ++k)
+        rhs[static_cast<std::size_t>(c) * n + b.entryDof[k]] += b.entryCoef[k];
+    s.applyPseudoInverse(rhs.data(), sol.data(), w);
+    // Column c0 + c of F_s: B_s times the solution.
+    for (int c = 0; c < w; ++c) {
+      const double* x = sol.data() + static_cast<std::size_t>(c) * n;
+      double* f = full.data() + static_cast<std::size_t>(c0 + c) * m;
+      for (std::size_t k = 0; k < b.entryRow.size(); ++k)
+        f[b.entryRow[k]] += b.entryCoef[k] * x[b.entryDof[k]];
+    }
+  }
+  // Symmetric to rounding: keep the mean of the two triangles.
+  auto F = std::make_shared<std::vector<double>>(storedSize(storage_, m), 0.0);
+  for (int j = 0; j < m; ++j)
+    for (int r = 0; r <= j; ++r) {
+      const double v = 0.5 * (full[static_cast<std::size_t>(j) * m + r] +
+                              full[static_cast<std::size_t>(r) * m + j]);
+      if (storage_ == DenseStorage::Packed) {
+        (*F)[r + static_cast<std::size_t>(j) * (j + 1) / 2] = v;
+      } else {
+        (*F)[static_cast<std::size_t>(j) * m + r] = v;
+        (*F)[static_cast<std::size_t>(r) * m + j] = v;
+      }
+    }
+  b.F = std::move(F);
+  b.version = s.factorVersion();
+  ++assemblies_;
+  assemblySeconds_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void ExplicitDualOperator::refreshStale() const {
+  for (std::size_t i = 0; i < blocks_.size(); ++i)
+    if (blocks_[i].version != subdomains_[i]->factorVersion()) assemble(i);
+}
+
+void ExplicitDualOperator::apply(const MultiVector& X, MultiVector& Y, Scalar alpha,
+                                 Scalar beta) const {
+  refreshStale();
+  const std::size_t nv = X.getNumVectors();
+  if (xo_.is_null() || xo_->getNumVectors() != nv) {
+    xo_ = Teuchos::rcp(new MultiVector(overlapMap_, nv));
+    yo_ = Teuchos::rcp(new MultiVector(overlapMap_, nv));
+    sum_ = Teuchos::rcp(new MultiVector(multiplierMap_, nv));
+  }
+  xo_->doImport(X, *import_, Tpetra::INSERT);
+  yo_->putScalar(0.0);
+  const char uplo = 'U';
+  const int one = 1;
+  const double dOne = 1.0, dZero = 0.0;
+  for (std::size_t j = 0; j < nv; ++j) {
+    auto x = xo_->getData(j);
+    auto y = yo_->getDataNonConst(j);
+    for (const Block& b : blocks_) {
+      const int m = b.rows();
+      if (m == 0) continue;
+      xb_.resize(m);
+      yb_.resize(m);
+      for (int r = 0; r < m; ++r) xb_[r] = x[b.overlap[r]];
+      if (storage_ == DenseStorage::Packed)
+        dspmv_(&uplo, &m, &dOne, b.F->data(), xb_.data(), &one, &dZero, yb_.data(), &one);
+      else
+        dsymv_(&uplo, &m, &dOne, b.F->data(), &m, xb_.data(), &one, &dZero, yb_.data(), &one);
+      for (int r = 0; r < m; ++r) y[b.overlap[r]] += yb_[r];
+    }
+  }
+  sum_->putScalar(0.0);
+  sum_->doExport(*yo_, *import_, Tpetra::ADD);
+  Y.update(alpha, *sum_, beta);
+}
+
+std::vector<double> ExplicitDualOperator::fullBlock(std::size_t i) const {
+  refreshStale();
+  const Block& b = blocks_.at(i);
+  const std::size_t m = static_cast<std::size_t>(b.rows());
+  if (storage_ == DenseStorage::Full) return *b.F;
+  std::vector<double> full(m * m);
+  for (std::size_t j = 0; j < m; ++j)
+    for (std::size_t r = 0; r <= j; ++r)
+      full[j * m + r] = full[r * m + j] = (*b.F)[r + j * (j + 1) / 2];
+  return full;
+}
+
+std::size_t ExplicitDualOperator::bytes() const {
+  std::size_t total = 0;
+  for (const auto& b : blocks_)
+    if (b.F) total += b.F->size() * sizeof(double);
+  return total;
+}
+
+void ExplicitDualOperator::exportBlocks(const std::string& file) const {
+  std::ofstream out(file, std::ios::binary);
+  const auto put = [&](const void* p, std::size_t bytes) {
+    out.write(static_cast<const char*>(p), static_cast<std::streamsize>(bytes));
+  };
+  put("TFETIF01", 8);
+  const std::int64_t count = static_cast<std::int64_t>(blocks_.size());
+  put(&count, sizeof(count));
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    const std::vector<double> f = fullBlock(i);
+    const std::int64_t m = blocks_[i].rows();
+    put(&m, sizeof(m));
+    put(f.data(), f.size() * sizeof(double));
+  }
+  if (!out) throw std::runtime_error("FETI: cannot write the explicit dual blocks to " + file);
+}
+
+}  // namespace tfeti

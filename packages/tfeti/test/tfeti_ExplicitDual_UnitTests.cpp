@@ -1,0 +1,244 @@
+// FETI "Dual operator" = explicit (issue 29) on 1, 2 and 3 ranks:
+//  - every dense local F_s equals B_s K_s+ B_s^T computed column by column (one solve per
+//    column), in both storages, and again after the subdomain is refactorized with another
+//    matrix (the operator notices the new factorization and reassembles by itself);
+//  - the explicit F applies as the implicit one;
+//  - explicit and implicit solves agree (iterations, solution to 1e-10) in 2D and 3D with the
+//    lumped and Dirichlet preconditioners, also after update() and updateStiffness();
+//  - an unknown "Dual operator" is an error listing the valid values.
+#include <Teuchos_UnitTestHarness.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "tfeti_FetiSolver.hpp"
+#include "tfeti_Test3d.hpp"
+#include "tfeti_TestHelpers.hpp"
+
+namespace {
+
+Teuchos::ParameterList parameters(const std::string& dualOperator, const std::string& prec,
+                                  const std::string& storage = "packed") {
+  Teuchos::ParameterList params;
+  params.set("Preconditioner", prec);
+  params.set("Dual operator", dualOperator);
+  params.set("Explicit storage", storage);
+  auto& pcpg = params.sublist("PCPG");
+  pcpg.set("Relative tolerance", 1e-12);
+  pcpg.set("Maximum iterations", 300);
+  pcpg.set("Verbosity", 0);
+  return params;
+}
+
+tfeti::StructuredRectangle square() {
+  return tfeti::StructuredRectangle(0, 1, 0, 1, 4, 4, 4, 4);
+}
+
+std::vector<tfeti::SubdomainData> local2d(const tfeti_test::Physics& ph) {
+  return tfeti_test::localSubdomains(square(), *Tpetra::getDefaultComm(), ph);
+}
+
+std::vector<tfeti::SubdomainData> local3d(const tfeti_test::Box3d& box, double E = 1.0) {
+  tfeti_test::Material3d mat;
+  mat.dofsPerNode = 3;
+  mat.E = E;
+  return tfeti_test::localBoxSubdomains(box, mat, {0.0, 0.0, -1.0}, *Tpetra::getDefaultComm());
+}
+
+// B_s K_s+ B_s^T of local subdomain i, one column at a time, rows in increasing global id.
+std::vector<double> columnByColumn(const tfeti::FetiSolver& solver, std::size_t i) {
+  const auto& entries = solver.tearing().subdomainRows[i];
+  std::vector<tfeti::GO> rows;
+  for (const auto& e : entries) rows.push_back(e.row);
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  const auto local = [&](tfeti::GO r) {
+    return static_cast<int>(std::lower_bound(rows.begin(), rows.end(), r) - rows.begin());
+  };
+  tfeti::Subdomain& s = *solver.subdomains()[i];
+  const int n = s.numDofs(), m = static_cast<int>(rows.size());
+  std::vector<double> F(static_cast<std::size_t>(m) * m, 0.0), b(n), x(n);
+  for (int c = 0; c < m; ++c) {
+    std::fill(b.begin(), b.end(), 0.0);
+    for (const auto& e : entries)
+      if (local(e.row) == c) b[e.dof] += e.coef;
+    s.applyPseudoInverse(b.data(), x.data());
+    for (const auto& e : entries)
+      F[static_cast<std::size_t>(c) * m + local(e.row)] += e.coef * x[e.dof];
+  }
+  return F;
+}
+
+double relativeDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0.0, s = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    d = std::max(d, std::abs(a[k] - b[k]));
+    s = std::max(s, std::abs(b[k]));
+  }
+  return s > 0.0 ? d / s : d;
+}
+
+// max over ranks and local subdomains of |F_s - B_s K_s+ B_s^T| / max |.|.
+double blockError(const tfeti::FetiSolver& solver, const tfeti::ExplicitDualOperator& ex) {
+  double err = 0.0;
+  for (std::size_t i = 0; i < solver.subdomains().size(); ++i) {
+    const std::vector<double> expected = columnByColumn(solver, i);
+    const std::vector<double> got = ex.fullBlock(i);
+    if (got.size() != expected.size()) return 1.0;
+    err = std::max(err, relativeDifference(got, expected));
+  }
+  return tfeti_test::globalMax(*solver.comm(), err);
+}
+
+// ||F_explicit x - F_implicit x|| / ||F_implicit x|| for a random x.
+double applyDifference(const tfeti::FetiSolver& solver, const tfeti::DualOperator& explicitF) {
+  const auto& t = solver.tearing();
+  auto Kplus = Teuchos::rcp(new tfeti::PseudoInverseOperator(t.primalMap, solver.subdomains()));
+  tfeti::DualOperator implicitF(t.B, Kplus);
+  tfeti::Vector x(t.multiplierMap), ye(t.multiplierMap), yi(t.multiplierMap);
+  x.randomize();
+  ye.putScalar(7.0);  // beta = 0 must ignore what Y held
+  explicitF.apply(x, ye);
+  implicitF.apply(x, yi);
+  ye.update(-1.0, yi, 1.0);
+  return ye.norm2() / yi.norm2();
+}
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(ExplicitDual, BlocksAreBKplusBtColumnByColumn) {
+  auto comm = Tpetra::getDefaultComm();
+  for (const std::string storage : {"packed", "full"}) {
+    tfeti::FetiSolver solver(comm, square().numSubdomains(), local2d(tfeti_test::elasticity()),
+                             parameters("explicit", "dirichlet", storage));
+    const auto& ex = solver.dualOperator()->explicitPart();
+    TEST_ASSERT(ex != nullptr);
+    if (!ex) return;
+    const double err = blockError(solver, *ex);
+    out << storage << ": max |F_s - B_s K_s+ B_s^T| / max |F_s| = " << err << "\n";
+    TEST_COMPARE(err, <, 1e-12);
+    TEST_COMPARE(applyDifference(solver, *solver.dualOperator()), <, 1e-12);
+    // Bytes: m^2 or m(m+1)/2 doubles per block, summed over ranks; the largest rank's at most.
+    unsigned long long mine = 0;
+    for (const auto& b : ex->blocks()) {
+      const unsigned long long m = static_cast<unsigned long long>(b.rows());
+      mine += 8ULL * (storage == "packed" ? m * (m + 1) / 2 : m * m);
+    }
+    const auto bytes = solver.explicitDualBytes();
+    TEST_EQUALITY(bytes.total, static_cast<unsigned long long>(
+                                   tfeti_test::globalSum(*comm, static_cast<long long>(mine))));
+    TEST_COMPARE(bytes.maxPerRank, <=, bytes.total);
+    TEST_COMPARE(bytes.maxPerRank, >, 0ULL);
+    TEST_EQUALITY(solver.dualOperatorKind(), std::string("explicit"));
+  }
+  tfeti::FetiSolver implicitSolver(comm, square().numSubdomains(), local2d(tfeti_test::poisson()),
+                                   parameters("implicit", "lumped"));
+  TEST_EQUALITY(implicitSolver.explicitDualBytes().total, 0ULL);
+  TEST_EQUALITY(implicitSolver.dualOperatorKind(), std::string("implicit"));
+}
+
+// A subdomain refactorized under the operator (another material: the same rigid modes) makes
+// its block stale: the next apply reassembles it, and only it.
+TEUCHOS_UNIT_TEST(ExplicitDual, ReassembledAfterRefactorization) {
+  auto comm = Tpetra::getDefaultComm();
+  tfeti::FetiSolver solver(comm, square().numSubdomains(), local2d(tfeti_test::elasticity()),
+                           parameters("explicit", "lumped"));
+  auto ex =
+      std::const_pointer_cast<tfeti::ExplicitDualOperator>(solver.dualOperator()->explicitPart());
+  const long long before = ex->assemblies();
+  std::vector<std::vector<double>> old;
+  for (std::size_t i = 0; i < solver.subdomains().size(); ++i) old.push_back(ex->fullBlock(i));
+  tfeti_test::Physics stiffer = tfeti_test::elasticity();
+  stiffer.law = plasticity::ElasticLaw(3.7, 0.21);
+  // The first local subdomain of every rank gets the new material.
+  if (!solver.subdomains().empty())
+    solver.subdomains()[0]->refactorize(
+        tfeti_test::subdomainData(solver.data()[0].mesh, stiffer).K);
+  TEST_EQUALITY(ex->assemblies(), before);  // nothing done until it is used
+  TEST_COMPARE(applyDifference(solver, *solver.dualOperator()), <, 1e-12);
+  TEST_EQUALITY(ex->assemblies(), before + (solver.subdomains().empty() ? 0 : 1));
+  TEST_COMPARE(blockError(solver, *ex), <, 1e-12);
+  if (!solver.subdomains().empty()) {
+    TEST_COMPARE(relativeDifference(ex->fullBlock(0), old[0]), >, 0.1);
+    for (std::size_t i = 1; i < old.size(); ++i) TEST_ASSERT(ex->fullBlock(i) == old[i]);
+  }
+}
+
+// Explicit against implicit: the same iterations and the solution to 1e-10, 2D and 3D, lumped
+// and Dirichlet, then after update() (new loads: every block taken over, none assembled) and
+// updateStiffness() (new factors: every block assembled again).
+TEUCHOS_UNIT_TEST(ExplicitDual, SameSolveAsImplicit) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(2, 2, 2, 3, 3, 3, false);
+  for (const int dim : {2, 3})
+    for (const std::string prec : {"lumped", "dirichlet"}) {
+      const int N = dim == 2 ? square().numSubdomains() : box.numSubdomains();
+      const auto make = [&](const std::string& kind) {
+        return tfeti::FetiSolver(comm, N,
+                                 dim == 2 ? local2d(tfeti_test::elasticity()) : local3d(box),
+                                 parameters(kind, prec));
+      };
+      tfeti::FetiSolver im = make("implicit"), ex = make("explicit");
+      const auto compare = [&](const std::string& what) {
+        const tfeti::DualResult ri = im.solve(), re = ex.solve();
+        double diff = 0.0, scale = 0.0;
+        for (std::size_t i = 0; i < im.data().size(); ++i)
+          for (std::size_t k = 0; k < im.solution(i).size(); ++k) {
+            diff = std::max(diff, std::abs(im.solution(i)[k] - ex.solution(i)[k]));
+            scale = std::max(scale, std::abs(im.solution(i)[k]));
+          }
+        diff = tfeti_test::globalMax(*comm, diff) / tfeti_test::globalMax(*comm, scale);
+        out << dim << "D " << prec << " " << what << ": iterations " << ri.iterations << " / "
+            << re.iterations << ", solution difference " << diff << "\n";
+        TEST_ASSERT(ri.converged && re.converged);
+        TEST_EQUALITY(ri.iterations, re.iterations);
+        TEST_COMPARE(diff, <, 1e-10);
+      };
+      compare("set-up");
+      const auto* blocks = ex.dualOperator()->explicitPart().get();
+      const long long assembled = blocks->assemblies();
+      TEST_EQUALITY(assembled, static_cast<long long>(ex.subdomains().size()));
+      std::vector<std::vector<double>> loads;
+      for (const auto& s : ex.subdomains()) {
+        loads.push_back(s->load());
+        for (double& v : loads.back()) v *= -2.0;
+      }
+      im.update(loads, {});
+      ex.update(loads, {});
+      TEST_EQUALITY(ex.dualOperator()->explicitPart()->assemblies(), 0LL);  // all taken over
+      compare("update");
+      std::vector<tfeti::CsrMatrix> K;
+      std::vector<std::vector<double>> coords;
+      const auto stiffer = dim == 2 ? local2d([] {
+        tfeti_test::Physics p = tfeti_test::elasticity();
+        p.law = plasticity::ElasticLaw(2.0, 0.3);
+        return p;
+      }())
+                                    : local3d(box, 2.0);
+      for (const auto& d : stiffer) {
+        K.push_back(d.K);
+        coords.push_back(d.mesh.coords);
+      }
+      im.updateStiffness(K, coords, loads, {});
+      ex.updateStiffness(K, coords, loads, {});
+      TEST_EQUALITY(ex.dualOperator()->explicitPart()->assemblies(),
+                    static_cast<long long>(ex.subdomains().size()));
+      compare("updateStiffness");
+    }
+}
+
+TEUCHOS_UNIT_TEST(ExplicitDual, UnknownValueIsAnError) {
+  auto comm = Tpetra::getDefaultComm();
+  const std::string msg = tfeti_test::messageOf([&] {
+    tfeti::FetiSolver solver(comm, square().numSubdomains(), local2d(tfeti_test::poisson()),
+                             parameters("gpu", "lumped"));
+  });
+  out << msg << "\n";
+  TEST_ASSERT(tfeti_test::contains(msg, "Dual operator"));
+  TEST_ASSERT(tfeti_test::contains(msg, "gpu"));
+  TEST_ASSERT(tfeti_test::contains(msg, "implicit"));
+  TEST_ASSERT(tfeti_test::contains(msg, "explicit"));
+}
