@@ -168,9 +168,11 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
       for (std::size_t i = 0; i < u.size(); ++i) du[i] = solver_.solution(i);
       const Field forces = solver_.multiplierForces();
       Trial trial = tryStep(u, du, 1.0, forces, forces, t);
-      // Backtracking (not on a step's first iteration, which has no residual to compare with):
-      // the first halving that decreases ||res||, else the smallest residual tried.
-      if (options_.lineSearch && it > 1 && trial.check.relativeResidual >= previousResidual) {
+      // Backtracking (not on a step's first iteration, which has no residual to compare with,
+      // nor once the residual is below Eta 2, where it is rounding): the first halving that
+      // decreases ||res||, else the smallest residual tried.
+      if (options_.lineSearch && it > 1 && trial.check.relativeResidual >= previousResidual &&
+          trial.check.relativeResidual >= options_.eta2) {
         Trial best = trial;
         double alpha = 1.0;
         for (int cut = 1; cut <= options_.lineSearchCuts; ++cut) {

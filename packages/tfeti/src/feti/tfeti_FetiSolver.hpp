@@ -271,6 +271,8 @@ class FetiSolver {
 
   // Set-up (tfeti_FetiSolverSetup.cpp).
   void buildSubdomains(const std::vector<std::vector<double>>& coords);
+  void refactorizeSubdomains();  // data_'s new K and f into the existing subdomains
+  std::vector<std::vector<double>> kernelCoords_;  // the positions of the subdomains' kernels
   void buildConstraints(const std::vector<InequalityRow>& inequalities, bool newSubdomains);
   void requireNoRowOnEliminatedDofs() const;
   void buildDualRhs();

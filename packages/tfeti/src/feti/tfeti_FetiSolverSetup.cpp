@@ -111,6 +111,7 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
   const std::string solver = params_.get<std::string>("Local solver");
   PhaseTimer t(*comm_, timings_.factorization, &memory_, "factorization");
   subdomains_.clear();
+  kernelCoords_ = coords;
   // An error in one subdomain is reported on every rank (no rank left waiting in a collective).
   collectively(*comm_, [&] {
     for (std::size_t i = 0; i < data_.size(); ++i) {
@@ -125,6 +126,18 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
       subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, coords[i],
                                                         kernel, std::move(sd.K), std::move(sd.f),
                                                         dirichletDofs, formulation, solver));
+    }
+  });
+}
+
+void FetiSolver::refactorizeSubdomains() {
+  PhaseTimer t(*comm_, timings_.factorization, &memory_, "factorization");
+  collectively(*comm_, [&] {
+    for (std::size_t i = 0; i < data_.size(); ++i) {
+      subdomains_[i]->refactorize(std::move(data_[i].K), params_.get<double>("Kernel tolerance"));
+      subdomains_[i]->setLoad(std::move(data_[i].f));
+      data_[i].K = CsrMatrix();
+      data_[i].f.clear();
     }
   });
 }
@@ -340,7 +353,16 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
   previousLambda_ = lambda_;
   previousEqualityMultiplier_ = equalityMultiplier_;
   previousNorm_ = 0.0;  // a new K: estimate ||P F P|| again
-  buildSubdomains(coords);
+  // The same kernel positions (a small-strain tangent: the reference ones): the subdomains keep
+  // their rigid modes and fixing dofs and refactorize in place, the symbolic analysis reused.
+  int sameLocal = coords == kernelCoords_ && subdomains_.size() == data_.size() ? 1 : 0;
+  for (const auto& sd : data_) sameLocal = sd.kernel.empty() ? sameLocal : 0;
+  int same = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, 1, &sameLocal, &same);
+  if (same == 1)
+    refactorizeSubdomains();
+  else
+    buildSubdomains(coords);
   buildConstraints(inequalities, true);
   buildDualRhs();
   u_vec_ = Teuchos::null;

@@ -77,11 +77,24 @@ class CholmodSolver final : public LocalSolver {
   ~CholmodSolver() override { release(); }
 
   void factorize(const CsrMatrix& A) override {
-    release();
-    n_ = A.rows;
     cholmod_sparse S;
     cholmodUpperView(A, S);
     cholmod_common* c = common();
+    // A new matrix with the pattern of the last one (a Newton method's next tangent): the
+    // ordering and the symbolic factor are kept, only the numbers are factorized again.
+    if (L_ && A.rows == n_ && A.rowPtr == rowPtr_ && A.colInd == colInd_) {
+      if (!cholmod_factorize(&S, L_, c) || c->status != CHOLMOD_OK) {
+        const long minor = static_cast<long>(L_->minor);
+        release();
+        throw std::runtime_error("cholmod: the subdomain matrix is not positive definite (column " +
+                                 std::to_string(minor) + " of " + std::to_string(A.rows) + ")");
+      }
+      return;
+    }
+    release();
+    n_ = A.rows;
+    rowPtr_ = A.rowPtr;
+    colInd_ = A.colInd;
     // The workspace is shared by every factor: set the kind for this analysis only.
     const int defaultKind = c->supernodal;
     if (kind_ == CholmodKind::Simplicial) c->supernodal = CHOLMOD_SIMPLICIAL;
@@ -128,9 +141,12 @@ class CholmodSolver final : public LocalSolver {
   void release() {
     cholmod_common* c = common();
     if (L_) cholmod_free_factor(&L_, c);
+    rowPtr_.clear();
+    colInd_.clear();
   }
   CholmodKind kind_;
   int n_ = 0;
+  std::vector<int> rowPtr_, colInd_;  // the pattern L_'s analysis was made for
   cholmod_factor* L_ = nullptr;
 };
 
