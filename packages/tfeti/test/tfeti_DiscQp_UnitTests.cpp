@@ -184,6 +184,30 @@ TEUCHOS_UNIT_TEST(DiscQp, KnownSolutionEveryExpansionStep) {
   }
 }
 
+TEUCHOS_UNIT_TEST(DiscQp, ShiftedCentres) {
+  // The known problem moved by c: discs |x - c| <= r (the dual of FETI: c = -lambda~), boxes
+  // moved with it, x* + c the solution.
+  auto p = knownDiscProblem(world(), 60);
+  auto c = vectorOf(p.x->getMap(), [](GO i) { return 3.0 * std::sin(1.3 * i) + 2.0; });
+  p.exact->update(1.0, *c, 1.0);
+  p.A->apply(*c, *p.x);
+  p.b->update(1.0, *p.x, 1.0);
+  p.lower->update(1.0, *c, 1.0);
+  p.upper->update(1.0, *c, 1.0);
+  p.x->putScalar(0.0);
+  Qp q = p.qp();
+  q.discCenters = c;
+  for (const std::string expansion : {"fixed", "projected CG"}) {
+    p.x->putScalar(0.0);
+    tfeti::MpgpSolMgr<double, MultiVector, Operator> m(q, params(1e-11, expansion));
+    const Belos::ReturnType ret = m.solve();
+    TEST_EQUALITY(ret, Belos::Converged);
+    out << expansion << ": " << m.counters().message
+        << "; |x - x*| = " << maxAbsDiff(*p.x, *p.exact) << "\n";
+    TEST_COMPARE(maxAbsDiff(*p.x, *p.exact), <=, 1e-7);
+  }
+}
+
 TEUCHOS_UNIT_TEST(DiscQp, DegenerateDiscs) {
   // Every disc of radius zero: x = 0 there whatever the load.
   auto p = knownDiscProblem(world(), 24, [](GO k) { return k % 2 == 0 ? kDiscZero : kBoxPair; });
