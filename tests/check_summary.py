@@ -1219,16 +1219,17 @@ def tresca_bonded(tdir, bdir, tol):
     qb = [v for (name, c), v in rb.items() if c == 0][0]
     qt = t["contact"]["tangential_force"]
     diffs.append(("tangential force", abs(abs(qt) - abs(qb)) / abs(qb)))
+    # Points by position (x, y, z: 2D has z = 0), every component (uz = 0 in 2D).
     ub = {}
-    for _, x, y, _, ux, uy, _ in vtu_nodes(bdir):
-        ub[(round(x, 9), round(y, 9))] = (ux, uy)
+    for _, x, y, z, ux, uy, uz in vtu_nodes(bdir):
+        ub[(round(x, 9), round(y, 9), round(z, 9))] = (ux, uy, uz)
     scale = b["max_abs_u"]
     worst = 0.0
-    for _, x, y, _, ux, uy, _ in vtu_nodes(tdir):
-        ref = ub.get((round(x, 9), round(y, 9)))
+    for _, x, y, z, ux, uy, uz in vtu_nodes(tdir):
+        ref = ub.get((round(x, 9), round(y, 9), round(z, 9)))
         if ref is None:
-            fail(f"{tdir}: a point at ({x}, {y}) the bonded run does not have")
-        worst = max(worst, abs(ux - ref[0]) / scale, abs(uy - ref[1]) / scale)
+            fail(f"{tdir}: a point at ({x}, {y}, {z}) the bonded run does not have")
+        worst = max(worst, *(abs(v - r) / scale for v, r in zip((ux, uy, uz), ref)))
     diffs.append(("max |u_Tresca - u_bonded| / max|u|", worst))
     for name, v in diffs:
         if v > tol:

@@ -8,9 +8,11 @@
 // components per node are refused.
 #include <Teuchos_UnitTestHarness.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "contact_NodeToSegment.hpp"
@@ -169,7 +171,8 @@ TEUCHOS_UNIT_TEST(TangentialRows, RigidObstacleAndThreeDimensionalBasis) {
   for (std::array<double, 3> n : {std::array<double, 3>{0.0, 0.0, 1.0},
                                   {1.0, 0.0, 0.0},
                                   {0.6, 0.0, -0.8},
-                                  {0.48, 0.6, 0.64}}) {
+                                  {0.48, 0.6, 0.64},
+                                  {0.0, 0.0, -1.0}}) {
     const auto t = contact::tangentBasis(n, 3);
     TEST_EQUALITY(t.size(), 2u);
     auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
@@ -185,6 +188,36 @@ TEUCHOS_UNIT_TEST(TangentialRows, RigidObstacleAndThreeDimensionalBasis) {
                                   t[0][0] * t[1][1] - t[0][1] * t[1][0]};
     TEST_COMPARE(std::abs(c[0] - n[0]) + std::abs(c[1] - n[1]) + std::abs(c[2] - n[2]), <, 1e-14);
   }
+}
+
+TEUCHOS_UNIT_TEST(TangentialRows, ThreeDimensionalFrameDoesNotFlip) {
+  // Normals around +z and -z (a sphere on a block), among them |n_x| = |n_y|, where a frame
+  // built on the axis least aligned with n switches axes: a change of n by rounding (1e-15)
+  // moves the frame by rounding, and a small change of n moves it by about as much.
+  auto unit = [](std::array<double, 3> v) {
+    const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (double& c : v) c /= l;
+    return v;
+  };
+  double worst = 0.0, worstSmall = 0.0;
+  for (double sz : {1.0, -1.0})
+    for (int k = 0; k < 64; ++k) {
+      const double phi = 0.25 * M_PI * k / 8.0, theta = 0.6 * (k % 9) / 8.0;
+      const auto n = unit(
+          {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), sz * std::cos(theta)});
+      for (const auto& [eps, slot] : {std::pair<double, double*>{1e-15, &worst},
+                                      std::pair<double, double*>{1e-6, &worstSmall}}) {
+        const auto m = unit({n[0] + eps, n[1] - eps, n[2]});
+        const auto a = contact::tangentBasis(n, 3), b = contact::tangentBasis(m, 3);
+        double d = 0.0;
+        for (int j = 0; j < 2; ++j)
+          for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(a[j][c] - b[j][c]));
+        *slot = std::max(*slot, d / eps);
+      }
+    }
+  out << "frame change / normal change: rounding " << worst << ", 1e-6: " << worstSmall << "\n";
+  TEST_COMPARE(worst, <, 100.0);
+  TEST_COMPARE(worstSmall, <, 10.0);
 }
 
 TEUCHOS_UNIT_TEST(TangentialRows, RowsWithoutAllComponentsRefused) {

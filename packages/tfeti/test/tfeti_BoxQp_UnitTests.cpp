@@ -643,60 +643,6 @@ TEUCHOS_UNIT_TEST(BoxQp, FaceSolveParametersAreValidated) {
 // 7. The rank count does not change the results: the two-obstacle problem (MPRGP) and the box
 // problem with an equality constraint (SMALBE) on sub-communicators of 1, 2, ..., P ranks.
 
-struct RankRun {
-  std::vector<double> x;
-  long long steps[3] = {0, 0, 0};  // CG, expansion, proportioning (summed over SMALBE's inner)
-  long long outer = 0;
-  long long face[2] = {0, 0};  // face solves, their CG steps
-};
-
-// fn on the sub-communicator of the first `size` ranks, for size = 1 .. P; rank 0's results
-// broadcast to all.
-std::vector<RankRun> onEveryRankCount(const std::function<RankRun(RCP<const tfeti::Comm>)>& fn) {
-  const auto comm = world();
-  std::vector<RankRun> runs;
-  for (int size = 1; size <= comm->getSize(); ++size) {
-    const int rank = comm->getRank();
-    auto sub = comm->split(rank < size ? 0 : 1, rank);
-    RankRun r;
-    if (rank < size) r = fn(sub);
-    std::size_t n = r.x.size();
-    Teuchos::broadcast(*comm, 0, &n);
-    r.x.resize(n);
-    Teuchos::broadcast(*comm, 0, static_cast<int>(n), r.x.data());
-    Teuchos::broadcast(*comm, 0, 3, r.steps);
-    Teuchos::broadcast(*comm, 0, &r.outer);
-    Teuchos::broadcast(*comm, 0, 2, r.face);
-    runs.push_back(r);
-  }
-  return runs;
-}
-
-void expectSameRuns(const std::vector<RankRun>& runs, Teuchos::FancyOStream& out, bool& success) {
-  for (std::size_t s = 0; s < runs.size(); ++s)
-    out << s + 1 << " ranks: " << runs[s].steps[0] << " CG, " << runs[s].steps[1] << " expansion, "
-        << runs[s].steps[2] << " proportioning, " << runs[s].outer << " outer\n";
-  for (std::size_t s = 1; s < runs.size(); ++s) {
-    for (int k = 0; k < 3; ++k) TEST_EQUALITY(runs[s].steps[k], runs[0].steps[k]);
-    TEST_EQUALITY(runs[s].outer, runs[0].outer);
-    for (int k = 0; k < 2; ++k) TEST_EQUALITY(runs[s].face[k], runs[0].face[k]);
-    double d = 0.0;
-    for (std::size_t i = 0; i < runs[0].x.size(); ++i)
-      d = std::max(d, std::abs(runs[s].x[i] - runs[0].x[i]));
-    TEST_COMPARE(d, <=, 1e-12 * tfeti_test::maxAbs(runs[0].x));
-  }
-}
-
-RankRun rankRun(const tfeti::QpCounters& c, const Vector& x) {
-  RankRun r;
-  r.x = gatherAll(x);
-  r.steps[0] = c.cgSteps;
-  r.steps[1] = c.expansionSteps;
-  r.steps[2] = c.proportioningSteps;
-  r.outer = c.outerIterations;
-  return r;
-}
-
 TEUCHOS_UNIT_TEST(BoxQp, SameResultsOnEveryRankCount) {
   out << "MPRGP, two obstacles:\n";
   expectSameRuns(onEveryRankCount([](RCP<const tfeti::Comm> sub) {

@@ -138,11 +138,14 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
       const auto it = bounds.find(p.contact.rows[k].slaveNode);
       bound = it == bounds.end() ? 0.0 : it->second;
     }
-    for (const ContactRow& t : tangentialRows(p.contact.rows[k], dim)) {
-      tfeti::InequalityRow row = toInequalityRow(t, dofOf);
-      row.gap = back.empty() ? 0.0 : applyRow(t, dim, back);
+    const std::vector<ContactRow> tangents = tangentialRows(p.contact.rows[k], dim);
+    for (std::size_t j = 0; j < tangents.size(); ++j) {
+      tfeti::InequalityRow row = toInequalityRow(tangents[j], dofOf);
+      row.gap = back.empty() ? 0.0 : applyRow(tangents[j], dim, back);
       row.lowerBound = -bound;
       row.upperBound = bound;
+      // 3D: the two rows' multipliers in the disc |lambda_T| <= g (isotropic friction).
+      if (dim == 3) row.disc = static_cast<int>(j) + 1;
       out.push_back(std::move(row));
     }
   }
@@ -181,17 +184,32 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
     for (int c = 0; c < 3; ++c) node.force[c] = node.lambda * node.normal[c];
     for (std::size_t j = 0; j < tangents.size(); ++j)
       for (int c = 0; c < dim; ++c) node.force[c] += lambdas[index[j]] * tangents[j].normal[c];
-    // 2D: the one tangent (3D friction is not built yet: its first tangent only).
-    const ContactRow& t = tangents[0];
     const tfeti::InequalityRow& r = rows[index[0]];
-    node.tangentialForce = lambdas[index[0]];
     node.slipBound = r.upperBound;
+    if (dim == 2) {
+      node.tangentialForce = lambdas[index[0]];
+      node.slip = step.empty() ? 0.0 : -applyRow(tangents[0], dim, step);
+      for (int c = 0; c < 3; ++c) node.tangent[c] = tangents[0].normal[c];
+      node.frictionState = !(node.lambda > 0.0)                       ? 0
+                           : r.boundActive(node.tangentialForce) == 0 ? 1
+                                                                      : 2;
+    } else {
+      // 3D: the tangent is the direction of the tangential force (the first tangent where it is
+      // zero), tangentialForce its magnitude, slip the step's slip along it; slip where
+      // |lambda_T| is at the disc's radius.
+      const double l1 = lambdas[index[0]], l2 = lambdas[index[1]], lt = std::hypot(l1, l2);
+      const double c1 = lt > 0.0 ? l1 / lt : 1.0, c2 = lt > 0.0 ? l2 / lt : 0.0;
+      node.tangentialForce = lt;
+      for (int c = 0; c < 3; ++c)
+        node.tangent[c] = c1 * tangents[0].normal[c] + c2 * tangents[1].normal[c];
+      node.slip =
+          step.empty()
+              ? 0.0
+              : -(c1 * applyRow(tangents[0], dim, step) + c2 * applyRow(tangents[1], dim, step));
+      const double g = r.upperBound;
+      node.frictionState = !(node.lambda > 0.0) ? 0 : (g > 0.0 && lt < g * (1.0 - 1e-10)) ? 1 : 2;
+    }
     node.tangentialTraction = w[k] > 0.0 ? node.tangentialForce / w[k] : 0.0;
-    node.slip = step.empty() ? 0.0 : -applyRow(t, dim, step);
-    for (int c = 0; c < 3; ++c) node.tangent[c] = t.normal[c];
-    node.frictionState = !(node.lambda > 0.0)                       ? 0
-                         : r.boundActive(node.tangentialForce) == 0 ? 1
-                                                                    : 2;
   }
 }
 
@@ -199,9 +217,39 @@ const char* frictionStateName(int state) {
   return state == 0 ? "open" : state == 1 ? "stick" : state == 2 ? "slip" : "none";
 }
 
+namespace {
+
+// Cattaneo-Mindlin (bodies of one material, a tangential force Q below mu P at a constant normal
+// force P): a centred stick zone, c = a sqrt(1 - Q/(mu P)) for cylinders (2D, a and c
+// half-widths), c = a (1 - Q/(mu P))^(1/3) for spheres (3D, radii).
+void addCattaneoMindlin(Json& f, const FrictionSpec& friction, double q, double p, double a,
+                        double c, int dim) {
+  if (friction.law != FrictionSpec::Law::Coulomb || !(a > 0.0) || !(p > 0.0) ||
+      !(friction.coefficient > 0.0))
+    return;
+  const double ratio = q / (friction.coefficient * p);
+  Json cm = Json::object();
+  cm["normal_force"] = p;
+  cm["tangential_force"] = q;
+  cm[dim == 2 ? "contact_half_width" : "contact_radius"] = a;
+  cm[dim == 2 ? "stick_half_width" : "stick_radius"] = c;
+  cm["q_over_mu_p"] = ratio;
+  cm["stick_ratio"] = c / a;
+  if (ratio <= 1.0) {
+    const double closedForm = dim == 2 ? std::sqrt(1.0 - ratio) : std::cbrt(1.0 - ratio);
+    cm["stick_ratio_closed_form"] = closedForm;
+    cm["stick_ratio_error"] =
+        closedForm > 0.0 ? std::abs(c / a - closedForm) / closedForm : std::abs(c / a);
+  }
+  f["cattaneo_mindlin"] = std::move(cm);
+}
+
+}  // namespace
+
 void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const FrictionSpec& friction,
                      int dim) {
   double force = 0.0, ratio = 0.0, stickLo = 0.0, stickHi = 0.0, closedLo = 0.0, closedHi = 0.0;
+  double stickRadius = 0.0, contactRadius = 0.0;  // 3D: from the contact axis
   long long slip = 0, stick = 0, closed = 0;
   double normal = 0.0, maxPath = 0.0, maxNet = 0.0, maxStep = 0.0;
   for (const auto& n : nodes) {
@@ -211,6 +259,8 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const Frict
     maxNet = std::max(maxNet, std::abs(n.netSlip));
     if (n.frictionState == 0) continue;
     maxStep = std::max(maxStep, std::abs(n.slip));
+    contactRadius = std::max(contactRadius, n.radius);
+    if (n.frictionState == 1) stickRadius = std::max(stickRadius, n.radius);
     closedLo = closed ? std::min(closedLo, n.x) : n.x;
     closedHi = closed ? std::max(closedHi, n.x) : n.x;
     ++closed;
@@ -247,32 +297,20 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const Frict
   f["max_slip_increment"] = maxStep;
   f["max_accumulated_slip"] = maxPath;
   f["max_net_slip"] = maxNet;
+  if (dim == 3) {
+    // The largest distance from the contact axis of the closed and of the stick nodes: the
+    // contact radius a and the stick radius c of a point contact (ContactExtentRule).
+    f["contact_radius"] = contactRadius;
+    f["stick_radius"] = stickRadius;
+    addCattaneoMindlin(f, friction, std::abs(force), normal, contactRadius, stickRadius, 3);
+  }
   if (dim == 2) {
     // Half the x extent of the closed nodes: the contact half-width a that goes with the stick
     // half-width c (both measured on the nodes, so that their ratio shares the mesh's bias).
     const double a = closed ? 0.5 * (closedHi - closedLo) : 0.0;
     f["contact_half_width"] = a;
-    if (friction.law == FrictionSpec::Law::Coulomb && a > 0.0 && normal > 0.0 &&
-        friction.coefficient > 0.0) {
-      // Cattaneo-Mindlin (cylinders of one material, a tangential force Q below mu P at a
-      // constant normal force P): a centred stick zone of half-width c = a sqrt(1 - Q/(mu P)).
-      const double c = stick ? 0.5 * (stickHi - stickLo) : 0.0;
-      const double q = std::abs(force) / (friction.coefficient * normal);
-      Json cm = Json::object();
-      cm["normal_force"] = normal;
-      cm["tangential_force"] = std::abs(force);
-      cm["contact_half_width"] = a;
-      cm["stick_half_width"] = c;
-      cm["q_over_mu_p"] = q;
-      cm["stick_ratio"] = c / a;
-      if (q <= 1.0) {
-        cm["stick_ratio_closed_form"] = std::sqrt(1.0 - q);
-        cm["stick_ratio_error"] = std::sqrt(1.0 - q) > 0.0
-                                      ? std::abs(c / a - std::sqrt(1.0 - q)) / std::sqrt(1.0 - q)
-                                      : std::abs(c / a);
-      }
-      f["cattaneo_mindlin"] = std::move(cm);
-    }
+    addCattaneoMindlin(f, friction, std::abs(force), normal, a,
+                       stick ? 0.5 * (stickHi - stickLo) : 0.0, 2);
   }
 }
 

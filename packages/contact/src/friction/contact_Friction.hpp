@@ -64,7 +64,9 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
                                                const std::vector<double>& current, int rank);
 
 // Per contact node: the tangential force and traction, the slip of the step and the state, from
-// the solver's last multipliers (matched to the rows by their entries). `nodes` come from
+// the solver's last multipliers (matched to the rows by their entries). 3D: the tangential
+// force's magnitude |lambda_T|, its direction as the node's tangent, the slip along it, slip
+// where |lambda_T| is at the disc's radius. `nodes` come from
 // contactNodes on the same problem; stepStart and current as for frictionRows.
 // The bound of each row is read from the solver's rows.
 void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactProblem& p,
@@ -74,7 +76,10 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
 // The friction keys of summary.json's contact record c: friction_law, slip_bound (Tresca),
 // normal_force (the sum of the normal multipliers, P of a flat contact), tangential_force (the
 // resultant of the tangential forces along x), slip_nodes, stick_nodes,
-// stick_half_width (2D: half the x extent of the stick nodes), max_tangential_ratio (max
+// stick_half_width (2D: half the x extent of the stick nodes), contact_radius and stick_radius
+// (3D: the largest distance from the contact axis of the closed and of the stick nodes; with
+// Coulomb a cattaneo_mindlin record against c/a = (1 - Q/(mu P))^(1/3), 2D against
+// sqrt(1 - Q/(mu P))), max_tangential_ratio (max
 // |lambda_T| / its bound over the closed nodes: 1 at a slipping node), max_slip_increment (max
 // |slip of the step| over the closed nodes), max_accumulated_slip and max_net_slip (the largest
 // path length and |signed sum| of the slip over the steps, contact_FrictionHistory.hpp).

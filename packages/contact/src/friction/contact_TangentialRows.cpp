@@ -11,20 +11,15 @@ std::vector<std::array<double, 3>> tangentBasis(const std::array<double, 3>& n, 
   if (dim != 3)
     throw std::invalid_argument("tangentBasis: dimension " + std::to_string(dim) +
                                 " (expected 2 or 3)");
-  // t1 = e_k x n with e_k the axis least aligned with n (never parallel to it), normalized;
-  // t2 = n x t1 completes the right-handed basis (t1, t2, n).
-  int k = 0;
-  for (int c = 1; c < 3; ++c)
-    if (std::abs(n[c]) < std::abs(n[k])) k = c;
-  std::array<double, 3> e{0.0, 0.0, 0.0};
-  e[k] = 1.0;
-  std::array<double, 3> t1{e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2],
-                           e[0] * n[1] - e[1] * n[0]};
-  const double len = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
-  for (double& v : t1) v /= len;
-  const std::array<double, 3> t2{n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
-                                 n[0] * t1[1] - n[1] * t1[0]};
-  return {t1, t2};
+  // The frame of Duff et al. (2017, "Building an orthonormal basis, revisited"): a smooth
+  // function of n on each half-space n_z >= 0 and n_z < 0, so nearby normals (a node's averaged
+  // normal at a kink, or the same normal up to rounding) get nearby frames; it has no branch on
+  // which axis is least aligned with n, which flips where two components of n are equal in
+  // magnitude. Its one seam is n_z = 0 (-0 counts as >= 0), away from the contact normals of a
+  // body pressed along z. Right-handed: t1 x t2 = n.
+  const double s = n[2] >= 0.0 ? 1.0 : -1.0;
+  const double a = -1.0 / (s + n[2]), b = n[0] * n[1] * a;
+  return {{1.0 + s * n[0] * n[0] * a, s * b, -s * n[0]}, {b, s + n[1] * n[1] * a, -n[1]}};
 }
 
 std::vector<ContactRow> tangentialRows(const ContactRow& normalRow, int dim) {

@@ -11,10 +11,12 @@
 //
 // One code path for 2D and 3D: the tangents are an orthonormal basis of the plane normal to n,
 // dim - 1 of them (2D: t = (-n_y, n_x), the direction from a to b of the master segment, whose
-// outward normal is t turned clockwise; 3D: two tangents, t1 x t2 = n). The row's coefficient of
-// a node's component c is its weight s (-1 for the slave, N_a for a master node, read back from
-// the normal row as s = sum_c coef_c n_c) times t_c, so a rigid obstacle's rows (slave entries
-// only) are handled alike.
+// outward normal is t turned clockwise; 3D: two tangents, t1 x t2 = n, a smooth function of n
+// for n_z >= 0 and for n_z < 0 that does not flip with rounding). In 3D the two rows of a node
+// form a disc (InequalityRow::disc = 1, 2): |lambda_T| <= g on the tangential force vector. The
+// row's coefficient of a node's component c is its weight s (-1 for the slave, N_a for a master
+// node, read back from the normal row as s = sum_c coef_c n_c) times t_c, so a rigid obstacle's
+// rows (slave entries only) are handled alike.
 #include <array>
 #include <vector>
 

@@ -73,31 +73,49 @@ void FetiSolver::setDualQpBounds(BoundConstrainedQp<Scalar, MultiVector, Operato
   // l_I - lambda~_I <= mu_I <= u_I - lambda~_I (l = 0, u = +inf for the non-penetration rows; a
   // box for friction rows).
   const auto map = tearing_.multiplierMap;
+  // A disc pair (3D friction, InequalityRow::disc) has no interval bounds but the disc
+  // |mu + lambda~| <= g: radius g, centre -lambda~ (MPGP; the tearing numbers its two rows
+  // consecutively on one rank).
   auto lower = Teuchos::rcp(new Vector(map));
   auto upper = Teuchos::rcp(new Vector(map));
-  int anyUpperLocal = 0, anyUpper = 0;
+  auto discs = Teuchos::rcp(new Vector(map));
+  auto centers = Teuchos::rcp(new Vector(map));
+  int anyLocal[2] = {0, 0}, any[2] = {0, 0};  // upper bounds, discs
   {
     const double inf = std::numeric_limits<double>::infinity();
     auto lo = lower->getDataNonConst();
     auto up = upper->getDataNonConst();
+    auto dv = discs->getDataNonConst();
+    auto cv = centers->getDataNonConst();
     auto l0 = lambda0_->getData();
     const bool tied = inequalitiesTied(params_);
     for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) {
       const GO row = map->getGlobalElement(static_cast<LO>(i));
       lo[i] = -inf;
       up[i] = inf;
+      dv[i] = std::numeric_limits<double>::quiet_NaN();
+      cv[i] = -l0[i];
       if (!tied && tearing_.isInequality(row)) {
         const InequalityRow& r = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
+        if (r.disc != 0) {
+          dv[i] = r.disc == 1 ? r.upperBound : -1.0;
+          anyLocal[1] = 1;
+          continue;
+        }
         lo[i] = r.lowerBound - l0[i];
         up[i] = r.upperBound - l0[i];
-        if (r.upperBound < inf) anyUpperLocal = 1;
+        if (r.upperBound < inf) anyLocal[0] = 1;
       }
     }
   }
   // Without friction rows the QP keeps its lower bounds only (the solvers' one-sided path).
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &anyUpperLocal, &anyUpper);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 2, anyLocal, any);
   qp.lower = lower;
-  if (anyUpper == 1) qp.upper = upper;
+  if (any[0] == 1) qp.upper = upper;
+  if (any[1] == 1) {
+    qp.discs = discs;
+    qp.discCenters = centers;
+  }
 }
 
 bool FetiSolver::warmStartAgreed() const {
@@ -175,6 +193,9 @@ Belos::ReturnType FetiSolver::solveSmalbe(DualQp& dual, QpCounters& counters) {
   for (const char* tol : {"Relative tolerance", "Equality tolerance"})
     sp.set(tol, toleranceFactor_ * sp.get<double>(tol));
   sp.sublist("MPRGP").set(kPreconditioningInFace, !dual.prec.is_null());
+  // The face phase solves on faces of boxes; a dual with discs (3D friction) runs SMALBE with
+  // MPGP alone (docs/qp_solvers.md, "Disc constraints").
+  if (!dual.qp.discs.is_null()) sp.set("Face solve", "none");
   SmalbeSolMgr<Scalar, MultiVector, Operator> solver(dual.qp, dual.Q, sp, dual.prec);
   solver.setOutputStream(out_);
   solver.setAugmentedHessian(dual.H);
@@ -183,7 +204,7 @@ Belos::ReturnType FetiSolver::solveSmalbe(DualQp& dual, QpCounters& counters) {
   // The gaps as the levels of SMALBE's "Initial face" = levels (frictionless contact only:
   // the tangential rows' boxes have no level), not for warm starts, which have their face.
   if (!dual.warm && tearing_.numInequalityRows > 0 && !inequalitiesTied(params_) &&
-      dual.qp.upper.is_null())
+      dual.qp.upper.is_null() && dual.qp.discs.is_null())
     solver.setFaceLevels(contactGapLevels());
   const Belos::ReturnType ret = solver.solve();
   counters = solver.counters();

@@ -52,6 +52,21 @@ ConstraintReport FetiSolver::constraintReport() const {
       // the box, B u = c where inside (stick), B u - c of lambda's sign at a bound (slip).
       if (tied) mx[2] = std::max(mx[2], std::abs(v[i]));
       const InequalityRow& r = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
+      if (r.disc == 2) continue;  // with its first row
+      if (r.disc == 1) {
+        // A disc pair (rows i, i + 1): |lambda| <= g, the slip s = B u - c zero inside (stick),
+        // along lambda at the circle (slip).
+        const double lt = std::hypot(l[i], l[i + 1]), g = r.upperBound;
+        fr[0] = std::max(fr[0], lt - g);
+        const bool slips = g == 0.0 || lt >= g * (1.0 - 1e-10);
+        if (g > 0.0)
+          fr[1] = std::max(fr[1], slips ? std::max(std::abs(v[i] * l[i + 1] - v[i + 1] * l[i]) / lt,
+                                                   -(v[i] * l[i] + v[i + 1] * l[i + 1]) / lt)
+                                        : std::hypot(v[i], v[i + 1]));
+        fr[2] += 2.0;
+        fr[3] += slips ? 0.0 : 2.0;
+        continue;
+      }
       const int side = r.boundActive(l[i]);
       fr[0] = std::max({fr[0], r.lowerBound - l[i], l[i] - r.upperBound});
       // A degenerate box (l = u: an open node's zero Coulomb bound) holds lambda at both bounds

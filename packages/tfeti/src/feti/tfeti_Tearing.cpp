@@ -44,8 +44,11 @@ namespace {
 // contributed a row.
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-template <class R, class Values>
-std::vector<R> gatherRows(const Comm& comm, const std::vector<R>& mine, Values values) {
+// A row for which glued(row) is true stays right after the row before it in its rank's list
+// (the two rows of a disc, InequalityRow::disc): the pair is ordered by its first row.
+template <class R, class Values, class Glued>
+std::vector<R> gatherRows(const Comm& comm, const std::vector<R>& mine, Values values,
+                          Glued glued) {
   constexpr std::size_t nv = std::tuple_size<decltype(values(std::declval<R&>()))>::value;
   auto get = [&](const R& r) {
     std::array<double, nv> a{};
@@ -78,9 +81,21 @@ std::vector<R> gatherRows(const Comm& comm, const std::vector<R>& mine, Values v
     for (const auto& e : r.entries) k.emplace_back(e.subdomain, e.dof, e.coef);
     return std::make_pair(k, get(r));
   };
-  std::stable_sort(rows.begin(), rows.end(),
-                   [&](const R& a, const R& b) { return key(a) < key(b); });
-  return rows;
+  // Units: a row and the glued rows after it.
+  std::vector<std::pair<std::size_t, std::size_t>> units;  // first row, count
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (glued(rows[i]) && !units.empty())
+      ++units.back().second;
+    else
+      units.emplace_back(i, 1);
+  std::stable_sort(units.begin(), units.end(), [&](const auto& a, const auto& b) {
+    return key(rows[a.first]) < key(rows[b.first]);
+  });
+  std::vector<R> sorted;
+  sorted.reserve(rows.size());
+  for (const auto& [first, count] : units)
+    for (std::size_t i = first; i < first + count; ++i) sorted.push_back(std::move(rows[i]));
+  return sorted;
 }
 
 std::string describeRow(const std::vector<ConstraintEntry>& entries, const char* relation,
@@ -259,13 +274,41 @@ void addAutomaticRows(const std::vector<Copy>& copies, int dofsPerNode,
   }
 }
 
+// Each first row of a disc (InequalityRow::disc = 1) followed by its second (disc = 2), both with
+// the bounds [-g, g] of one g. Throws std::invalid_argument naming the row.
+void checkDiscRows(const std::vector<InequalityRow>& rows) {
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const InequalityRow& r = rows[i];
+    auto fail = [&](const std::string& why) {
+      throw std::invalid_argument("inequality row " + describeRow(r.entries, "<=", r.gap) + ": " +
+                                  why);
+    };
+    if (r.disc < 0 || r.disc > 2) fail("disc must be 0, 1 or 2, got " + std::to_string(r.disc));
+    if (r.disc == 2) fail("the second row of a disc (disc = 2) does not follow a first (disc = 1)");
+    if (r.disc != 1) continue;
+    if (i + 1 == rows.size() || rows[i + 1].disc != 2)
+      fail(
+          "the first row of a disc (disc = 1) is not followed by its second (disc = 2) in the "
+          "rows passed");
+    const InequalityRow& second = rows[++i];
+    if (!(r.lowerBound == -r.upperBound) || second.lowerBound != r.lowerBound ||
+        second.upperBound != r.upperBound)
+      fail("the two rows of a disc need the bounds [-g, g] with one g");
+  }
+}
+
 // The caller's rows, gathered from every rank in canonical order and checked.
 void addCallerRows(const Comm& comm, const std::vector<EqualityRow>& equalities,
                    const std::vector<InequalityRow>& inequalities,
                    const std::vector<long long>& allSizes, RowSet& set) {
-  set.user = gatherRows(comm, equalities, [](auto& r) { return std::tie(r.rhs); });
-  set.ineq = gatherRows(comm, inequalities,
-                        [](auto& r) { return std::tie(r.gap, r.lowerBound, r.upperBound); });
+  set.user = gatherRows(
+      comm, equalities, [](auto& r) { return std::tie(r.rhs); },
+      [](const EqualityRow&) { return false; });
+  set.ineq = gatherRows(
+      comm, inequalities,
+      [](auto& r) { return std::tie(r.gap, r.lowerBound, r.upperBound, r.disc); },
+      [](const InequalityRow& r) { return r.disc == 2; });
+  checkDiscRows(set.ineq);
   for (const auto& row : set.user) checkRow(row.entries, row.rhs, "equality", "=", allSizes);
   for (const auto& row : set.ineq) {
     checkRow(row.entries, row.gap, "inequality", "<=", allSizes);
@@ -311,6 +354,10 @@ Grouping scalingGroups(const RowSet& set, const TearingOptions& options, Tearing
         if (!added) comp.join(it->second, r);
       }
   }
+  // The two rows of a disc (consecutive) in one group: one owner, so one rank holds both, next
+  // to each other.
+  for (GO r = set.numEq() + 1; r < t.numRows; ++r)
+    if (set.ineq[static_cast<std::size_t>(r - set.numEq())].disc == 2) comp.join(r - 1, r);
   std::map<std::size_t, int> groupOfRoot;
   std::vector<GO> groupSize;
   for (GO r = 0; r < t.numRows; ++r) {

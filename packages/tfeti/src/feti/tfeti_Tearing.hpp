@@ -76,6 +76,13 @@ struct InequalityRow {
   double gap = 0.0;
   double lowerBound = 0.0;
   double upperBound = std::numeric_limits<double>::infinity();
+  // Friction in 3D: 1 on the first of a contact node's two tangential rows, 2 on the second.
+  // Their multipliers lie in the disc |(lambda_1, lambda_2)| <= upperBound (both rows with
+  // lowerBound = -upperBound) instead of the box. The caller passes the second row right after
+  // the first (from one rank); the tearing keeps it there in its canonical order (the pair is
+  // ordered by its first row), puts both in one scaling group and so gives both to the group's
+  // owner, next to each other in the multiplier map. 0: a row of its own.
+  int disc = 0;
   bool isNonPenetration() const {
     return lowerBound == 0.0 && upperBound == std::numeric_limits<double>::infinity();
   }

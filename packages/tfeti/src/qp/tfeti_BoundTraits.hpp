@@ -204,7 +204,7 @@ struct BoundTraits<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     return all;
   }
 
- private:
+  // The union of every rank's indices `mine`, sorted, on every rank (collective).
   template <class Map>
   static std::vector<long long> gatherIndices(const Map& map, std::vector<long long> mine) {
     const auto& comm = *map.getComm();
@@ -220,7 +220,6 @@ struct BoundTraits<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     return all;
   }
 
- public:
   // v at the sorted global indices idx, on every rank (each index owned by one rank).
   static std::vector<S> gatherAt(const MV& v, const std::vector<long long>& idx) {
     std::vector<S> mine(idx.size(), S(0)), all(idx.size(), S(0));

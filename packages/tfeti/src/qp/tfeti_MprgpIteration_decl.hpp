@@ -26,6 +26,17 @@
 // R-linear rate of MPRGP are kept; it pays off when M is a good approximation on every face (for
 // example a diagonal scaling of a badly scaled A).
 //
+// MPGP (Dostál's modified proportioning with gradient projections; Kučera 2008, Dostál et al.
+// 2012 for 3D friction): with disc constraints |(x_i, x_{i+1})| <= r (BoundConstrainedQp::discs)
+// the same steps run on the product of intervals and discs (tfeti_SeparableSet.hpp): projection
+// onto the discs, the feasible step to the circle, the free and chopped gradients of a disc
+// (the chopped one: g - min(n.g, 0) n on the circle, n the outward normal) and the reduced free
+// gradient phi~ = (x - P(x - alphaBar phi)) / alphaBar. The proportioning step is MPRGP's while
+// -beta stays inside the discs up to the minimizing length; where a disc must slide along its
+// circle it is x = P(x - alpha beta), accepted when f decreases, else the projected gradient step
+// of the active components, x = P(x - alphaBar (g - phi)) (which decreases f). Without discs
+// nothing changes: MPRGP is MPGP on boxes, and one class runs both (MpgpIteration names it).
+//
 // The iteration works in place on the problem's x (projected onto the bounds by initialize()),
 // so a status test can read the iterate through getProblem().getLHS().
 #include <BelosIteration.hpp>
@@ -41,6 +52,9 @@
 #include "tfeti_QpProblem.hpp"
 
 namespace tfeti {
+
+template <class S, class MV>
+class SeparableSet;
 
 template <class S, class MV, class OP>
 class MprgpIteration : public Belos::Iteration<S, MV, OP> {
@@ -128,10 +142,12 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   bool tryOptimalExpansion();
   S energy() const;
   void proportioningStep();
+  void slidingProportioningStep(S alpha);
   void record(const char* kind);
 
   BoundConstrainedQp<S, MV, OP> qp_;
-  const MV* upper_ = nullptr;  // qp_.upper when it has a finite entry, else null
+  const MV* upper_ = nullptr;                    // qp_.upper when it has a finite entry, else null
+  Teuchos::RCP<const SeparableSet<S, MV>> set_;  // the intervals and discs of x
   Teuchos::RCP<const OP> M_;
   Teuchos::RCP<Belos::StatusTest<S, MV, OP>> tester_;
   Options opts_;
@@ -144,5 +160,9 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   bool initialized_ = false, stationary_ = false, stalled_ = false, root_ = false;
   QpCounters counters_;
 };
+
+// MPGP: the same iteration, for problems with disc constraints.
+template <class S, class MV, class OP>
+using MpgpIteration = MprgpIteration<S, MV, OP>;
 
 }  // namespace tfeti

@@ -12,6 +12,7 @@
 
 #include "tfeti_BoundTraits.hpp"
 #include "tfeti_MprgpIteration_decl.hpp"
+#include "tfeti_SeparableSet.hpp"
 
 namespace tfeti {
 
@@ -37,6 +38,8 @@ MprgpIteration<S, MV, OP>::MprgpIteration(const BoundConstrainedQp<S, MV, OP>& q
   // An upper bound vector without a finite entry changes nothing: drop it, so that such a
   // problem takes the lower-bound-only path (no extra reduction in the proportioning step).
   if (!qp_.upper.is_null() && BoundTraits<S, MV>::anyFinite(*qp_.upper)) upper_ = qp_.upper.get();
+  set_ = Teuchos::rcp(
+      new SeparableSet<S, MV>(*qp_.lower, upper_, qp_.discs.get(), qp_.discCenters.get()));
   // Built directly, not through setProblem, which would compute residuals and shuffle columns
   // for Belos' block solvers; status tests only need A, b and the iterate.
   problem_ = Teuchos::rcp(new Belos::LinearProblem<S, MV, OP>(qp_.A, qp_.x, qp_.b));
@@ -46,8 +49,9 @@ MprgpIteration<S, MV, OP>::MprgpIteration(const BoundConstrainedQp<S, MV, OP>& q
   phi_ = MVT::Clone(*qp_.x, 1);
   beta_ = MVT::Clone(*qp_.x, 1);
   if (!M_.is_null()) z_ = MVT::Clone(*qp_.x, 1);
-  if (opts_.optimalExpansion || opts_.projectedCgExpansion) xHalf_ = MVT::Clone(*qp_.x, 1);
-  if (opts_.projectedCgExpansion) gHalf_ = MVT::Clone(*qp_.x, 1);
+  const bool discs = set_->hasDiscs();
+  if (opts_.optimalExpansion || opts_.projectedCgExpansion || discs) xHalf_ = MVT::Clone(*qp_.x, 1);
+  if (opts_.projectedCgExpansion || discs) gHalf_ = MVT::Clone(*qp_.x, 1);
   root_ = BoundTraits<S, MV>::commRank(*qp_.x) == 0;
 }
 
@@ -75,16 +79,15 @@ void MprgpIteration<S, MV, OP>::applyA(const MV& in, MV& out) {
 
 template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::updateGradientSplit() {
-  using BT = BoundTraits<S, MV>;
-  BT::freeGradient(*qp_.x, *qp_.lower, upper_, *g_, *phi_);
-  BT::choppedGradient(*qp_.x, *qp_.lower, upper_, *g_, *beta_);
+  set_->freeGradient(*qp_.x, *g_, *phi_);
+  set_->choppedGradient(*qp_.x, *g_, *beta_);
   std::vector<magnitude_type> n(1);
   MVT::MvNorm(*phi_, n);
   const magnitude_type phiNorm = n[0];
   MVT::MvNorm(*beta_, n);
   betaNorm2_ = n[0] * n[0];
   gpNorm_ = std::sqrt(phiNorm * phiNorm + betaNorm2_);
-  phiTildePhi_ = BT::reducedFreeGradientDot(*qp_.x, *qp_.lower, upper_, *phi_, opts_.alphaBar);
+  phiTildePhi_ = set_->reducedFreeGradientDot(*qp_.x, *phi_, opts_.alphaBar);
   if (!std::isfinite(gpNorm_))
     throw std::runtime_error(
         "MPRGP: the gradient A x - b contains NaN or Inf (the operator A produced a non-finite "
@@ -98,7 +101,7 @@ void MprgpIteration<S, MV, OP>::precondition(MV& z) {
     return;
   }
   OPT::Apply(*M_, *phi_, z);
-  BoundTraits<S, MV>::restrictToFree(*qp_.x, *qp_.lower, upper_, z);
+  set_->restrictToFree(*qp_.x, z);
 }
 
 template <class S, class MV, class OP>
@@ -130,13 +133,14 @@ void MprgpIteration<S, MV, OP>::checkProblemData(const BoundConstrainedQp<S, MV,
   }
   if (!BT::allFinite(*qp.x))
     throw std::runtime_error("MPRGP: the initial guess x contains NaN or Inf");
+  if (!qp.discs.is_null()) SeparableSet<S, MV>::checkDiscs(*qp.discs, *qp.lower, qp.upper.get());
 }
 
 template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::initialize() {
   using BT = BoundTraits<S, MV>;
   checkProblemData(qp_);
-  BT::project(*qp_.x, *qp_.lower, upper_);
+  set_->project(*qp_.x);
   if (!g0_.is_null()) {
     MVT::Assign(*g0_, *g_);
   } else {
@@ -193,7 +197,7 @@ void MprgpIteration<S, MV, OP>::iterate() {
       }
       MVT::MvDot(*g_, *p_, d);
       const S alphaCg = d[0] / pAp;
-      const S alphaF = BoundTraits<S, MV>::maxFeasibleStep(*qp_.x, *qp_.lower, upper_, *p_);
+      const S alphaF = set_->maxFeasibleStep(*qp_.x, *p_);
       if (alphaCg <= alphaF) {
         cgStep(alphaCg);
         record("CG");
@@ -212,7 +216,7 @@ template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::cgStep(S alphaCg) {
   MVT::MvAddMv(S(1), *qp_.x, -alphaCg, *p_, *qp_.x);
   // Mathematically feasible; the projection only removes rounding below the bounds.
-  BoundTraits<S, MV>::project(*qp_.x, *qp_.lower, upper_);
+  set_->project(*qp_.x);
   MVT::MvAddMv(S(1), *g_, -alphaCg, *Ap_, *g_);
   updateGradientSplit();
   // p = z - (z^T A p / p^T A p) p keeps the new direction A-conjugate to the previous one.
@@ -236,7 +240,6 @@ S MprgpIteration<S, MV, OP>::energy() const {
 
 template <class S, class MV, class OP>
 bool MprgpIteration<S, MV, OP>::tryOptimalExpansion() {
-  using BT = BoundTraits<S, MV>;
   // phi holds the free gradient at the half step x; phi^T g = phi^T phi.
   applyA(*phi_, *Ap_);
   std::vector<S> phiAphi(1), phiPhi(1);
@@ -246,7 +249,7 @@ bool MprgpIteration<S, MV, OP>::tryOptimalExpansion() {
   const S fHalf = energy();
   MVT::Assign(*qp_.x, *xHalf_);
   MVT::MvAddMv(S(1), *qp_.x, -phiPhi[0] / phiAphi[0], *phi_, *qp_.x);
-  BT::project(*qp_.x, *qp_.lower, upper_);
+  set_->project(*qp_.x);
   applyA(*qp_.x, *g_);
   MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
   if (energy() <= fHalf) {
@@ -265,14 +268,14 @@ bool MprgpIteration<S, MV, OP>::tryProjectedCgExpansion(S alphaFeasible, S alpha
   using BT = BoundTraits<S, MV>;
   // The feasible half step and its energy, kept for the fall-back (no multiplication).
   MVT::MvAddMv(S(1), *qp_.x, -alphaFeasible, *p_, *xHalf_);
-  BT::project(*xHalf_, *qp_.lower, upper_);
+  set_->project(*xHalf_);
   MVT::MvAddMv(S(1), *g_, -alphaFeasible, *Ap_, *gHalf_);
   std::vector<S> xg(1), xb(1);
   MVT::MvDot(*xHalf_, *gHalf_, xg);
   MVT::MvDot(*xHalf_, *qp_.b, xb);
   const S fHalf = S(0.5) * (xg[0] - xb[0]);
   MVT::MvAddMv(S(1), *qp_.x, -alphaCg, *p_, *qp_.x);
-  BT::project(*qp_.x, *qp_.lower, upper_);
+  set_->project(*qp_.x);
   applyA(*qp_.x, *g_);
   MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
   if (BT::allFinite(*g_) && energy() <= fHalf) {
@@ -287,7 +290,6 @@ bool MprgpIteration<S, MV, OP>::tryProjectedCgExpansion(S alphaFeasible, S alpha
 
 template <class S, class MV, class OP>
 const char* MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible, S alphaCg) {
-  using BT = BoundTraits<S, MV>;
   if (opts_.projectedCgExpansion) {
     if (tryProjectedCgExpansion(alphaFeasible, alphaCg)) {
       ++counters_.expansionSteps;
@@ -297,15 +299,15 @@ const char* MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible, S alphaCg)
     alphaFeasible = 0;
   }
   MVT::MvAddMv(S(1), *qp_.x, -alphaFeasible, *p_, *qp_.x);
-  BT::project(*qp_.x, *qp_.lower, upper_);
+  set_->project(*qp_.x);
   MVT::MvAddMv(S(1), *g_, -alphaFeasible, *Ap_, *g_);
-  BT::freeGradient(*qp_.x, *qp_.lower, upper_, *g_, *phi_);
+  set_->freeGradient(*qp_.x, *g_, *phi_);
   if (opts_.optimalExpansion && tryOptimalExpansion()) {
     ++counters_.expansionSteps;
     return "expansion (opt)";
   }
   MVT::MvAddMv(S(1), *qp_.x, -opts_.alphaBar, *phi_, *qp_.x);
-  BT::project(*qp_.x, *qp_.lower, upper_);
+  set_->project(*qp_.x);
   // The projection changed x non-linearly: recompute the gradient, which also stops the
   // recursive update from drifting.
   applyA(*qp_.x, *g_);
@@ -334,14 +336,20 @@ void MprgpIteration<S, MV, OP>::proportioningStep() {
     throw std::runtime_error(os.str());
   }
   S alpha = betaNorm2_ / dAd[0];
-  if (upper_ != nullptr) {
+  if (upper_ != nullptr || set_->hasDiscs()) {
     // With two bounds the step may carry a component from one bound past the other: stop at
     // the first one reached (f still decreases, alpha <= the minimizing length), and project
     // away the rounding, as in a CG step.
     using BT = BoundTraits<S, MV>;
     alpha = std::min(alpha, BT::maxFeasibleStep(*qp_.x, *qp_.lower, upper_, *beta_));
+    // MPGP: a disc whose -beta is tangential (or leaves the disc before alpha) slides along
+    // its circle, which only the projection follows.
+    if (set_->hasDiscs() && set_->maxFeasibleStep(*qp_.x, *beta_) < alpha) {
+      slidingProportioningStep(alpha);
+      return;
+    }
     MVT::MvAddMv(S(1), *qp_.x, -alpha, *beta_, *qp_.x);
-    BT::project(*qp_.x, *qp_.lower, upper_);
+    set_->project(*qp_.x);
   } else {
     MVT::MvAddMv(S(1), *qp_.x, -alpha, *beta_, *qp_.x);
   }
@@ -352,11 +360,41 @@ void MprgpIteration<S, MV, OP>::proportioningStep() {
 }
 
 template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::slidingProportioningStep(S alpha) {
+  // x = P(x - alpha beta) with alpha the minimizer along -beta (capped at the intervals),
+  // accepted when f decreases; otherwise the projected gradient step on the active components,
+  // x = P(x - alphaBar (g - phi)), which decreases f for alphaBar < 2 / ||A|| (the free
+  // components do not move, the active ones take a projected gradient step of their own block).
+  // f(y) - f(x) = 1/2 (y - x)^T (g(x) + g(y)), accurate where f(y) - f(x) from two energies
+  // would be rounding (and decide differently on another rank count).
+  MVT::Assign(*qp_.x, *xHalf_);
+  MVT::Assign(*g_, *Ap_);
+  MVT::MvAddMv(S(1), *g_, S(-1), *phi_, *gHalf_);
+  MVT::MvAddMv(S(1), *qp_.x, -alpha, *beta_, *qp_.x);
+  set_->project(*qp_.x);
+  applyA(*qp_.x, *g_);
+  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  MVT::MvAddMv(S(1), *qp_.x, S(-1), *xHalf_, *beta_);
+  MVT::MvAddMv(S(1), *Ap_, S(1), *g_, *Ap_);
+  std::vector<S> change(1);
+  MVT::MvDot(*beta_, *Ap_, change);
+  if (!(change[0] <= S(0))) {
+    MVT::MvAddMv(S(1), *xHalf_, -opts_.alphaBar, *gHalf_, *qp_.x);
+    set_->project(*qp_.x);
+    applyA(*qp_.x, *g_);
+    MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  }
+  updateGradientSplit();
+  precondition(*p_);
+  ++counters_.proportioningSteps;
+}
+
+template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::record(const char* kind) {
   counters_.history.push_back(gpNorm_);
   if (opts_.verbosity < 2) return;
   // Collective: every rank counts, rank 0 prints.
-  const std::size_t active = BoundTraits<S, MV>::activeIndices(*qp_.x, *qp_.lower, upper_).size();
+  const std::size_t active = set_->activeIndices(*qp_.x).size();
   if (root_) {
     // Formatted apart: the target stream's precision and flags stay the caller's.
     std::ostringstream os;

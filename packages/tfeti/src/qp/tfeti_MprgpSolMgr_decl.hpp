@@ -3,6 +3,8 @@
 // tfeti_MprgpIteration_decl.hpp for the algorithm), set up like Belos' solver managers: a
 // validated parameter list, status tests (Belos::StatusTestMaxIters OR the projected-gradient
 // test), an iteration object, and solve() returning Belos::Converged or Belos::Unconverged.
+// A problem with disc constraints (BoundConstrainedQp::discs) is solved by MPGP, the same
+// iteration on intervals and discs; MpgpSolMgr names it.
 //
 // Parameters (getValidParameters() lists them with these defaults; unknown names throw):
 //  "Relative tolerance"   1e-6   stop when ||g^P|| <= tol * ||b|| (when b = 0: tol * ||A P(0)||,
@@ -126,5 +128,9 @@ class MprgpSolMgr {
   void checkReady() const;
   Belos::ReturnType solveTimed();
 };
+
+// MPGP for problems with disc constraints: the same solver manager.
+template <class S, class MV, class OP>
+using MpgpSolMgr = MprgpSolMgr<S, MV, OP>;
 
 }  // namespace tfeti

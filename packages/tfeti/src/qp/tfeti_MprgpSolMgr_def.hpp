@@ -18,6 +18,7 @@
 #include "tfeti_MprgpSolMgr_decl.hpp"
 #include "tfeti_QpChecks.hpp"
 #include "tfeti_QpStatusTests.hpp"
+#include "tfeti_SeparableSet.hpp"
 #include "tfeti_StrictParameters.hpp"
 #include "tfeti_TimedOperator.hpp"
 
@@ -222,7 +223,7 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solveTimed() {
     auto y = MVT::Clone(*qp_.x, 1);
     auto Ay = MVT::Clone(*qp_.x, 1);
     MVT::MvInit(*y, S(0));
-    BT::project(*y, *qp_.lower, qp_.upper.get());
+    feasibleSet(qp_).project(*y);
     Belos::OperatorTraits<S, MV, OP>::Apply(*timed.A, *y, *Ay);
     ++counters_.hessianMultiplications;
     MVT::MvNorm(*Ay, n);
@@ -257,8 +258,8 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solveTimed() {
   const Teuchos::RCP<const OP> M =
       params_.get<bool>("Preconditioning in face") ? M_ : Teuchos::RCP<const OP>();
   MprgpIteration<S, MV, OP> iteration(timed, M, combo, opts);
-  if (!g0_.is_null() && BT::isFeasible(*qp_.x, *qp_.lower, qp_.upper.get()))
-    iteration.setInitialGradient(g0_);
+  const SeparableSet<S, MV> set = feasibleSet(qp_);
+  if (!g0_.is_null() && set.isFeasible(*qp_.x)) iteration.setInitialGradient(g0_);
   iteration.initialize();
   iteration.iterate();
 
@@ -273,7 +274,7 @@ Belos::ReturnType MprgpSolMgr<S, MV, OP>::solveTimed() {
   numIters_ = iteration.getNumIters();
   g_ = iteration.getGradient();
   // Every step ends with a projection onto the box or only moves into it: this cannot fail.
-  TEUCHOS_TEST_FOR_EXCEPTION(!BT::isFeasible(*qp_.x, *qp_.lower, qp_.upper.get()), std::logic_error,
+  TEUCHOS_TEST_FOR_EXCEPTION(!set.isFeasible(*qp_.x), std::logic_error,
                              "MPRGP: internal error, the solution violates the bounds");
 
   const bool converged =

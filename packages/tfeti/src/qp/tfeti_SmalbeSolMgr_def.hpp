@@ -19,6 +19,7 @@
 #include "tfeti_OperatorSum.hpp"
 #include "tfeti_QpChecks.hpp"
 #include "tfeti_QpStatusTests.hpp"
+#include "tfeti_SeparableSet.hpp"
 #include "tfeti_SmalbeSolMgr_decl.hpp"
 #include "tfeti_StrictParameters.hpp"
 #include "tfeti_TimedOperator.hpp"
@@ -231,7 +232,6 @@ template <class S, class MV, class OP>
 void SmalbeSolMgr<S, MV, OP>::setTolerances(SolveState& s) {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using OPT = Belos::OperatorTraits<S, MV, OP>;
-  using BT = BoundTraits<S, MV>;
   std::vector<magnitude_type> n(1);
   MVT::MvNorm(*qp_.b, n);
   counters_.rhsNorm = n[0];
@@ -240,7 +240,7 @@ void SmalbeSolMgr<S, MV, OP>::setTolerances(SolveState& s) {
     auto y = MVT::Clone(*qp_.x, 1);
     auto Ay = MVT::Clone(*qp_.x, 1);
     MVT::MvInit(*y, S(0));
-    BT::project(*y, *qp_.lower, qp_.upper.get());
+    feasibleSet(qp_).project(*y);
     OPT::Apply(*TimedOperator<S, MV, OP>::wrap(qp_.A, solverTimer("tfeti: Hessian apply")), *y,
                *Ay);
     ++counters_.hessianMultiplications;
@@ -269,7 +269,9 @@ void SmalbeSolMgr<S, MV, OP>::setUpOuterIterations(SolveState& s) {
   s.Qx = MVT::Clone(*qp_.x, 1);
   const Teuchos::RCP<const OP> H =
       augmented_.is_null() ? OperatorSum<S, MV, OP>::build(qp_.A, S(1), Q_, S(rho_)) : augmented_;
-  s.inner = BoundConstrainedQp<S, MV, OP>{H, s.bInner, qp_.lower, qp_.x, qp_.upper};
+  // With disc constraints the inner solver is MPGP (the same iteration on discs).
+  s.inner = BoundConstrainedQp<S, MV, OP>{H,         s.bInner,  qp_.lower,      qp_.x,
+                                          qp_.upper, qp_.discs, qp_.discCenters};
   s.innerParams = params_.sublist("MPRGP");
   s.innerTest = Teuchos::rcp(new StatusTestSmalbeInner<S, MV, OP>(Q_, M_, s.eta, s.gTol, s.eTol));
 }
@@ -278,6 +280,10 @@ template <class S, class MV, class OP>
 void SmalbeSolMgr<S, MV, OP>::setUpFaceGramian(SolveState& s) {
   using BT = BoundTraits<S, MV>;
   s.faceMode = params_.get<std::string>("Face solve") == "pcpg";
+  TEUCHOS_TEST_FOR_EXCEPTION(
+      s.faceMode && !qp_.discs.is_null() && feasibleSet(qp_).hasDiscs(), std::invalid_argument,
+      "SMALBE: parameter \"Face solve\" = pcpg fixes the active components on a face of boxes; "
+      "the problem has disc constraints (3D friction), for which \"Face solve\" must be none");
   // The faces' columns of Q, shared by all faces of this solve (every bound component a
   // candidate).
   gramian_ = Teuchos::null;
@@ -320,15 +326,15 @@ template <class S, class MV, class OP>
 void SmalbeSolMgr<S, MV, OP>::testInitialIterate(SolveState& s) {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using OPT = Belos::OperatorTraits<S, MV, OP>;
-  using BT = BoundTraits<S, MV>;
   std::vector<magnitude_type> n(1);
   auto g = MVT::Clone(*qp_.x, 1), phi = MVT::Clone(*qp_.x, 1), chopped = MVT::Clone(*qp_.x, 1);
   OPT::Apply(*s.inner.A, *qp_.x, *g);
   ++counters_.hessianMultiplications;
   MVT::MvAddMv(S(1), *g, S(-1), *qp_.b, *g);
   MVT::MvAddMv(S(1), *g, S(1), *mu_, *g);
-  BT::freeGradient(*qp_.x, *qp_.lower, qp_.upper.get(), *g, *phi);
-  BT::choppedGradient(*qp_.x, *qp_.lower, qp_.upper.get(), *g, *chopped);
+  const SeparableSet<S, MV> set = feasibleSet(qp_);
+  set.freeGradient(*qp_.x, *g, *phi);
+  set.choppedGradient(*qp_.x, *g, *chopped);
   MVT::MvAddMv(S(1), *phi, S(1), *chopped, *phi);
   MVT::MvNorm(*phi, n);
   s.gp = n[0];
@@ -431,10 +437,9 @@ void SmalbeSolMgr<S, MV, OP>::reportOuterIteration(const SolveState& s, int inne
 
 template <class S, class MV, class OP>
 bool SmalbeSolMgr<S, MV, OP>::faceAfterOuterIteration(SolveState& s) {
-  using BT = BoundTraits<S, MV>;
   // The face phase: once the active set has settled, solve on that face like the tied
   // problem; accepted only when the result passes the final test above.
-  std::vector<long long> active = BT::activeIndices(*qp_.x, *qp_.lower, qp_.upper.get());
+  std::vector<long long> active = feasibleSet(qp_).activeIndices(*qp_.x);
   if (s.k > 0 && active != s.activePrev) ++face_.activeSetChanges;
   s.settled = s.k > 0 && active == s.activePrev ? s.settled + 1 : 0;
   s.activePrev = active;
