@@ -80,8 +80,15 @@ tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field&
                                                     int iteration) const {
   const Field rhs = incrementLoads(fint, t);
   const std::vector<tfeti::EqualityRow> prescribed = prescribedIncrementRows(u, t);
-  const bool refactor =
+  bool refactor =
       options_.stiffness == "iteration" || (options_.stiffness == "step" && iteration == 1);
+  // In small strain a tangent with every point elastic is the elastic stiffness: when the factor
+  // holds that already (the solver is built with it), refactorizing would only repeat it.
+  if (refactor && options_.kinematics == plasticity::Kinematics::SmallStrain && !options_.linear) {
+    const bool elastic = !model_.plasticLoading(*comm_);
+    refactor = !(elastic && factorIsElastic_);
+    if (refactor) factorIsElastic_ = elastic;
+  }
   // The linear problem's only increment is the one the solver was built with (loads f, the
   // rows of the reference geometry, the prescribed rows at their full value).
   if (options_.linear && iteration == 1) return solver_.solve();

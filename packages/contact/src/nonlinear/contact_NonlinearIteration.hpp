@@ -92,6 +92,10 @@ class LoadStepIteration {
   Trial tryStep(const Field& u, const Field& du, double alpha, const Field& forces,
                 const Field& previousForces, double t) const;
 
+  // The solver's factor is of the elastic stiffness (it is built with it; a small-strain
+  // tangent with every point elastic is it again).
+  mutable bool factorIsElastic_ = true;
+
   Teuchos::RCP<const tfeti::Comm> comm_;
   NonlinearModel& model_;
   tfeti::FetiSolver& solver_;

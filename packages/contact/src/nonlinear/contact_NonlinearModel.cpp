@@ -80,6 +80,22 @@ std::vector<tfeti::CsrMatrix> NonlinearModel::tangent(const Field& disp,
   return K;
 }
 
+bool NonlinearModel::plasticLoading(const tfeti::Comm& comm) const {
+  int local = 0;
+  for (const auto* p : plastic) {
+    if (p == nullptr || local == 1) continue;
+    for (int e = 0; e < p->numElements() && local == 0; ++e)
+      for (int g = 0; g < p->gaussPointsPerElement(); ++g)
+        if (p->trialEquivalentPlasticStrain({e, g}) > p->equivalentPlasticStrain({e, g})) {
+          local = 1;
+          break;
+        }
+  }
+  int any = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &local, &any);
+  return any == 1;
+}
+
 void NonlinearModel::commit() {
   for (auto* p : plastic)
     if (p) p->commit();

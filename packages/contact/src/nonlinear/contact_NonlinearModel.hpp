@@ -46,6 +46,10 @@ struct NonlinearModel {
   //    sym(F^T grad du) vanishes for du = W (X + u) with W skew; the initial-stress part, which
   //    does not, is left out of tangent().
   Field kernelCoordinates(const Field& disp, plasticity::Kinematics kin) const;
+  // Whether some Gauss point of the laws' trial state (the last internalForce) loads plastically
+  // (its equivalent plastic strain grows): otherwise the small-strain tangent is the elastic
+  // stiffness everywhere. Collective.
+  bool plasticLoading(const tfeti::Comm& comm) const;
 
   void commit();  // trial history -> committed (a converged step)
   void revert();  // committed -> trial (a rejected attempt)
