@@ -102,12 +102,13 @@ std::vector<double> difference(const std::vector<double>& a, const std::vector<d
   return d;
 }
 
-// Per contact row: its slave node's share of the slave boundary.
+// Per contact row: its slave node's share of the slave boundary (a mortar row's own weight).
 std::vector<double> rowWeights(const ElasticContactProblem& p) {
   std::map<int, double> weight;
   for (std::size_t k = 0; k < p.slaveNodes.size(); ++k) weight[p.slaveNodes[k]] = p.slaveWeights[k];
   std::vector<double> w;
-  for (const auto& row : p.contact.rows) w.push_back(weight.at(row.slaveNode));
+  for (const auto& row : p.contact.rows)
+    w.push_back(row.weight > 0.0 ? row.weight : weight.at(row.slaveNode));
   return w;
 }
 

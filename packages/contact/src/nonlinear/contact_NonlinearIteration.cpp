@@ -48,9 +48,7 @@ void LoadStepIteration::updateContact(const Field& u, double t) const {
     // The obstacle where its prescribed motion has taken it at load factor t.
     RigidObstacle at = *obstacle_;
     for (int c = 0; c < at.dim; ++c) at.point[c] += t * options_.obstacleDisplacement[c];
-    ContactSearchOptions search;
-    search.searchRadius = problem.searchRadius;
-    problem.master = makeObstacleMaster(at, search);
+    problem.master = problem.master->withObstacle(at);
   }
   const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
   contact::updateContact(problem, current, comm_->getRank(), slave_, master_);

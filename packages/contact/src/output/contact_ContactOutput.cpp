@@ -38,7 +38,8 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
   std::vector<ContactNode> nodes;
   for (const auto& row : problem.contact.rows) {
     const double lambda = byRow.at(key(toInequalityRow(row, dofOf)));
-    const double w = problem.slaveWeights[slaveIndex.at(row.slaveNode)];
+    const double w =
+        row.weight > 0.0 ? row.weight : problem.slaveWeights[slaveIndex.at(row.slaveNode)];
     double x[3] = {0.0, 0.0, 0.0};
     for (int c = 0; c < dim; ++c) {
       x[c] = problem.mesh.coords[dim * row.slaveNode + c];

@@ -114,6 +114,7 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     throw std::invalid_argument("Contact problem: \"Slave\" and \"Master\" both name \"" +
                                 spec.slave + "\"; a contact pair needs two different boundaries");
   spec.searchRadius = cp.get<double>("Search radius");
+  spec.discretization = cp.get<std::string>("Contact discretization");
   const std::string contactType = cp.get<std::string>("Contact type");
   spec.bonded = contactType == "bonded";
   spec.tied = contactType == "tied" || spec.bonded;
@@ -213,6 +214,14 @@ void addElasticContactParameters(ParameterList& pl) {
          "rows B_T u = 0 beside them (no relative motion along the surface either)",
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
              Teuchos::tuple<std::string>("frictionless", "tied", "bonded"), "Contact type")));
+  cp.set("Contact discretization", "node_to_segment",
+         "node_to_segment: one row per slave node at its closest point on the master "
+         "(collocation; node-to-face in 3D); mortar: dual mortar, one row per slave node holding "
+         "the weighted gap of its dual basis function over the overlap of the slave and master "
+         "facets (accurate pressures on non-matching and unstructured meshes; Tri6/Quad8 slaves "
+         "carry multipliers on their corners)",
+         Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+             Teuchos::tuple<std::string>("node_to_segment", "mortar"), "Contact discretization")));
   cp.set("Search radius", 0.0,
          "slave nodes farther from the master get no row; 0: a tenth of "
          "the mesh's extent",

@@ -1,5 +1,7 @@
 #include "contact_ElasticContactProblem.hpp"
 
+#include "contact_Mortar.hpp"
+
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
@@ -437,7 +439,10 @@ void makeMaster(const ElasticContactSpec& spec, const ContactSearchOptions& opti
                                   (obstacle.dim == 3 ? "plane or sphere" : "line or circle") +
                                   ") for the " + std::to_string(dim) + "D mesh " + mesh.source);
     try {
-      p.master = makeObstacleMaster(obstacle, options);
+      p.master = spec.discretization == "mortar"
+                     ? makeMortarObstacleMaster(mortarSurfaceOfBoundary(mesh, spec.slave), obstacle,
+                                                options)
+                     : makeObstacleMaster(obstacle, options);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("Contact problem/Rigid obstacle: ") + e.what());
     }
@@ -448,7 +453,10 @@ void makeMaster(const ElasticContactSpec& spec, const ContactSearchOptions& opti
   for (int e = 0; e < master.numEdges(); ++e) onBody = onBody || master.edgeBody[e] >= 0;
   if (!onBody)
     throw std::invalid_argument("Master: boundary \"" + spec.master + "\" is on no body");
-  p.master = makeMeshContactMaster(mesh, spec.master, options);
+  p.master = spec.discretization == "mortar"
+                 ? makeMortarMaster(mortarSurfaceOfBoundary(mesh, spec.slave),
+                                    mortarSurfaceOfBoundary(mesh, spec.master), options)
+                 : makeMeshContactMaster(mesh, spec.master, options);
   p.masterBody = bodyOfBoundary(mesh, spec, master);
   // A node on both surfaces joins the bodies there: it is glued, not in contact (a .geo that
   // extrudes touching bodies merges their coincident points unless told otherwise).

@@ -54,6 +54,9 @@ struct ElasticContactSpec {
   bool tied = false;          // Contact type = tied or bonded: the rows held with equality
   // Contact type = bonded: the contact rows' tangential rows join them (held with equality too).
   bool bonded = false;
+  // Contact discretization: node_to_segment (collocation at the slave nodes) or mortar (dual
+  // mortar weighted gaps, contact_Mortar.hpp).
+  std::string discretization = "node_to_segment";
   std::string distribution = "graph";  // subdomains to ranks: graph (Zoltan2) or block
   // The contact zone's shape (how its extent is reported): auto, line or point; point needs a
   // 3D mesh.

@@ -20,6 +20,8 @@
 
 namespace contact {
 
+struct RigidObstacle;
+
 // One term of a row: coef times component `component` (0: x, 1: y, 2: z) of the displacement of
 // `node`.
 struct NodeEntry {
@@ -81,8 +83,14 @@ struct ContactRow {
   double gap = 0.0;
   // The slave node's components, then each master node of the facet (facet order): always
   // dim * (1 + nodes per facet) entries, zero coefficients included, so that the row's pattern
-  // depends only on the facet. A rigid obstacle: the slave node's dim entries only.
+  // depends only on the facet. A rigid obstacle: the slave node's dim entries only. A mortar row
+  // (contact_Mortar.hpp): the slave node, the other slave nodes of its dual basis' support, then
+  // the master nodes of every facet it overlaps, dim components per node.
   std::vector<NodeEntry> entries;
+  // Mortar rows: the integral of the node's dual basis function over the covered surface, the
+  // measure that the multiplier (a nodal force) is divided by to give the pressure. 0 for a
+  // collocation row, whose measure is the slave node's lumped share of the surface.
+  double weight = 0.0;
 };
 
 struct ContactRowsResult {
@@ -118,6 +126,9 @@ class ContactMaster {
                                  const std::vector<double>& displacement = {}) const = 0;
   // The mesh nodes the rows' master entries refer to (empty for a rigid obstacle), sorted.
   virtual std::vector<int> masterNodes() const = 0;
+  // A rigid obstacle's master with the obstacle moved to `at` (a prescribed motion), the same
+  // discretization and options. Throws std::logic_error for a mesh master.
+  virtual std::unique_ptr<ContactMaster> withObstacle(const RigidObstacle& at) const;
 };
 
 }  // namespace contact

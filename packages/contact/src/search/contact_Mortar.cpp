@@ -1,0 +1,299 @@
+#include "contact_Mortar.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include "contact_BucketGrid.hpp"
+#include "contact_MortarIntegration.hpp"
+#include "contact_NodeToFace.hpp"
+#include "contact_NodeToSegment.hpp"
+
+namespace contact {
+
+namespace {
+
+// Parametric coordinates of a facet's nodes (Gmsh order).
+std::array<double, 2> facetNode(ElementType t, int a) {
+  static const double line[3] = {-1.0, 1.0, 0.0};
+  static const double tri[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
+  static const double quad[9][2] = {{-1, -1}, {1, -1}, {1, 1},  {-1, 1}, {0, -1},
+                                    {1, 0},   {0, 1},  {-1, 0}, {0, 0}};
+  if (facetParametricDimension(t) == 1) return {line[a], 0.0};
+  if (t == ElementType::Tri3 || t == ElementType::Tri6) return {tri[a][0], tri[a][1]};
+  return {quad[a][0], quad[a][1]};
+}
+
+FacetGeometry facetOf(const MortarSurface& s, const std::vector<double>& x, int f) {
+  return {s.dim, s.type, s.facets.data() + static_cast<std::size_t>(f) * s.nodesPerFacet(), &x};
+}
+
+void checkSurface(const MortarSurface& s, const std::vector<double>& x, const char* who) {
+  if (s.dim != 2 && s.dim != 3)
+    throw std::invalid_argument(std::string("mortar: the ") + who + " surface's dimension is " +
+                                std::to_string(s.dim) + " (2 or 3)");
+  if (facetParametricDimension(s.type) != s.dim - 1)
+    throw std::invalid_argument(std::string("mortar: ") + elementTypeName(s.type) +
+                                " is not a facet type of a " + std::to_string(s.dim) + "D mesh");
+  if (s.facets.size() % s.nodesPerFacet() != 0)
+    throw std::invalid_argument(std::string("mortar: the ") + who + " surface's node list is not " +
+                                std::to_string(s.nodesPerFacet()) + " nodes per facet");
+  const long long n = static_cast<long long>(x.size()) / s.dim;
+  for (int v : s.facets)
+    if (v < 0 || v >= n)
+      throw std::invalid_argument(std::string("mortar: ") + who + " node " + std::to_string(v) +
+                                  " outside 0.." + std::to_string(n - 1));
+}
+
+// The facet's corners in the plane's coordinates, counter-clockwise (3D), or its extent (2D:
+// two points on the line, lower first).
+Polygon projectedCorners(const FacetGeometry& f, const AuxiliaryPlane& plane) {
+  Polygon p;
+  const int corners = numCorners(f.type);
+  for (int a = 0; a < corners; ++a)
+    p.push_back(plane.coordinates(f.x->data() + static_cast<std::size_t>(f.dim) * f.nodes[a]));
+  if (f.dim == 2) {
+    if (p[0][0] > p[1][0]) std::swap(p[0], p[1]);
+    p.resize(2);
+  } else if (polygonArea(p) < 0.0) {
+    std::reverse(p.begin(), p.end());
+  }
+  return p;
+}
+
+double facetSize(const FacetGeometry& f) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (int a = 0; a < numCorners(f.type); ++a)
+    for (int c = 0; c < f.dim; ++c) {
+      const double v = (*f.x)[static_cast<std::size_t>(f.dim) * f.nodes[a] + c];
+      lo[c] = std::min(lo[c], v), hi[c] = std::max(hi[c], v);
+    }
+  double s = 0.0;
+  for (int c = 0; c < f.dim; ++c) s = std::max(s, hi[c] - lo[c]);
+  return s;
+}
+
+// The quadrature points of one slave facet's covered part: weights, the multiplier-space
+// functions, the slave's shape functions, and the master facet with its shape functions.
+struct CoveredPoints {
+  std::vector<double> w, lm, slave, master;
+  std::vector<int> masterFacet;
+};
+
+// Adds the overlap of slave facet fs with master facet fm (both on the slave's plane) to `pts`.
+// Returns whether it had positive measure.
+bool integrateOverlap(const FacetGeometry& fs, const FacetGeometry& fm, int masterFacet,
+                      const AuxiliaryPlane& plane, const Polygon& slavePoly, double size,
+                      const MultiplierSpace& lm, CoveredPoints& pts) {
+  const Polygon masterPoly = projectedCorners(fm, plane);
+  PlaneQuadrature q;
+  const double tol = 1e-10 * size;
+  if (fs.dim == 2) {
+    const double a = std::max(slavePoly[0][0], masterPoly[0][0]);
+    const double b = std::min(slavePoly[1][0], masterPoly[1][0]);
+    if (b - a <= tol) return false;
+    q = intervalQuadrature(a, b);
+  } else {
+    const Polygon overlap = clipPolygon(masterPoly, slavePoly, tol);
+    if (overlap.empty() || polygonArea(overlap) <= 1e-10 * size * size) return false;
+    q = polygonQuadrature(overlap);
+  }
+  const int ns = fs.numNodes(), nm = fm.numNodes();
+  double Ns[9], Nm[9], Nl[9];
+  for (std::size_t k = 0; k < q.weights.size(); ++k) {
+    double xs[2], xm[2];
+    if (!plane.inverseMap(fs, q.points[k], xs) || !plane.inverseMap(fm, q.points[k], xm))
+      throw std::runtime_error(
+          "mortar: a quadrature point of an overlap does not map back onto its facets "
+          "(a distorted facet?)");
+    facetShapeFunctions(fs.type, xs, Ns, nullptr);
+    facetShapeFunctions(fm.type, xm, Nm, nullptr);
+    facetShapeFunctions(lm.type, xs, Nl, nullptr);
+    pts.w.push_back(q.weights[k]);
+    pts.lm.insert(pts.lm.end(), Nl, Nl + lm.count);
+    pts.slave.insert(pts.slave.end(), Ns, Ns + ns);
+    pts.master.insert(pts.master.end(), Nm, Nm + nm);
+    pts.masterFacet.push_back(masterFacet);
+  }
+  return true;
+}
+
+// The master facets whose (enlarged) boxes meet the slave facet's box: the grid's candidates at
+// a lattice of points spaced at most a cell apart over that box, so every cell it overlaps is
+// visited.
+std::set<int> candidateFacets(const BucketGrid& grid, const FacetGeometry& fs) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (int a = 0; a < fs.numNodes(); ++a)
+    for (int c = 0; c < fs.dim; ++c) {
+      const double v = (*fs.x)[static_cast<std::size_t>(fs.dim) * fs.nodes[a] + c];
+      lo[c] = std::min(lo[c], v), hi[c] = std::max(hi[c], v);
+    }
+  int n[3] = {1, 1, 1};
+  for (int c = 0; c < fs.dim; ++c)
+    n[c] = 1 + static_cast<int>(std::ceil((hi[c] - lo[c]) / grid.cellSize()));
+  std::set<int> out;
+  double p[3];
+  for (int i = 0; i <= n[0]; ++i)
+    for (int j = 0; j <= (fs.dim > 1 ? n[1] : 0); ++j)
+      for (int k = 0; k <= (fs.dim > 2 ? n[2] : 0); ++k) {
+        const int idx[3] = {i, j, k};
+        for (int c = 0; c < fs.dim; ++c) p[c] = lo[c] + (hi[c] - lo[c]) * idx[c] / n[c];
+        if (const auto* cand = grid.candidates(p)) out.insert(cand->begin(), cand->end());
+      }
+  return out;
+}
+
+// Adds one slave facet's covered points to the couplings through its dual basis.
+void accumulate(const FacetGeometry& fs, const MultiplierSpace& lm, const CoveredPoints& pts,
+                const MortarSurface& master, MortarCouplings& out) {
+  const std::vector<double> A = dualBasisCoefficients(lm.count, pts.w, pts.lm);
+  if (A.empty()) {
+    ++out.singularFacets;
+    return;
+  }
+  const int ns = fs.numNodes(), nm = master.nodesPerFacet();
+  double phi[9];
+  for (std::size_t q = 0; q < pts.w.size(); ++q) {
+    for (int j = 0; j < lm.count; ++j) {
+      phi[j] = 0.0;
+      for (int b = 0; b < lm.count; ++b) phi[j] += A[j * lm.count + b] * pts.lm[q * lm.count + b];
+    }
+    const int* mNodes = master.facets.data() + static_cast<std::size_t>(pts.masterFacet[q]) * nm;
+    for (int j = 0; j < lm.count; ++j) {
+      MortarCoupling& c = out.byNode[fs.nodes[j]];
+      const double wp = pts.w[q] * phi[j];
+      for (int a = 0; a < ns; ++a) c.slave[fs.nodes[a]] += wp * pts.slave[q * ns + a];
+      for (int k = 0; k < nm; ++k) c.master[mNodes[k]] += wp * pts.master[q * nm + k];
+      c.weight += wp;
+    }
+  }
+}
+
+}  // namespace
+
+MortarSurface mortarSurfaceOfBoundary(const GmshMesh& mesh, const std::string& name) {
+  const GmshBoundary& g = mesh.boundary(name);
+  MortarSurface s;
+  s.dim = mesh.dim;
+  if (mesh.dim == 3) {
+    MasterFaceSurface m = masterFacesOfBoundary(mesh, g);
+    s.type = m.type;
+    s.facets = std::move(m.faces);
+    return s;
+  }
+  int body = -1;
+  for (int e = 0; e < g.numEdges() && body < 0; ++e) body = g.edgeBody[e];
+  if (body < 0)
+    throw std::invalid_argument(mesh.source + ": boundary \"" + name + "\" is on no body");
+  MasterSurface m;
+  m.nodesPerSegment = g.nodesPerEdge;
+  m.segments = g.edges;
+  const GmshBody& b = mesh.bodies[body];
+  orientSegmentsByElements(m, mesh.coords, b.type, b.connectivity);
+  s.type = g.type;
+  s.facets = std::move(m.segments);
+  return s;
+}
+
+MortarCouplings mortarCouplings(const std::vector<double>& x, const MortarSurface& slave,
+                                const MortarSurface& master, double searchRadius) {
+  checkSurface(slave, x, "slave");
+  checkSurface(master, x, "master");
+  if (slave.dim != master.dim)
+    throw std::invalid_argument("mortar: the slave and master surfaces differ in dimension");
+  if (!(searchRadius > 0.0))
+    throw std::invalid_argument("mortar: the search radius must be positive");
+  const int dim = slave.dim;
+  MortarCouplings out;
+  if (master.numFacets() == 0 || slave.numFacets() == 0) return out;
+  // The master facets' boxes, enlarged by the search radius, in a bucket grid.
+  std::vector<double> boxes;
+  double meanSize = 0.0;
+  for (int f = 0; f < master.numFacets(); ++f) {
+    const FacetGeometry fm = facetOf(master, x, f);
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (int a = 0; a < fm.numNodes(); ++a)
+      for (int c = 0; c < dim; ++c) {
+        const double v = x[static_cast<std::size_t>(dim) * fm.nodes[a] + c];
+        lo[c] = std::min(lo[c], v), hi[c] = std::max(hi[c], v);
+      }
+    for (int c = 0; c < dim; ++c) boxes.push_back(lo[c] - searchRadius);
+    for (int c = 0; c < dim; ++c) boxes.push_back(hi[c] + searchRadius);
+    meanSize += facetSize(fm);
+  }
+  meanSize /= master.numFacets();
+  const BucketGrid grid(dim, boxes, std::max(meanSize, searchRadius));
+  out.gridCells = grid.occupiedCells();
+  out.cellSize = grid.cellSize();
+  const MultiplierSpace lm = multiplierSpace(slave.type);
+  for (int e = 0; e < slave.numFacets(); ++e) {
+    const FacetGeometry fs = facetOf(slave, x, e);
+    const AuxiliaryPlane plane(fs);
+    const Polygon slavePoly = projectedCorners(fs, plane);
+    const double size = facetSize(fs);
+    const std::set<int> own(fs.nodes, fs.nodes + fs.numNodes());
+    CoveredPoints pts;
+    for (int f : candidateFacets(grid, fs)) {
+      const FacetGeometry fm = facetOf(master, x, f);
+      bool shared = false;
+      for (int a = 0; a < fm.numNodes(); ++a) shared = shared || own.count(fm.nodes[a]) > 0;
+      if (shared) continue;
+      ++out.candidatePairs;
+      // Only master facets facing the slave and within the search radius of its plane.
+      const auto c = facetCentre(fm.type);
+      const auto nm = fm.normal(c.data());
+      double centre[3], t[6], facing = 0.0;
+      fm.evaluate(c.data(), centre, t);
+      for (int k = 0; k < dim; ++k) facing += nm[k] * plane.normal[k];
+      if (facing >= 0.0 || std::abs(plane.height(centre)) > searchRadius) continue;
+      if (integrateOverlap(fs, fm, f, plane, slavePoly, size, lm, pts)) ++out.overlaps;
+    }
+    if (!pts.w.empty()) accumulate(fs, lm, pts, master, out);
+  }
+  return out;
+}
+
+std::map<int, std::array<double, 3>> slaveNodalNormals(const std::vector<double>& x,
+                                                       const MortarSurface& slave) {
+  checkSurface(slave, x, "slave");
+  std::map<int, std::array<double, 3>> sum;
+  for (int e = 0; e < slave.numFacets(); ++e) {
+    const FacetGeometry f = facetOf(slave, x, e);
+    for (int a = 0; a < f.numNodes(); ++a) {
+      const auto xi = facetNode(f.type, a);
+      const auto n = f.normal(xi.data());
+      auto& s = sum[f.nodes[a]];
+      for (int c = 0; c < 3; ++c) s[c] += n[c];
+    }
+  }
+  for (auto& [node, n] : sum) {
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 0.0))
+      throw std::invalid_argument("mortar: the slave surface's normals cancel at node " +
+                                  std::to_string(node) + " (a surface folded onto itself)");
+    for (double& v : n) v /= len;
+  }
+  return sum;
+}
+
+std::map<int, double> fullMultiplierWeights(const std::vector<double>& x,
+                                            const MortarSurface& slave) {
+  checkSurface(slave, x, "slave");
+  const MultiplierSpace lm = multiplierSpace(slave.type);
+  const PlaneQuadrature q = referenceFacetQuadrature(slave.type);
+  std::map<int, double> w;
+  double Nl[9];
+  for (int e = 0; e < slave.numFacets(); ++e) {
+    const FacetGeometry f = facetOf(slave, x, e);
+    for (std::size_t k = 0; k < q.weights.size(); ++k) {
+      facetShapeFunctions(lm.type, q.points[k].data(), Nl, nullptr);
+      const double jw = q.weights[k] * f.jacobian(q.points[k].data());
+      // int phi_j over the facet = int N_j (biorthogonality with the constant sum N_a = 1).
+      for (int j = 0; j < lm.count; ++j) w[f.nodes[j]] += jw * Nl[j];
+    }
+  }
+  return w;
+}
+
+}  // namespace contact
