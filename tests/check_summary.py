@@ -31,14 +31,19 @@
                                           solution (no penetration, lambda >= 0,
                                           complementarity, gluing) to 1e-6 of the solution's
                                           scale; the contact force balances the load to T
+  check_summary.py patch DIR [DIR2 ...] --pressure P [--tol T]
+                                          the contact patch test: converged, the contact
+                                          conditions (contact), and every row's pressure in
+                                          contact_pressure.csv equal to P to T (1e-8) relative,
+                                          in every DIR (other rank counts)
   check_summary.py same_contact [--solution-only] DIR1 DIR2 ...
                                           the same outer iterations and Hessian multiplications
                                           to 10 % (unless --solution-only) and the same solution
                                           along the contact side (contact.csv)
-  check_summary.py hertz DIR [DIR2 ...] [--p-tol T] [--extent-tol T] [--estar E]
+  check_summary.py hertz DIR [DIR2 ...] [--p-tol T] [--extent-tol T] [--estar E] [--force-tol F]
                                           elastic contact against Hertz: p_max within 3 % (T),
                                           the half-width (2D) or contact radius (3D) within 5 %
-                                          (T), the force balances the load to 1e-6, the contact
+                                          (T), the force balances the load to F (1e-6), the contact
                                           conditions hold; further DIRs (other rank counts) give
                                           the same p_max and extent; with --estar, the
                                           summary's Hertz line contact is the closed form with
@@ -90,10 +95,10 @@
                                           Tresca with a huge slip bound against the pair
                                           bonded: both closed and sticking everywhere, the
                                           reactions, tangential force and displacements to T
-  check_summary.py nonlinear_vs_elastic NONLINEAR ELASTIC [--tol T]
+  check_summary.py nonlinear_vs_elastic NONLINEAR ELASTIC [--tol T] [--force-tol F]
                                           a one-step nonlinear run of a linear elastic material
                                           against the elastic contact run: p_max and the contact
-                                          extent within T, the force within 1e-6
+                                          extent within T, the force within F (1e-6)
   check_summary.py newton NEWTON REFERENCE [--tol T]
                                           the same problem with the tangent refactorized
                                           (Stiffness iteration or step) and with the paper's
@@ -274,6 +279,28 @@ def prescribed(d, reaction, against_contact, tol, residual_tol):
 
 # Contact conditions hold to this fraction of the solution's scale (max |u|, the load).
 KKT_TOL = 1e-6
+
+
+def patch(dirs, pressure, tol):
+    for d in dirs:
+        s = load(d)
+        if not s["converged"]:
+            fail(f"{d}: did not converge")
+        c = s["contact"]
+        if c["max_penetration"] > KKT_TOL * s["max_abs_u"]:
+            fail(f"{d}: penetration {c['max_penetration']:.3e}")
+        if c["min_multiplier"] < -KKT_TOL * c["force"]:
+            fail(f"{d}: negative multiplier {c['min_multiplier']:.3e}")
+        if c["force_relative_error"] > tol:
+            fail(f"{d}: the force misses the load by {c['force_relative_error']:.3e}")
+        with open(os.path.join(d, "contact_pressure.csv")) as f:
+            rows = list(csv.DictReader(f))
+        if not rows:
+            fail(f"{d}: contact_pressure.csv has no rows")
+        worst = max(abs(float(r["pressure"]) / pressure - 1.0) for r in rows)
+        if worst > tol:
+            fail(f"{d}: a row's pressure is {worst:.3e} away from {pressure:g} (> {tol:.1e})")
+        print(f"OK: {d}: {len(rows)} rows, every pressure {pressure:g} to {worst:.1e}")
 
 
 def contact(d, force_tol):
@@ -467,7 +494,8 @@ def hertz_line_reference(s, estar):
     return 2 * load_ / (math.pi * a), a
 
 
-def hertz(dirs, p_tol=HERTZ_TOL["p_max"], extent_tol=HERTZ_TOL["extent"], estar=0.0):
+def hertz(dirs, p_tol=HERTZ_TOL["p_max"], extent_tol=HERTZ_TOL["extent"], estar=0.0,
+          force_tol=1e-6):
     s = load(dirs[0])
     if not s["converged"]:
         fail("did not converge: " + s["qp"].get("message", ""))
@@ -484,7 +512,7 @@ def hertz(dirs, p_tol=HERTZ_TOL["p_max"], extent_tol=HERTZ_TOL["extent"], estar=
         if c["relative_error"][key] > tol:
             fail(f"{key} {c[key]:.6e} differs from Hertz's {c['hertz'][key]:.6e} by "
                  f"{100 * c['relative_error'][key]:.2f} % > {100 * tol:.1f} %")
-    if c["force_relative_error"] > 1e-6:
+    if c["force_relative_error"] > force_tol:
         fail(f"contact force {c['force']} against the applied {c['applied_force']}: "
              f"{c['force_relative_error']:.1e} relative")
     u = s["max_abs_u"]
@@ -830,10 +858,10 @@ def same_nonlinear(dirs):
     print(f"OK: {len(dirs)} runs agree over {len(ref)} steps")
 
 
-def nonlinear_vs_elastic(ndir, edir, tol):
+def nonlinear_vs_elastic(ndir, edir, tol, force_tol=1e-6):
     """A nonlinear run with a linear elastic material in one step against the elastic contact
     run: the same p_max and contact extent to tol (the loop puts the rows on the deformed
-    geometry, the elastic run on the reference one) and the same force to 1e-6."""
+    geometry, the elastic run on the reference one) and the same force to force_tol."""
     n, e = load(ndir), load(edir)
     if not n["converged"] or not e["converged"]:
         fail("a run did not converge")
@@ -841,7 +869,7 @@ def nonlinear_vs_elastic(ndir, edir, tol):
         fail(f"{ndir}: plastic strain {n['max_plastic_strain']} in an elastic run")
     cn, ce = n["contact"], e["contact"]
     extent = "contact_radius" if "contact_radius" in ce else "half_width"
-    for key, t in (("p_max", tol), (extent, tol), ("force", 1e-6)):
+    for key, t in (("p_max", tol), (extent, tol), ("force", force_tol)):
         rel = abs(cn[key] - ce[key]) / abs(ce[key])
         if rel > t:
             fail(f"{key}: nonlinear {cn[key]:.8e}, elastic {ce[key]:.8e}: {rel:.1e} > {t:.0e}")
@@ -1266,15 +1294,20 @@ if __name__ == "__main__":
                    option(args, "--tol", 1e-8), option(args, "--residual", 1e-8))
     elif mode == "contact":
         contact(args[0], option(args, "--force-tol", 1e-6))
+    elif mode == "patch":
+        flags = {"--pressure", "--tol"}
+        dirs = [a for i, a in enumerate(args) if a not in flags and (i == 0 or args[i - 1] not in flags)]
+        patch(dirs, float(option(args, "--pressure", 0.0)), float(option(args, "--tol", 1e-8)))
     elif mode == "same_contact":
         only = "--solution-only" in args
         same_contact([a for a in args if a != "--solution-only"], only)
     elif mode == "hertz":
-        tols = {"--p-tol", "--extent-tol", "--estar"}
+        tols = {"--p-tol", "--extent-tol", "--estar", "--force-tol"}
         dirs = [a for i, a in enumerate(args) if a not in tols and
                 (i == 0 or args[i - 1] not in tols)]
         hertz(dirs, option(args, "--p-tol", HERTZ_TOL["p_max"]),
-              option(args, "--extent-tol", HERTZ_TOL["extent"]), option(args, "--estar", 0.0))
+              option(args, "--extent-tol", HERTZ_TOL["extent"]), option(args, "--estar", 0.0),
+              option(args, "--force-tol", 1e-6))
     elif mode == "plane_strain":
         tols = {"--tol", "--u-tol"}
         dirs = [a for i, a in enumerate(args) if a not in tols and
@@ -1296,7 +1329,8 @@ if __name__ == "__main__":
     elif mode == "same_nonlinear":
         same_nonlinear(args)
     elif mode == "nonlinear_vs_elastic":
-        nonlinear_vs_elastic(args[0], args[1], option(args, "--tol", 1e-3))
+        nonlinear_vs_elastic(args[0], args[1], option(args, "--tol", 1e-3),
+                             option(args, "--force-tol", 1e-6))
     elif mode == "newton":
         newton(args[0], args[1], float(option(args, "--tol", 1e-4)))
     elif mode == "same_indentation":

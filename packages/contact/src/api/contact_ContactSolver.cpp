@@ -477,6 +477,7 @@ ContactResult ContactSolver::fillResult(const LoadSteps& s) const {
   res.feti = fetiDimensions(solver, r.feti);
   res.qp = s.lastQp;
   res.contactType = r.spec.bonded ? "bonded" : r.spec.tied ? "tied" : "frictionless";
+  res.contactDiscretization = r.spec.discretization;
   res.history = r.history;
   res.converged = r.linear ? !s.qpFailed : !s.failed && !s.stopped;
   res.exitCode = s.failed ? 3 : s.qpFailed ? 2 : 0;

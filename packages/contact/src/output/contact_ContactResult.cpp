@@ -92,6 +92,7 @@ Json elasticSummary(const ContactResult& r) {
   s["factor_bytes"] = r.feti.factorBytes;
   addDualOperatorSummary(s, r.feti);
   s["contact_type"] = r.contactType;
+  s["contact_discretization"] = r.contactDiscretization;
   addMaterialSummary(s, r.materials);
   s["qp"] = qpJson(r.qp);
   s["contact"] = contactJson(r);

@@ -93,6 +93,7 @@ struct ContactResult {
   FetiDimensions feti;
   tfeti::DualResult qp;  // the (last) QP solve: counters, residual history, method, rho
   std::string contactType = "frictionless";  // elastic_contact: frictionless | tied | bonded
+  std::string contactDiscretization = "node_to_segment";  // or mortar
   // The bodies and their materials (summary.json: "materials" per body, and "material" when
   // every body has the same).
   std::vector<ElasticContactSpec::Body> materials;
