@@ -98,17 +98,19 @@ def main():
             s, rows, wall = run(exe, args.ranks, with_params(text, Contact_discretization=disc),
                                 out)
             c = s["contact"]
-            err = c["relative_error"]
-            extent = "contact_radius" if "contact_radius" in err else "half_width"
+            extent = "contact_radius" if "contact_radius" in c else "half_width"
             prof = "—"
             if kind == "sphere":
                 rms, worst = profile_deviation(rows, c["hertz"]["contact_radius"],
                                                c["hertz"]["p_max"])
                 prof = "%.1f %% / %.1f %%" % (100 * rms, 100 * worst)
             vm = s["max_von_mises"] / c["hertz"]["max_von_mises"] - 1.0
+            # Signed errors (summary.json's relative_error holds magnitudes).
+            ep = c["p_max"] / c["hertz"]["p_max"] - 1.0
+            ee = c[extent] / c["hertz"][extent] - 1.0
             print("| %s | %s | %g | %d | %s | %+.2f %% | %+.2f %% | %+.2f %% | %s | %d | %d | %.1f |"
-                  % (kind, elements, fac, s["primal_dim"], disc, 100 * err["p_max"],
-                     100 * err[extent], 100 * vm, prof, c["rows"],
+                  % (kind, elements, fac, s["primal_dim"], disc, 100 * ep,
+                     100 * ee, 100 * vm, prof, c["rows"],
                      s["qp"]["hessian_multiplications"], wall), flush=True)
     for case in ("patch_mortar_2d", "patch_mortar_2d_quadratic", "patch_mortar_3d",
                  "patch_mortar_3d_quadratic"):
