@@ -103,6 +103,9 @@ struct ContactResult {
   // the master's normal and the gap the solve left (ContactNode::gap, c_I - B_I u >= 0; 0 in
   // contact), and with friction the tangential results.
   std::vector<ContactNode> contactNodes;
+  // With Contact pairs: every pair's name and contact force (summary contact.pairs); the keys
+  // of `contact` then hold the totals over all pairs.
+  std::vector<PairForce> pairs;
 
   double maxVonMises = 0.0, maxPlasticStrain = 0.0, maxAbsU = 0.0;
 
