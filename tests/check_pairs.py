@@ -2,6 +2,7 @@
 """Checks a run with several contact pairs ("Contact problem/Contact pairs").
 
   check_pairs.py DIR [DIR2 ...] --names A,B[,...] --load F [--tol T] [--magnitude-tol M]
+                 [--friction-pair K]
 
 For every DIR: the run converged; summary.json's contact.pairs lists the pairs A, B, ... in
 input order, each with force = |force_vector|; each pair's force component along z carries the
@@ -12,6 +13,9 @@ the solution's scale. contact_pressure.csv has a pair column holding every pair'
 nothing else; solution_*.vtu hold the point field contact_pair with the same indices (and -1).
 With several DIRs (rank counts) the pair forces, p_max and the contact extent agree to 1e-6 and
 the contact CSV has the same rows per pair with the same multipliers (to 1e-5 of the largest).
+With --friction-pair K only pair K has friction: summary.json has the friction keys, every CSV
+row of pair K a friction state (open, stick, slip) and at least one closed, every other row the
+state none.
 """
 import csv
 import glob
@@ -55,7 +59,20 @@ def vtu_pairs(d):
     return values
 
 
-def check_one(d, names, load, tol, magnitude_tol):
+def check_friction_pair(d, s, rows, k):
+    if "friction_law" not in s["contact"]:
+        fail(f"{d}: no friction keys in summary.json contact")
+    states = {}
+    for r in rows:
+        states.setdefault(int(r["pair"]), set()).add(r.get("state", "none"))
+    for pair, found in states.items():
+        if pair == k and ("none" in found or not found & {"stick", "slip"}):
+            fail(f"{d}: friction pair {k}: states {sorted(found)}")
+        if pair != k and found != {"none"}:
+            fail(f"{d}: pair {pair} without friction has the states {sorted(found)}")
+
+
+def check_one(d, names, load, tol, magnitude_tol, friction_pair):
     s = summary(d)
     if not s["converged"]:
         fail(f"{d}: did not converge")
@@ -82,6 +99,8 @@ def check_one(d, names, load, tol, magnitude_tol):
             if value > limit:
                 fail(f"{d}: {name} {value:.3e} > {limit:.3e}")
     rows = csv_rows(d)
+    if friction_pair is not None:
+        check_friction_pair(d, s, rows, friction_pair)
     indices = {int(r["pair"]) for r in rows}
     if indices != set(range(len(names))):
         fail(f"{d}: contact_pressure.csv pair indices {sorted(indices)}, expected "
@@ -128,14 +147,17 @@ def option(args, name, default):
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    flags = {"--names", "--load", "--tol", "--magnitude-tol"}
+    flags = {"--names", "--load", "--tol", "--magnitude-tol", "--friction-pair"}
     dirs = [a for i, a in enumerate(args) if a not in flags and (i == 0 or args[i - 1] not in flags)]
     names = option(args, "--names", "").split(",")
     load = float(option(args, "--load", "nan"))
     tol = float(option(args, "--tol", 1e-6))
     magnitude_tol = float(option(args, "--magnitude-tol", tol))
+    friction_pair = option(args, "--friction-pair", None)
+    friction_pair = None if friction_pair is None else int(friction_pair)
     if not dirs or not names[0] or load != load:
         fail("usage: check_pairs.py DIR [DIR2 ...] --names A,B --load F [--tol T]")
-    results = [(d, *check_one(d, names, load, tol, magnitude_tol)) for d in dirs]
+    results = [(d, *check_one(d, names, load, tol, magnitude_tol, friction_pair))
+               for d in dirs]
     if len(results) > 1:
         same_across(results)
