@@ -120,7 +120,7 @@ def check_one(d, names, load, tol, magnitude_tol, friction_pair):
 def same_across(results):
     (d0, s0, rows0) = results[0]
     c0 = s0["contact"]
-    extent = "contact_radius" if "contact_radius" in c0 else "contact_extent"
+    extent = next(k for k in ("contact_radius", "half_width", "contact_extent", "angle") if k in c0)
     lscale = max(abs(float(r["lambda"])) for r in rows0)
     for d, s, rows in results[1:]:
         c = s["contact"]
@@ -131,9 +131,9 @@ def same_across(results):
             if abs(c[key] - c0[key]) > 1e-6 * abs(c0[key]):
                 fail(f"{d}: {key} {c[key]}, {c0[key]} in {d0}")
         for k in range(len(c0["pairs"])):
-            a = sorted((r["x"], r["y"], r["z"], float(r["lambda"])) for r in rows0
+            a = sorted((r["x"], r["y"], r.get("z", "0"), float(r["lambda"])) for r in rows0
                        if int(r["pair"]) == k)
-            b = sorted((r["x"], r["y"], r["z"], float(r["lambda"])) for r in rows
+            b = sorted((r["x"], r["y"], r.get("z", "0"), float(r["lambda"])) for r in rows
                        if int(r["pair"]) == k)
             if len(a) != len(b):
                 fail(f"{d}: pair {k} has {len(b)} contact rows, {len(a)} in {d0}")
