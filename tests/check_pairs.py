@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """Checks a run with several contact pairs ("Contact problem/Contact pairs").
 
-  check_pairs.py DIR [DIR2 ...] --names A,B[,...] --load F [--tol T] [--magnitude-tol M]
-                 [--friction-pair K]
+  check_pairs.py DIR [DIR2 ...] --names A,B[,...] --load F|support [--tol T]
+                 [--magnitude-tol M] [--friction-pair K]
 
 For every DIR: the run converged; summary.json's contact.pairs lists the pairs A, B, ... in
 input order, each with force = |force_vector|; each pair's force component along z carries the
-load F to T (relative, default 1e-6) and its magnitude equals F to M (default T: the pair's
+load F (support: the fixed boundaries' reaction contact.support_force of a nonlinear run driven
+by a motion) to T (relative, default 1e-6) and its magnitude equals F to M (default T: the pair's
 force is along z; a deformed master may tilt it); with elastic_contact also the contact
 conditions of the solution (no penetration, lambda >= 0, complementarity, gluing; tied and
 bonded pairs: no penetration and gluing) to 1e-6 of the solution's scale. contact_pressure.csv has a pair column holding every pair's index and
@@ -77,6 +78,10 @@ def check_one(d, names, load, tol, magnitude_tol, friction_pair):
     if not s["converged"]:
         fail(f"{d}: did not converge")
     c = s["contact"]
+    if load == "support":  # driven by a motion: the fixed boundaries' reaction is the load
+        load = c["support_force"]
+        if not load > 0.0:
+            fail(f"{d}: support_force {load}: nothing is loaded")
     pairs = c.get("pairs")
     if not pairs or [p["name"] for p in pairs] != names:
         fail(f"{d}: contact.pairs {pairs}, expected the pairs {names}")
@@ -113,7 +118,7 @@ def check_one(d, names, load, tol, magnitude_tol, friction_pair):
         if not set(range(len(names))) <= found or not found <= set(range(-1, len(names))):
             fail(f"{d}: contact_pair values {sorted(found)}")
     print(f"OK: {d}: " + ", ".join(f"{p['name']} {p['force']:.10g}" for p in pairs) +
-          f" (load {load}); {len(rows)} contact rows")
+          f" (load {load:.10g}); {len(rows)} contact rows")
     return s, rows
 
 
@@ -152,12 +157,13 @@ if __name__ == "__main__":
     flags = {"--names", "--load", "--tol", "--magnitude-tol", "--friction-pair"}
     dirs = [a for i, a in enumerate(args) if a not in flags and (i == 0 or args[i - 1] not in flags)]
     names = option(args, "--names", "").split(",")
-    load = float(option(args, "--load", "nan"))
+    load = option(args, "--load", "nan")
+    load = load if load == "support" else float(load)
     tol = float(option(args, "--tol", 1e-6))
     magnitude_tol = float(option(args, "--magnitude-tol", tol))
     friction_pair = option(args, "--friction-pair", None)
     friction_pair = None if friction_pair is None else int(friction_pair)
-    if not dirs or not names[0] or load != load:
+    if not dirs or not names[0] or load != load:  # nan: no --load
         fail("usage: check_pairs.py DIR [DIR2 ...] --names A,B --load F [--tol T]")
     results = [(d, *check_one(d, names, load, tol, magnitude_tol, friction_pair))
                for d in dirs]

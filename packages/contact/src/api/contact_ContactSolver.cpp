@@ -152,10 +152,10 @@ void ContactSolver::setup() {
   r.spec = r.linear ? elasticContactSpec(params) : nonlinearContactSpec(params);
   // Small strain reads a height-function obstacle at the reference positions: the gap is then
   // linear in u, as the kinematics are.
-  bool obstacle = false;
+  int obstacles = 0;
   for (ContactPairSpec& pair : r.spec.pairs)
     if (pair.obstacle) {
-      obstacle = true;
+      ++obstacles;
       if (!r.linear)
         pair.obstacle->heightAtReference =
             r.options.kinematics == plasticity::Kinematics::SmallStrain;
@@ -176,7 +176,7 @@ void ContactSolver::setup() {
     for (const auto& s : problem.local) f.push_back(s.f);
     r.loadNorm = globalNorm(*comm_, f);  // the residual's scale; an unloaded problem is valid
   } else {
-    checkNonlinearOptionsFor(r.options, dim, obstacle);
+    checkNonlinearOptionsFor(r.options, dim, obstacles);
     // Known limitation (docs/friction.md): say so before a long run, not after it.
     if (dim == 3 && r.friction.active() && comm_->getRank() == 0)
       std::cerr << "tfeti_contact: warning: 3D friction is verified for sticking contact only; a "

@@ -150,10 +150,10 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   const ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
   if (nonlinear) {
     const NonlinearOptions options = nonlinearOptionsFrom(params);
-    checkNonlinearOptionsFor(
-        options, problem.dim(),
-        std::any_of(spec.pairs.begin(), spec.pairs.end(),
-                    [](const ContactPairSpec& p) { return p.obstacle.has_value(); }));
+    checkNonlinearOptionsFor(options, problem.dim(),
+                             static_cast<int>(std::count_if(
+                                 spec.pairs.begin(), spec.pairs.end(),
+                                 [](const ContactPairSpec& p) { return p.obstacle.has_value(); })));
     requireLoadOrMotion(*comm, problem.local, options, !problem.prescribed.empty());
   }
   const int restartStep = nonlinear ? checkRestart(params, spec, problem, outputDirectory) : -1;

@@ -38,7 +38,8 @@ void LoadStepIteration::updateContact(const Field& u, double t) const {
   if (!options_.obstacleDisplacement.empty())
     for (auto& pair : problem.pairs) {
       if (!pair.spec.obstacle) continue;
-      // Every obstacle where its prescribed motion has taken it at load factor t.
+      // The obstacle (one at most: checkNonlinearOptionsFor) where its prescribed motion has
+      // taken it at load factor t.
       ContactPairSpec at = pair.spec;
       for (int c = 0; c < at.obstacle->dim; ++c)
         at.obstacle->point[c] += t * options_.obstacleDisplacement[c];
