@@ -52,9 +52,12 @@ contact::ElasticContactSpec specOf(const Case& c) {
   spec.fixed = {"fixed"};
   spec.symmetry = {{"cylinder_symmetry", 0}, {"block_symmetry", 0}};
   spec.tractions = {{"load", {0.0, kLoadTraction}}};
-  spec.slave = "cylinder_contact";
-  spec.master = "block_contact";
-  spec.searchRadius = kSearchRadius;
+  contact::ContactPairSpec pair;
+  pair.where = "Contact problem";
+  pair.slave = "cylinder_contact";
+  pair.master = "block_contact";
+  pair.searchRadius = kSearchRadius;
+  spec.pairs = {pair};
   return spec;
 }
 

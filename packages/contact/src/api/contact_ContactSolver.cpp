@@ -152,10 +152,15 @@ void ContactSolver::setup() {
   r.spec = r.linear ? elasticContactSpec(params) : nonlinearContactSpec(params);
   // Small strain reads a height-function obstacle at the reference positions: the gap is then
   // linear in u, as the kinematics are.
-  if (r.spec.obstacle && !r.linear)
-    r.spec.obstacle->heightAtReference =
-        r.options.kinematics == plasticity::Kinematics::SmallStrain;
-  r.friction = frictionSpec(params, r.spec.slave, r.spec.master);
+  int obstacles = 0;
+  for (ContactPairSpec& pair : r.spec.pairs)
+    if (pair.obstacle) {
+      ++obstacles;
+      if (!r.linear)
+        pair.obstacle->heightAtReference =
+            r.options.kinematics == plasticity::Kinematics::SmallStrain;
+    }
+  r.friction = modelFriction(params, r.spec.pairs);
   r.feti = fetiParameters(params, r.spec);
   if (!dir_.empty() && comm_->getRank() == 0) std::filesystem::create_directories(dir_);
 
@@ -171,7 +176,7 @@ void ContactSolver::setup() {
     for (const auto& s : problem.local) f.push_back(s.f);
     r.loadNorm = globalNorm(*comm_, f);  // the residual's scale; an unloaded problem is valid
   } else {
-    checkNonlinearOptionsFor(r.options, dim, r.spec.obstacle.has_value());
+    checkNonlinearOptionsFor(r.options, dim, obstacles);
     // Known limitation (docs/friction.md): say so before a long run, not after it.
     if (dim == 3 && r.friction.active() && comm_->getRank() == 0)
       std::cerr << "tfeti_contact: warning: 3D friction is verified for sticking contact only; a "
@@ -250,8 +255,7 @@ const std::vector<plasticity::StressField>& ContactSolver::stresses() const {
 // converged ones, the step control, and how the loop ended.
 struct ContactSolver::LoadSteps {
   LoadSteps(const Teuchos::RCP<const tfeti::Comm>& comm, Run& r, const std::string& dir)
-      : iteration(comm, *r.model, *r.solver, r.options, r.spec.slave, r.spec.master,
-                  r.spec.obstacle ? &*r.spec.obstacle : nullptr, r.loadNorm),
+      : iteration(comm, *r.model, *r.solver, r.options, r.loadNorm),
         output(comm, *r.model, *r.solver, r.options, dir),
         control(r.history, r.options.steps, r.options.maxCutbacks, r.options.stopAfter) {}
 
@@ -477,7 +481,10 @@ ContactResult ContactSolver::fillResult(const LoadSteps& s) const {
   res.feti = fetiDimensions(solver, r.feti);
   res.qp = s.lastQp;
   res.contactType = r.spec.bonded ? "bonded" : r.spec.tied ? "tied" : "frictionless";
-  res.contactDiscretization = r.spec.discretization;
+  // The pairs' discretization, or "mixed" when they differ (contact.pairs names each).
+  res.contactDiscretization = r.spec.pairs.front().discretization;
+  for (const auto& pair : r.spec.pairs)
+    if (pair.discretization != res.contactDiscretization) res.contactDiscretization = "mixed";
   res.history = r.history;
   res.converged = r.linear ? !s.qpFailed : !s.failed && !s.stopped;
   res.exitCode = s.failed ? 3 : s.qpFailed ? 2 : 0;
@@ -546,6 +553,7 @@ void ContactSolver::measureContact(ContactResult& res, const LoadSteps& s) const
     res.maxPlasticStrain = last.maxPlasticStrain;
   }
   res.contactNodes = nodes;
+  if (problem.namedPairs && res.haveContact) res.pairs = pairForces(problem, nodes);
 }
 
 // The final state's stresses and largest displacement, the reactions of the prescribed entries
@@ -597,13 +605,20 @@ void ContactSolver::writeResultFiles(ContactResult& res, LoadSteps& s) {
       writeContactCsv(*comm_, res.contactCsv, res.contactNodes, problem.dim());
       if (params_.sublist("Output").get<bool>("VTU")) {
         std::vector<SubdomainFields> fields;
-        for (std::size_t i = 0; i < problem.local.size(); ++i)
+        for (std::size_t i = 0; i < problem.local.size(); ++i) {
           fields.push_back({&problem.localElements[i],
                             problem.local[i].mesh.id,
                             &r.model->u[i],
                             &r.stresses[i],
                             {}});
-        res.vtu = writeVtu(*comm_, dir_, "solution", stressPiece(fields));
+          if (problem.namedPairs)
+            fields.back().extra.push_back(
+                contactPairField(res.contactNodes, problem.local[i].mesh.globalNode));
+        }
+        const std::vector<std::string> names = problem.namedPairs
+                                                   ? std::vector<std::string>{"contact_pair"}
+                                                   : std::vector<std::string>{};
+        res.vtu = writeVtu(*comm_, dir_, "solution", stressPiece(fields, names));
       }
     } else {
       if (!r.history.steps.empty() && s.output.evaluated()) {

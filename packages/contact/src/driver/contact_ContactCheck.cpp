@@ -30,7 +30,7 @@ int checkRestart(const ParameterList& params, const ElasticContactSpec& spec,
   if (!params.sublist("Nonlinear").get<bool>("Restart")) return -1;
   std::vector<SubdomainRestart> saved;
   FrictionHistory friction;
-  const bool frictional = frictionSpec(params, spec.slave, spec.master).active();
+  const bool frictional = modelFriction(params, spec.pairs).active();
   return readRestart(outputDirectory + "/restart", problem, saved, frictional ? &friction : nullptr)
       .step;
 }
@@ -118,16 +118,24 @@ void addBoundaryLines(const tfeti::Comm& comm, const ElasticContactSpec& spec,
                     " (one per coupled node and component but the first of its boundary)");
   const std::size_t dim = static_cast<std::size_t>(problem.mesh.dim);
   for (const auto& [name, t] : spec.tractions) boundary("traction " + braced(t, t.size()), name);
-  boundary("contact slave", spec.slave);
-  if (!spec.obstacle) boundary("contact master", spec.master);
-  std::ostringstream s;
-  s << "contact pair: " << problem.slaveNodes.size() << " slave nodes of \"" << spec.slave
-    << "\" against "
-    << (spec.obstacle ? std::string("the rigid obstacle")
-                      : (dim == 3 ? "the faces of \"" : "the segments of \"") + spec.master + "\"")
-    << ": " << rows << " within the search radius " << problem.searchRadius << "; applied force "
-    << braced(problem.appliedForce, dim);
-  lines.push_back(s.str());
+  for (std::size_t k = 0; k < problem.pairs.size(); ++k) {
+    const auto& pair = problem.pairs[k];
+    const ContactPairSpec& ps = pair.spec;
+    boundary("contact slave", ps.slave);
+    if (!ps.obstacle) boundary("contact master", ps.master);
+    const long long pairRows =
+        problem.pairs.size() == 1
+            ? rows
+            : std::count(problem.rowPair.begin(), problem.rowPair.end(), static_cast<int>(k));
+    std::ostringstream s;
+    s << (ps.name.empty() ? std::string("contact pair") : "contact pair \"" + ps.name + "\"")
+      << ": " << pair.slaveNodes.size() << " slave nodes of \"" << ps.slave << "\" against "
+      << (ps.obstacle ? std::string("the rigid obstacle")
+                      : (dim == 3 ? "the faces of \"" : "the segments of \"") + ps.master + "\"")
+      << ": " << pairRows << " within the search radius " << pair.searchRadius << "; applied force "
+      << braced(problem.appliedForce, dim);
+    lines.push_back(s.str());
+  }
 }
 
 }  // namespace
@@ -142,7 +150,10 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   const ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
   if (nonlinear) {
     const NonlinearOptions options = nonlinearOptionsFrom(params);
-    checkNonlinearOptionsFor(options, problem.dim(), spec.obstacle.has_value());
+    checkNonlinearOptionsFor(options, problem.dim(),
+                             static_cast<int>(std::count_if(
+                                 spec.pairs.begin(), spec.pairs.end(),
+                                 [](const ContactPairSpec& p) { return p.obstacle.has_value(); })));
     requireLoadOrMotion(*comm, problem.local, options, !problem.prescribed.empty());
   }
   const int restartStep = nonlinear ? checkRestart(params, spec, problem, outputDirectory) : -1;

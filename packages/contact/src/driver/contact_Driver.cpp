@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "contact_ContactPairs.hpp"
 #include "contact_ContactParameters.hpp"
 #include "contact_Materials.hpp"
 #include "contact_NonlinearOptions.hpp"
@@ -124,8 +125,11 @@ void validateDriverParameters(ParameterList& params, const std::string& source) 
       tfeti::FetiSolver::rejectMisplacedParameters(params.sublist("FETI"));
     // "Materials" is named by the user's bodies: checked on its own against them.
     const GivenMaterials materials = takeBodyMaterials(params);
+    // So is "Contact problem/Contact pairs", named by the user's pairs.
+    const GivenContactPairs pairs = takeContactPairs(params);
     params.validateParametersAndSetDefaults(*validDriverParameters());
     restoreBodyMaterials(params, materials);
+    restoreContactPairs(params, pairs);
     const auto& sc = params.sublist("Scalability");
     const auto problems = sc.get<Array<std::string>>("Problems");
     for (const auto& p : problems)

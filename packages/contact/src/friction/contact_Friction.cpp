@@ -38,11 +38,14 @@ void addFrictionParameters(Teuchos::ParameterList& cp) {
   f.set("Master", "", "the contact pair this friction is for: its Master (empty: the pair's)");
 }
 
-FrictionSpec frictionSpec(const Teuchos::ParameterList& params, const std::string& slave,
-                          const std::string& master) {
-  const auto& f = params.sublist("Contact problem").sublist("Friction");
+namespace {
+
+// The friction of the sublist f of the pair (slave, master) of contact type `contactType`;
+// errors start with `where`.
+FrictionSpec frictionOf(const Teuchos::ParameterList& params, const Teuchos::ParameterList& f,
+                        const std::string& where, const std::string& contactType,
+                        const std::string& slave, const std::string& master) {
   const std::string law = f.get<std::string>("Friction law");
-  const std::string where = "Contact problem/Friction: ";
   const std::string fs = f.get<std::string>("Slave"), fm = f.get<std::string>("Master");
   if ((!fs.empty() && fs != slave) || (!fm.empty() && fm != master))
     throw std::invalid_argument(where + "the pair (Slave \"" + fs + "\", Master \"" + fm +
@@ -63,10 +66,10 @@ FrictionSpec frictionSpec(const Teuchos::ParameterList& params, const std::strin
                                 " needs Problem = nonlinear_contact (friction depends on the load "
                                 "path: it is solved in load steps); got Problem = " +
                                 params.get<std::string>("Problem"));
-  if (params.sublist("Contact problem").get<std::string>("Contact type") != "frictionless")
-    throw std::invalid_argument(where + "\"Friction law\" = " + law +
-                                " with \"Contact problem/Contact type\" = " +
-                                params.sublist("Contact problem").get<std::string>("Contact type"));
+  if (contactType != "frictionless")
+    throw std::invalid_argument(where + "\"Friction law\" = " + law + " with \"" +
+                                where.substr(0, where.find("Friction: ")) +
+                                "Contact type\" = " + contactType);
   if (law == "Tresca") {
     spec.law = FrictionSpec::Law::Tresca;
     if (spec.coefficient != 0.0)
@@ -89,6 +92,38 @@ FrictionSpec frictionSpec(const Teuchos::ParameterList& params, const std::strin
   return spec;
 }
 
+}  // namespace
+
+FrictionSpec frictionSpec(const Teuchos::ParameterList& params, const std::string& slave,
+                          const std::string& master) {
+  const auto& cp = params.sublist("Contact problem");
+  return frictionOf(params, cp.sublist("Friction"),
+                    "Contact problem/Friction: ", cp.get<std::string>("Contact type"), slave,
+                    master);
+}
+
+FrictionSpec modelFriction(const Teuchos::ParameterList& params,
+                           const std::vector<ContactPairSpec>& pairs) {
+  if (pairs.size() == 1 && pairs.front().name.empty())
+    return frictionSpec(params, pairs.front().slave, pairs.front().master);
+  const auto& list = params.sublist("Contact problem").sublist("Contact pairs");
+  FrictionSpec out;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const ContactPairSpec& pair = pairs[k];
+    FrictionSpec f =
+        frictionOf(params, list.sublist(pair.name).sublist("Friction"),
+                   pair.where + "/Friction: ", pair.contactType, pair.slave, pair.master);
+    if (!f.active()) continue;
+    if (out.active())
+      throw std::invalid_argument(pair.where + "/Friction: pair \"" + pairs[out.pair].name +
+                                  "\" has friction too; friction on several contact pairs is "
+                                  "not available in this build (friction on one pair at most)");
+    out = f;
+    out.pair = static_cast<int>(k);
+  }
+  return out;
+}
+
 namespace {
 
 std::pair<int, int> dofOfNode(const ElasticContactProblem& p, int node, int component) {
@@ -100,16 +135,6 @@ std::vector<double> difference(const std::vector<double>& a, const std::vector<d
   for (std::size_t i = 0; i < d.size(); ++i)
     d[i] = (i < a.size() ? a[i] : 0.0) - (i < b.size() ? b[i] : 0.0);
   return d;
-}
-
-// Per contact row: its slave node's share of the slave boundary (a mortar row's own weight).
-std::vector<double> rowWeights(const ElasticContactProblem& p) {
-  std::map<int, double> weight;
-  for (std::size_t k = 0; k < p.slaveNodes.size(); ++k) weight[p.slaveNodes[k]] = p.slaveWeights[k];
-  std::vector<double> w;
-  for (const auto& row : p.contact.rows)
-    w.push_back(row.weight > 0.0 ? row.weight : weight.at(row.slaveNode));
-  return w;
 }
 
 using EntryKey = std::vector<std::tuple<int, int, double>>;
@@ -131,9 +156,10 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
   if (!friction.active() || rank != 0) return out;
   const int dim = p.dim();
   const std::vector<double> back = difference(stepStart, current);
-  const std::vector<double> w = rowWeights(p);
+  const std::vector<double> w = contactRowWeights(p);
   auto dofOf = [&](int n, int c) { return dofOfNode(p, n, c); };
   for (std::size_t k = 0; k < p.contact.rows.size(); ++k) {
+    if (!friction.onRow(p, k)) continue;
     double bound = friction.slipBound * w[k];
     if (friction.law == FrictionSpec::Law::Coulomb) {
       const auto it = bounds.find(p.contact.rows[k].slaveNode);
@@ -168,9 +194,10 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
   std::map<int, ContactNode*> bySlave;
   for (auto& n : nodes) bySlave[n.slaveNode] = &n;
   const std::vector<double> step = difference(current, stepStart);
-  const std::vector<double> w = rowWeights(p);
+  const std::vector<double> w = contactRowWeights(p);
   auto dofOf = [&](int n, int c) { return dofOfNode(p, n, c); };
   for (std::size_t k = 0; k < p.contact.rows.size(); ++k) {
+    if (!friction.onRow(p, k)) continue;
     const ContactRow& row = p.contact.rows[k];
     ContactNode& node = *bySlave.at(row.slaveNode);
     const std::vector<ContactRow> tangents = tangentialRows(row, dim);
@@ -247,8 +274,12 @@ void addCattaneoMindlin(Json& f, const FrictionSpec& friction, double q, double 
 
 }  // namespace
 
-void addFrictionJson(Json& f, const std::vector<ContactNode>& nodes, const FrictionSpec& friction,
-                     int dim) {
+void addFrictionJson(Json& f, const std::vector<ContactNode>& allNodes,
+                     const FrictionSpec& friction, int dim) {
+  // The nodes of the pair with friction (all of them for the old keys' pair).
+  std::vector<ContactNode> nodes;
+  for (const auto& n : allNodes)
+    if (friction.pair < 0 || n.pair == friction.pair) nodes.push_back(n);
   double force = 0.0, ratio = 0.0, stickLo = 0.0, stickHi = 0.0, closedLo = 0.0, closedHi = 0.0;
   double stickRadius = 0.0, contactRadius = 0.0;  // 3D: from the contact axis
   long long slip = 0, stick = 0, closed = 0;

@@ -36,7 +36,14 @@ struct FrictionSpec {
   double coefficient = 0.0;  // Coulomb: mu
   double fixedPointTolerance = 1e-6;
   int maxFixedPointIterations = 50;
+  // The contact pair (index into ElasticContactProblem::pairs) it acts on; -1: every row (the
+  // old keys' single pair).
+  int pair = -1;
   bool active() const { return law != Law::None; }
+  // Whether contact row k of p.contact has friction.
+  bool onRow(const ElasticContactProblem& p, std::size_t k) const {
+    return pair < 0 || p.rowPair[k] == pair;
+  }
 };
 
 // Per slave node (global id): its slip bound as a force, g_i (Coulomb: mu lambda_N,i).
@@ -52,6 +59,13 @@ void addFrictionParameters(Teuchos::ParameterList& contactProblem);
 // Negative values are refused by the parameters' validators.
 FrictionSpec frictionSpec(const Teuchos::ParameterList& params, const std::string& slave,
                           const std::string& master);
+
+// The friction of the model: that of the old keys' pair (frictionSpec), or of the one pair of
+// Contact pairs whose Friction sublist chooses a law (its `pair` set). Throws
+// std::invalid_argument naming the pairs when several pairs have friction (not in this build),
+// and as frictionSpec for the pair's sublist.
+FrictionSpec modelFriction(const Teuchos::ParameterList& params,
+                           const std::vector<ContactPairSpec>& pairs);
 
 // The friction rows of the contact rows p.contact (rank 0 contributes them, as the normal rows):
 // per contact row dim - 1 rows with the box +-g_i (Tresca: slipBound times the slave node's

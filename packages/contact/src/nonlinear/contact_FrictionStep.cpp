@@ -33,6 +33,7 @@ StepOutcome attemptFrictionalStep(LoadStepIteration& iteration, const tfeti::Fet
     SlipBounds next;
     double diff = 0.0, norm = 0.0;
     for (const ContactNode& n : contactNodes(problem, solver, rule, {})) {
+      if (f.pair >= 0 && n.pair != f.pair) continue;  // a pair without friction
       const double g = f.coefficient * std::max(n.lambda, 0.0);
       next[n.slaveNode] = g;
       const auto it = iteration.frictionBounds.find(n.slaveNode);

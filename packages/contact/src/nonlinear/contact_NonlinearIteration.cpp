@@ -30,28 +30,25 @@ ResidualCheck checkResidual(const tfeti::Comm& comm, const Field& load,
 
 LoadStepIteration::LoadStepIteration(const Teuchos::RCP<const tfeti::Comm>& comm,
                                      NonlinearModel& model, tfeti::FetiSolver& solver,
-                                     const NonlinearOptions& options, std::string slave,
-                                     std::string master, const RigidObstacle* obstacle,
-                                     double loadNorm)
-    : comm_(comm),
-      model_(model),
-      solver_(solver),
-      options_(options),
-      slave_(std::move(slave)),
-      master_(std::move(master)),
-      obstacle_(obstacle),
-      loadNorm_(loadNorm) {}
+                                     const NonlinearOptions& options, double loadNorm)
+    : comm_(comm), model_(model), solver_(solver), options_(options), loadNorm_(loadNorm) {}
 
 void LoadStepIteration::updateContact(const Field& u, double t) const {
   ElasticContactProblem& problem = model_.problem;
-  if (obstacle_ && !options_.obstacleDisplacement.empty()) {
-    // The obstacle where its prescribed motion has taken it at load factor t.
-    RigidObstacle at = *obstacle_;
-    for (int c = 0; c < at.dim; ++c) at.point[c] += t * options_.obstacleDisplacement[c];
-    problem.master = problem.master->withObstacle(at);
-  }
+  if (!options_.obstacleDisplacement.empty())
+    for (auto& pair : problem.pairs) {
+      if (!pair.spec.obstacle) continue;
+      // The obstacle (one at most: checkNonlinearOptionsFor) where its prescribed motion has
+      // taken it at load factor t.
+      ContactPairSpec at = pair.spec;
+      for (int c = 0; c < at.obstacle->dim; ++c)
+        at.obstacle->point[c] += t * options_.obstacleDisplacement[c];
+      ContactSearchOptions search;
+      search.searchRadius = pair.searchRadius;
+      pair.master = makePairMaster(problem.mesh, at, search);
+    }
   const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
-  contact::updateContact(problem, current, comm_->getRank(), slave_, master_);
+  contact::updateContact(problem, current, comm_->getRank());
   if (friction.active()) {
     const std::vector<tfeti::InequalityRow> rows =
         frictionRows(problem, friction, frictionBounds,

@@ -48,11 +48,10 @@ ResidualCheck checkResidual(const tfeti::Comm& comm, const Field& load,
 
 class LoadStepIteration {
  public:
-  // slave, master: the contact pair's names (for errors); obstacle: the rigid obstacle at load
-  // factor 0 when the master is one; loadNorm: ||f|| at load factor 1 (0: no applied load).
+  // loadNorm: ||f|| at load factor 1 (0: no applied load). The contact pairs (their names for
+  // errors, a rigid obstacle at load factor 0) are the model's problem's.
   LoadStepIteration(const Teuchos::RCP<const tfeti::Comm>& comm, NonlinearModel& model,
-                    tfeti::FetiSolver& solver, const NonlinearOptions& options, std::string slave,
-                    std::string master, const RigidObstacle* obstacle, double loadNorm);
+                    tfeti::FetiSolver& solver, const NonlinearOptions& options, double loadNorm);
 
   // Iterations at load factor t from the converged state model.u (the model's laws keep the
   // trial history of the last iteration: commit or revert it).
@@ -100,8 +99,6 @@ class LoadStepIteration {
   NonlinearModel& model_;
   tfeti::FetiSolver& solver_;
   const NonlinearOptions& options_;
-  std::string slave_, master_;
-  const RigidObstacle* obstacle_;
   double loadNorm_;
 };
 

@@ -61,7 +61,7 @@ NonlinearOptions nonlinearOptionsFrom(const ParameterList& params) {
   return o;
 }
 
-void checkNonlinearOptionsFor(const NonlinearOptions& o, int dim, bool rigidObstacle) {
+void checkNonlinearOptionsFor(const NonlinearOptions& o, int dim, int rigidObstacles) {
   if (dim == 3 && o.rule.angle)
     throw std::invalid_argument(
         "Nonlinear/Contact extent: \"Measure\" angle is for 2D meshes; in 3D the extent is the "
@@ -70,10 +70,15 @@ void checkNonlinearOptionsFor(const NonlinearOptions& o, int dim, bool rigidObst
     throw std::invalid_argument(
         "Nonlinear/Contact extent: \"Centre\" has 3 values; the mesh is 2D and needs {x, y}");
   if (o.obstacleDisplacement.empty()) return;
-  if (!rigidObstacle)
+  if (rigidObstacles == 0)
     throw std::invalid_argument(
         "Nonlinear: \"Obstacle displacement\" is given but \"Contact problem/Rigid obstacle\" "
         "has Type none: only a rigid obstacle can be moved");
+  if (rigidObstacles > 1)
+    throw std::invalid_argument(
+        "Nonlinear: \"Obstacle displacement\" is given but " + std::to_string(rigidObstacles) +
+        " pairs of \"Contact problem/Contact pairs\" have a Rigid obstacle: it moves the one "
+        "obstacle of a model (at most one pair with a Rigid obstacle then)");
   if (static_cast<int>(o.obstacleDisplacement.size()) != dim)
     throw std::invalid_argument("Nonlinear: \"Obstacle displacement\" has " +
                                 std::to_string(o.obstacleDisplacement.size()) +

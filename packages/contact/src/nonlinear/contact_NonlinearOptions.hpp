@@ -48,8 +48,9 @@ void addNonlinearContactParameters(Teuchos::ParameterList& valid);
 // it meshes (throw std::invalid_argument as the run does).
 void checkNonlinearParameters(const Teuchos::ParameterList& params);
 
-// The checks that need the problem's dimension (2 or 3) and whether its master is a rigid
-// obstacle: the extent rule and the obstacle displacement must fit them.
-void checkNonlinearOptionsFor(const NonlinearOptions& options, int dim, bool rigidObstacle);
+// The checks that need the problem's dimension (2 or 3) and how many of its contact pairs have a
+// rigid obstacle as the master: the extent rule and the obstacle displacement must fit them
+// (the displacement moves the one obstacle; with several it would be ambiguous).
+void checkNonlinearOptionsFor(const NonlinearOptions& options, int dim, int rigidObstacles);
 
 }  // namespace contact

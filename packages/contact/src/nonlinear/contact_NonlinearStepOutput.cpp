@@ -55,6 +55,7 @@ std::string NonlinearStepOutput::writeVtu(const std::string& base, const Field& 
   std::vector<std::string> names{"plastic_strain"};
   if (friction.active())
     names.insert(names.end(), kFrictionPointFields.begin(), kFrictionPointFields.end());
+  if (model_.problem.namedPairs) names.push_back("contact_pair");
   for (std::size_t i = 0; i < u.size(); ++i) {
     fields.push_back({&model_.problem.localElements[i],
                       model_.problem.local[i].mesh.id,
@@ -64,6 +65,9 @@ std::string NonlinearStepOutput::writeVtu(const std::string& base, const Field& 
     if (friction.active())
       for (auto& f : frictionPointFields(nodes_, model_.problem.local[i].mesh.globalNode))
         fields.back().extra.push_back(std::move(f));
+    if (model_.problem.namedPairs)
+      fields.back().extra.push_back(
+          contactPairField(nodes_, model_.problem.local[i].mesh.globalNode));
   }
   return contact::writeVtu(*comm_, dir_, base, stressPiece(fields, names));
 }

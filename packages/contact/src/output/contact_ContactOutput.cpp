@@ -29,17 +29,16 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
   };
   const auto& rows = solver.tearing().inequalityRows;
   for (std::size_t i = 0; i < rows.size(); ++i) byRow[key(rows[i])] = lambdas[i];
-  std::map<int, std::size_t> slaveIndex;
-  for (std::size_t k = 0; k < problem.slaveNodes.size(); ++k) slaveIndex[problem.slaveNodes[k]] = k;
+  const std::vector<double> weights = contactRowWeights(problem);
   const int dim = problem.dim();
   auto dofOf = [&](int n, int c) {
     return std::make_pair(problem.copyOf[n].first, dim * problem.copyOf[n].second + c);
   };
   std::vector<ContactNode> nodes;
-  for (const auto& row : problem.contact.rows) {
+  for (std::size_t k = 0; k < problem.contact.rows.size(); ++k) {
+    const ContactRow& row = problem.contact.rows[k];
     const double lambda = byRow.at(key(toInequalityRow(row, dofOf)));
-    const double w =
-        row.weight > 0.0 ? row.weight : problem.slaveWeights[slaveIndex.at(row.slaveNode)];
+    const double w = weights[k];
     double x[3] = {0.0, 0.0, 0.0};
     for (int c = 0; c < dim; ++c) {
       x[c] = problem.mesh.coords[dim * row.slaveNode + c];
@@ -73,6 +72,7 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                      {row.normal[0], row.normal[1], row.normal[2]},
                      gap});
     nodes.back().slaveNode = row.slaveNode;
+    if (problem.namedPairs) nodes.back().pair = problem.rowPair[k];
   }
   std::sort(nodes.begin(), nodes.end(), [&](const ContactNode& a, const ContactNode& b) {
     if (dim == 3) return a.radius < b.radius;
@@ -156,12 +156,15 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error("cannot write " + path);
   // Friction adds its columns; a frictionless run's file is unchanged.
-  const bool friction = !nodes.empty() && nodes.front().frictionState >= 0;
+  const bool friction = std::any_of(nodes.begin(), nodes.end(),
+                                    [](const ContactNode& n) { return n.frictionState >= 0; });
+  const bool pairs = !nodes.empty() && nodes.front().pair >= 0;
   csv << (dim == 3 ? "x,y,z,lambda,pressure,radius" : "x,y,lambda,pressure,angle")
       << (friction ? ",tangential_force,tangential_traction,slip_increment,state,accumulated_slip,"
                      "net_slip,node,force_x,force_y"
                    : "")
-      << (friction && dim == 3 ? ",force_z\n" : "\n") << std::setprecision(12);
+      << (friction && dim == 3 ? ",force_z" : "") << (pairs ? ",pair\n" : "\n")
+      << std::setprecision(12);
   for (const auto& n : nodes) {
     csv << n.x << "," << n.y << ",";
     if (dim == 3) csv << n.z << ",";
@@ -172,6 +175,7 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
           << "," << n.slaveNode;
     if (friction)
       for (int c = 0; c < dim; ++c) csv << "," << n.force[c];
+    if (pairs) csv << "," << n.pair;
     csv << "\n";
   }
 }
@@ -310,6 +314,39 @@ VtuPiece stressPiece(const std::vector<SubdomainFields>& subdomains,
   piece.pointData.insert(piece.pointData.end(), extra.begin(), extra.end());
   piece.cellData = {sub};
   return piece;
+}
+
+std::vector<double> contactPairField(const std::vector<ContactNode>& nodes,
+                                     const std::vector<tfeti::GO>& globalNode) {
+  std::map<tfeti::GO, int> pairOf;
+  for (const auto& n : nodes) pairOf[n.slaveNode] = n.pair;
+  std::vector<double> f(globalNode.size(), -1.0);
+  for (std::size_t k = 0; k < globalNode.size(); ++k) {
+    const auto it = pairOf.find(globalNode[k]);
+    if (it != pairOf.end()) f[k] = it->second;
+  }
+  return f;
+}
+
+std::vector<PairForce> pairForces(const ElasticContactProblem& problem,
+                                  const std::vector<ContactNode>& nodes) {
+  const int dim = problem.dim();
+  std::vector<PairForce> out;
+  for (const auto& pair : problem.pairs)
+    out.push_back({pair.spec.name, pair.spec.discretization, 0.0, std::vector<double>(dim, 0.0)});
+  for (const auto& n : nodes) {
+    if (n.pair < 0) continue;
+    // With friction on the node its force holds the tangential part too.
+    const bool full = n.frictionState >= 0;
+    for (int c = 0; c < dim; ++c)
+      out[n.pair].vector[c] += full ? n.force[c] : n.lambda * n.normal[c];
+  }
+  for (auto& p : out) {
+    double s = 0.0;
+    for (double v : p.vector) s += v * v;
+    p.force = std::sqrt(s);
+  }
+  return out;
 }
 
 }  // namespace contact

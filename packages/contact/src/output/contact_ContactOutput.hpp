@@ -27,6 +27,7 @@ struct ContactNode {
   double gap;          // the row's gap left by the solve, c_I - B_I u (>= 0; 0 in contact); the
                        // row's gap before it when contactNodes is given no solution
   int slaveNode = -1;  // its global node id
+  int pair = -1;       // its row's contact pair (index of Contact pairs); -1 for the old keys'
   // Friction (addFrictionResults; state -1 without friction): the tangential multiplier (force
   // along the tangent t = (-n_y, n_x) in 2D), it over the node's share (traction), the slave's
   // slip relative to the master along t in the load step, state 0 open, 1 stick, 2 slip.
@@ -96,7 +97,8 @@ std::vector<PlaneHalfWidth> halfWidthPerPlane(const std::vector<ContactNode>& no
 
 // Rank 0 writes the nodes as CSV: x,y,lambda,pressure,angle (2D) or x,y,z,lambda,pressure,radius
 // (3D), with friction then tangential_force,tangential_traction,slip_increment,state,
-// accumulated_slip,net_slip,node (the slave node's global id); throws naming the file.
+// accumulated_slip,net_slip,node (the slave node's global id), with Contact pairs then pair (the
+// row's pair index, in the order of Contact pairs); throws naming the file.
 void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
                      const std::vector<ContactNode>& nodes, int dim = 2);
 
@@ -134,5 +136,21 @@ struct SubdomainFields {
 };
 VtuPiece stressPiece(const std::vector<SubdomainFields>& subdomains,
                      const std::vector<std::string>& extraNames = {});
+
+// The point field "contact_pair" of a subdomain (its nodes' global ids): the pair index of the
+// node's contact row, -1 at a node without one.
+std::vector<double> contactPairField(const std::vector<ContactNode>& nodes,
+                                     const std::vector<tfeti::GO>& globalNode);
+
+// Per contact pair (of Contact pairs): its name, the resultant of the contact forces on its
+// slave nodes (ContactNode::force with friction, lambda * normal without) and its magnitude.
+struct PairForce {
+  std::string name;
+  std::string discretization;  // node_to_segment or mortar
+  double force = 0.0;
+  std::vector<double> vector;  // dim components
+};
+std::vector<PairForce> pairForces(const ElasticContactProblem& problem,
+                                  const std::vector<ContactNode>& nodes);
 
 }  // namespace contact

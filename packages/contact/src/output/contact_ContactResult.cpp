@@ -163,15 +163,38 @@ Json nonlinearSummary(const ContactResult& r) {
 
 }  // namespace
 
+namespace {
+
+// contact.pairs: per pair its name, force (the resultant's magnitude) and force_vector.
+void addPairForces(Json& c, const std::vector<PairForce>& pairs) {
+  if (pairs.empty()) return;
+  Json list = Json::array();
+  for (const PairForce& p : pairs) {
+    Json j = Json::object();
+    j["name"] = p.name;
+    j["discretization"] = p.discretization;
+    j["force"] = p.force;
+    Json v = Json::array();
+    for (double x : p.vector) v.push(x);
+    j["force_vector"] = std::move(v);
+    list.push(std::move(j));
+  }
+  c["pairs"] = std::move(list);
+}
+
+}  // namespace
+
 Json contactJson(const ContactResult& r) {
   if (nonlinearRun(r)) {
     Json c = Json::object();
     addNonlinearContact(c, r.contact);
     if (r.friction.active()) addFrictionJson(c, r.contactNodes, r.friction, r.dimension);
+    addPairForces(c, r.pairs);
     return c;
   }
   Json c = constraintJson(r.contact.constraints);
   addElasticContact(c, r.contact);
+  addPairForces(c, r.pairs);
   return c;
 }
 

@@ -93,7 +93,7 @@ struct ContactResult {
   FetiDimensions feti;
   tfeti::DualResult qp;  // the (last) QP solve: counters, residual history, method, rho
   std::string contactType = "frictionless";  // elastic_contact: frictionless | tied | bonded
-  std::string contactDiscretization = "node_to_segment";  // or mortar
+  std::string contactDiscretization = "node_to_segment";  // or mortar, or mixed (pairs differ)
   // The bodies and their materials (summary.json: "materials" per body, and "material" when
   // every body has the same).
   std::vector<ElasticContactSpec::Body> materials;
@@ -104,6 +104,9 @@ struct ContactResult {
   // the master's normal and the gap the solve left (ContactNode::gap, c_I - B_I u >= 0; 0 in
   // contact), and with friction the tangential results.
   std::vector<ContactNode> contactNodes;
+  // With Contact pairs: every pair's name and contact force (summary contact.pairs); the keys
+  // of `contact` then hold the totals over all pairs.
+  std::vector<PairForce> pairs;
 
   double maxVonMises = 0.0, maxPlasticStrain = 0.0, maxAbsU = 0.0;
 

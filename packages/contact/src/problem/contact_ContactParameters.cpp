@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include "contact_ContactOutput.hpp"
+#include "contact_ContactPairs.hpp"
 #include "contact_ElasticContactProblem.hpp"
 #include "contact_Friction.hpp"
 #include "contact_KinematicCoupling.hpp"
@@ -108,60 +109,11 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
                                       "full load");
   }
   spec.bodyLoads = componentsPerName(cp, "Body load bodies", "Body loads");
-  spec.slave = cp.get<std::string>("Slave");
-  spec.master = cp.get<std::string>("Master");
-  if (spec.slave == spec.master)
-    throw std::invalid_argument("Contact problem: \"Slave\" and \"Master\" both name \"" +
-                                spec.slave + "\"; a contact pair needs two different boundaries");
-  spec.searchRadius = cp.get<double>("Search radius");
-  spec.discretization = cp.get<std::string>("Contact discretization");
-  const std::string contactType = cp.get<std::string>("Contact type");
-  spec.bonded = contactType == "bonded";
-  spec.tied = contactType == "tied" || spec.bonded;
-  if (spec.tied && params.get<std::string>("Problem") != "elastic_contact")
-    throw std::invalid_argument("Contact problem: \"Contact type\" = " + contactType +
-                                " is available for Problem = elastic_contact only (got " +
-                                params.get<std::string>("Problem") + ")");
-  const auto& ro = cp.sublist("Rigid obstacle");
-  const std::string type = ro.get<std::string>("Type");
-  if (type != "none") {
-    RigidObstacle o;
-    // line and circle are 2D obstacles, plane and sphere 3D ones; the mesh must agree
-    // (checked by buildElasticContactProblem).
-    o.dim = type == "plane" || type == "sphere" ? 3 : 2;
-    o.shape = obstacleShapeFromName(type, o.dim);
-    const std::string xyz = o.dim == 3 ? "{x, y, z}" : "{x, y}";
-    const char* at = o.shape == RigidObstacle::Shape::Ball ? "Centre" : "Point";
-    const auto point = vec(ro.get<Array<double>>(at));
-    if (static_cast<int>(point.size()) != o.dim)
-      throw std::invalid_argument(std::string("Contact problem/Rigid obstacle: \"") + at +
-                                  "\" needs " + std::to_string(o.dim) + " values " + xyz +
-                                  " for a " + type);
-    for (int c = 0; c < o.dim; ++c) o.point[c] = point[c];
-    if (o.shape == RigidObstacle::Shape::HalfSpace) {
-      const auto normal = vec(ro.get<Array<double>>("Normal"));
-      if (static_cast<int>(normal.size()) != o.dim)
-        throw std::invalid_argument("Contact problem/Rigid obstacle: \"Normal\" needs " +
-                                    std::to_string(o.dim) + " values (out of the obstacle) for a " +
-                                    type);
-      for (int c = 0; c < o.dim; ++c) o.normal[c] = normal[c];
-    } else {
-      o.radius = ro.get<double>("Radius");
-    }
-    const auto direction = vec(ro.get<Array<double>>("Gap direction"));
-    if (!direction.empty()) {
-      if (static_cast<int>(direction.size()) != o.dim)
-        throw std::invalid_argument("Contact problem/Rigid obstacle: \"Gap direction\" needs " +
-                                    std::to_string(o.dim) + " values " + xyz + " for a " + type +
-                                    " (or none: the gap along the normal)");
-      for (int c = 0; c < o.dim; ++c) o.gapDirection[c] = direction[c];
-      if (!o.heightFunction())
-        throw std::invalid_argument(
-            "Contact problem/Rigid obstacle: \"Gap direction\" is zero (leave it empty for the "
-            "gap along the normal)");
-    }
-    spec.obstacle = o;
-  }
+  spec.pairs = contactPairSpecs(params);
+  spec.namedPairs = !spec.pairs.front().name.empty();
+  // contactPairSpecs holds every pair to one kind of row.
+  spec.bonded = spec.pairs.front().contactType == "bonded";
+  spec.tied = spec.pairs.front().contactType == "tied" || spec.bonded;
   spec.distribution = cp.get<std::string>("Subdomain distribution");
   spec.contactZone = cp.get<std::string>("Contact zone");
   // The nonlinear run measures its contact zone by Nonlinear/Contact extent.
@@ -169,7 +121,7 @@ ElasticContactSpec elasticContactSpec(const ParameterList& params) {
     throw std::invalid_argument(
         "Contact problem: \"Contact zone\" is for Problem = elastic_contact; a "
         "nonlinear_contact run measures its contact zone by Nonlinear/Contact extent");
-  frictionSpec(params, spec.slave, spec.master);  // validated here, used by the nonlinear run
+  modelFriction(params, spec.pairs);  // validated here, used by the nonlinear run
   return spec;
 }
 
@@ -204,44 +156,8 @@ void addElasticContactParameters(ParameterList& pl) {
          "{Fx, Fy} (2D: per unit thickness) or {Fx, Fy, Fz} (3D) per body load body: its total "
          "force, spread uniformly over its area (volume)",
          tfeti::strict::doubles(0));
-  cp.set("Slave", "", "the contact pair's slave boundary (its nodes)");
-  cp.set("Master", "",
-         "the contact pair's master boundary (its segments); empty with a Rigid obstacle");
-  cp.set("Contact type", "frictionless",
-         "frictionless: B_I u <= gap, contact pressure >= 0; tied: B_I u = gap, the pair bonded "
-         "in the normal direction (the same rows held with equality, pressure of either sign: a "
-         "linear problem solved by PCPG; elastic_contact only); bonded: tied, and the tangential "
-         "rows B_T u = 0 beside them (no relative motion along the surface either)",
-         Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-             Teuchos::tuple<std::string>("frictionless", "tied", "bonded"), "Contact type")));
-  cp.set("Contact discretization", "node_to_segment",
-         "node_to_segment: one row per slave node at its closest point on the master "
-         "(collocation; node-to-face in 3D); mortar: dual mortar, one row per slave node holding "
-         "the weighted gap of its dual basis function over the overlap of the slave and master "
-         "facets (accurate pressures on non-matching and unstructured meshes; Tri6/Quad8 slaves "
-         "carry multipliers on their corners)",
-         Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-             Teuchos::tuple<std::string>("node_to_segment", "mortar"), "Contact discretization")));
-  cp.set("Search radius", 0.0,
-         "slave nodes farther from the master get no row; 0: a tenth of "
-         "the mesh's extent",
-         tfeti::strict::nonNegative());
-  auto& ro = cp.sublist("Rigid obstacle", false,
-                        "a rigid master given analytically instead of a Master boundary: the "
-                        "Slave boundary is pressed against it");
-  ro.set("Type", "none",
-         "none, line (a half-plane) or circle (a disc) in 2D, plane (a half-space) or sphere (a "
-         "ball) in 3D",
-         Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-             Teuchos::tuple<std::string>("none", "line", "circle", "plane", "sphere"), "Type")));
-  ro.set("Point", Array<double>(), "line/plane: {x, y[, z]} of a point on it");
-  ro.set("Normal", Array<double>(), "line/plane: {nx, ny[, nz]}, pointing out of the obstacle");
-  ro.set("Centre", Array<double>(), "circle/sphere: {x, y[, z]} of its centre");
-  ro.set("Radius", 0.0, "circle/sphere: its radius (> 0)");
-  ro.set("Gap direction", Array<double>(),
-         "empty: gaps along the obstacle's normal (closest point); {dx, dy[, dz]}: gaps measured "
-         "along this fixed direction from the body towards the obstacle, as a height function "
-         "(the classical Signorini form of deal.II's step-41/42)");
+  addContactPairKeys(cp);
+  addContactPairsDocumentation(cp);
   cp.set("Contact zone", "auto",
          "the contact zone's shape, how its extent is measured and which Hertz solution it is "
          "compared with: line (a line contact along z, as in 2D or in a 3D plane-strain slab: "

@@ -1,7 +1,5 @@
 #include "contact_ElasticContactProblem.hpp"
 
-#include "contact_Mortar.hpp"
-
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
@@ -76,10 +74,11 @@ void requireEveryBodyHeld(const GmshMesh& mesh, const ElasticContactSpec& spec,
   for (const auto& nc : fixedComponents) held.insert(nc.first);
   for (const auto& [nc, value] : prescribed) held.insert(static_cast<int>(nc.first));
   for (const GmshBoundary& b : mesh.boundaries)  // a missing name is reported later
-    if (b.name == spec.slave || b.name == spec.master) {
-      const auto nodes = nodesOf(b);
-      held.insert(nodes.begin(), nodes.end());
-    }
+    for (const ContactPairSpec& pair : spec.pairs)
+      if (b.name == pair.slave || b.name == pair.master) {
+        const auto nodes = nodesOf(b);
+        held.insert(nodes.begin(), nodes.end());
+      }
   for (const auto& body : spec.bodies) {
     const auto& c = mesh.body(body.name).connectivity;
     if (std::none_of(c.begin(), c.end(), [&](int n) { return held.count(n) > 0; }))
@@ -110,7 +109,7 @@ int bodyOfBoundary(const GmshMesh& mesh, const ElasticContactSpec& spec, const G
 std::vector<plasticity::ElasticLaw> contactBodyLaws(const ElasticContactSpec& spec,
                                                     const ElasticContactProblem& p) {
   std::vector<plasticity::ElasticLaw> laws;
-  for (int b : {p.slaveBody, p.masterBody})
+  for (int b : {p.pairs.front().slaveBody, p.pairs.front().masterBody})
     if (b >= 0) laws.push_back(spec.bodies[b].law);
   return laws;
 }
@@ -401,8 +400,8 @@ void assembleLocalSubdomains(const ElasticContactSpec& spec, const Supports& h,
   p.equalities = equalityRowsAt(p, 1.0, {});
 }
 
-// The search options: the spec's radius, or a tenth of the mesh's extent.
-ContactSearchOptions searchOptions(const ElasticContactSpec& spec, const GmshMesh& mesh) {
+// The search options of a pair: its radius, or a tenth of the mesh's extent.
+ContactSearchOptions searchOptions(const ContactPairSpec& spec, const GmshMesh& mesh) {
   const int dim = mesh.dim;
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (int n = 0; n < mesh.numNodes(); ++n)
@@ -421,75 +420,82 @@ ContactSearchOptions searchOptions(const ElasticContactSpec& spec, const GmshMes
   return options;
 }
 
-// The master: a rigid obstacle, or the Master boundary's segments (faces) oriented by the
-// master body's elements so that the normals point out of it.
+// A pair's master: a rigid obstacle, or the Master boundary's segments (faces) oriented by the
+// master body's elements so that the normals point out of it (makePairMaster).
 void makeMaster(const ElasticContactSpec& spec, const ContactSearchOptions& options,
-                const std::set<int>& slaveSet, ElasticContactProblem& p) {
-  const GmshMesh& mesh = p.mesh;
+                const std::set<int>& slaveSet, const GmshMesh& mesh,
+                ElasticContactProblem::Pair& pair) {
+  const ContactPairSpec& ps = pair.spec;
   const int dim = mesh.dim;
-  if (spec.obstacle) {
-    if (!spec.master.empty())
-      throw std::invalid_argument("Master: \"" + spec.master +
+  // Messages name the old keys' parameters as they always have; a pair of Contact pairs adds
+  // its path.
+  const std::string at = ps.name.empty() ? "" : ps.where + "/";
+  if (ps.obstacle) {
+    if (!ps.master.empty())
+      throw std::invalid_argument(at + "Master: \"" + ps.master +
                                   "\" is given together with a Rigid obstacle; the obstacle is "
                                   "the master (leave Master empty)");
-    const RigidObstacle& obstacle = *spec.obstacle;
+    const RigidObstacle& obstacle = *ps.obstacle;
     if (obstacle.dim != dim)
-      throw std::invalid_argument("Contact problem/Rigid obstacle: a " +
-                                  std::to_string(obstacle.dim) + "D obstacle (" +
+      throw std::invalid_argument(ps.where + "/Rigid obstacle: a " + std::to_string(obstacle.dim) +
+                                  "D obstacle (" +
                                   (obstacle.dim == 3 ? "plane or sphere" : "line or circle") +
                                   ") for the " + std::to_string(dim) + "D mesh " + mesh.source);
-    try {
-      p.master = spec.discretization == "mortar"
-                     ? makeMortarObstacleMaster(mortarSurfaceOfBoundary(mesh, spec.slave), obstacle,
-                                                options)
-                     : makeObstacleMaster(obstacle, options);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("Contact problem/Rigid obstacle: ") + e.what());
-    }
+    pair.master = makePairMaster(mesh, ps, options);
     return;
   }
-  const GmshBoundary& master = boundaryNamed(mesh, spec.master, "Master");
+  const GmshBoundary& master = boundaryNamed(mesh, ps.master, at + "Master");
   bool onBody = false;
   for (int e = 0; e < master.numEdges(); ++e) onBody = onBody || master.edgeBody[e] >= 0;
   if (!onBody)
-    throw std::invalid_argument("Master: boundary \"" + spec.master + "\" is on no body");
-  p.master = spec.discretization == "mortar"
-                 ? makeMortarMaster(mortarSurfaceOfBoundary(mesh, spec.slave),
-                                    mortarSurfaceOfBoundary(mesh, spec.master), options)
-                 : makeMeshContactMaster(mesh, spec.master, options);
-  p.masterBody = bodyOfBoundary(mesh, spec, master);
+    throw std::invalid_argument(at + "Master: boundary \"" + ps.master + "\" is on no body");
+  pair.master = makePairMaster(mesh, ps, options);
+  pair.masterBody = bodyOfBoundary(mesh, spec, master);
   // A node on both surfaces joins the bodies there: it is glued, not in contact (a .geo that
   // extrudes touching bodies merges their coincident points unless told otherwise).
-  for (int n : p.master->masterNodes())
+  for (int n : pair.master->masterNodes())
     if (slaveSet.count(n)) {
-      std::ostringstream at;
-      for (int c = 0; c < dim; ++c) at << (c ? ", " : "") << mesh.coords[dim * n + c];
-      throw std::invalid_argument(mesh.source + ": the Slave \"" + spec.slave +
-                                  "\" and the Master \"" + spec.master + "\" share the node at (" +
-                                  at.str() +
-                                  "): the bodies are joined there; each body needs its own "
-                                  "nodes on the contact surfaces");
+      std::ostringstream where;
+      for (int c = 0; c < dim; ++c) where << (c ? ", " : "") << mesh.coords[dim * n + c];
+      throw std::invalid_argument(
+          mesh.source + ": " + (ps.name.empty() ? "" : pairLabel(ps) + ": ") + "the Slave \"" +
+          ps.slave + "\" and the Master \"" + ps.master + "\" share the node at (" + where.str() +
+          "): the bodies are joined there; each body needs its own "
+          "nodes on the contact surfaces");
     }
 }
 
-// Contact: the slave boundary's nodes against the master, the rows on the reference
+// Contact: every pair's slave boundary's nodes against its master, the rows on the reference
 // configuration, with bonded contact their tangential rows, and the slave nodes' lumping
 // weights.
 void setUpContact(const ElasticContactSpec& spec, const tfeti::Comm& comm,
                   ElasticContactProblem& p) {
   const GmshMesh& mesh = p.mesh;
   const int dim = mesh.dim;
-  const GmshBoundary& slave = boundaryNamed(mesh, spec.slave, "Slave");
-  const std::set<int> slaveSet = nodesOf(slave);
-  p.slaveNodes.assign(slaveSet.begin(), slaveSet.end());
-  p.slaveBody = bodyOfBoundary(mesh, spec, slave);
-  const ContactSearchOptions options = searchOptions(spec, mesh);
-  p.searchRadius = options.searchRadius;
-  makeMaster(spec, options, slaveSet, p);
-  std::set<int> surface(slaveSet);
-  for (int n : p.master->masterNodes()) surface.insert(n);
+  std::set<int> surface;
+  p.namedPairs = spec.namedPairs;
+  for (const ContactPairSpec& ps : spec.pairs) {
+    ElasticContactProblem::Pair pair;
+    pair.spec = ps;
+    const std::string at = ps.name.empty() ? "" : ps.where + "/";
+    const GmshBoundary& slave = boundaryNamed(mesh, ps.slave, at + "Slave");
+    const std::set<int> slaveSet = nodesOf(slave);
+    pair.slaveNodes.assign(slaveSet.begin(), slaveSet.end());
+    pair.slaveBody = bodyOfBoundary(mesh, spec, slave);
+    const ContactSearchOptions options = searchOptions(ps, mesh);
+    pair.searchRadius = options.searchRadius;
+    makeMaster(spec, options, slaveSet, mesh, pair);
+    surface.insert(slaveSet.begin(), slaveSet.end());
+    for (int n : pair.master->masterNodes()) surface.insert(n);
+    // Lumping weights: a slave node's share of the slave boundary's length (2D) or area (3D);
+    // the contact pressure is its multiplier (a nodal force; per unit thickness in 2D) divided
+    // by it.
+    std::map<int, double> weight = boundaryNodeWeights(mesh, slave);
+    for (int n : pair.slaveNodes) pair.slaveWeights.push_back(weight[n]);
+    p.pairs.push_back(std::move(pair));
+  }
   p.surfaceNodes.assign(surface.begin(), surface.end());
-  updateContact(p, {}, comm.getRank(), spec.slave, spec.master);
+  updateContact(p, {}, comm.getRank());
   if (spec.bonded && comm.getRank() == 0) {
     // Bonded: beside each contact row its tangential rows, B_T u = 0 (held with equality as the
     // contact rows): no relative motion of the pair along the surface either.
@@ -500,11 +506,6 @@ void setUpContact(const ElasticContactSpec& spec, const tfeti::Comm& comm,
       for (const ContactRow& t : tangentialRows(row, dim))
         p.inequalities.push_back(toInequalityRow(t, dofOf));
   }
-
-  // Lumping weights: a slave node's share of the slave boundary's length (2D) or area (3D); the
-  // contact pressure is its multiplier (a nodal force; per unit thickness in 2D) divided by it.
-  std::map<int, double> weight = boundaryNodeWeights(mesh, slave);
-  for (int n : p.slaveNodes) p.slaveWeights.push_back(weight[n]);
 }
 
 }  // namespace
@@ -568,22 +569,84 @@ std::vector<tfeti::EqualityRow> equalityRowsAt(const ElasticContactProblem& p, d
   return rows;
 }
 
-void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank,
-                   const std::string& slaveName, const std::string& masterName) {
-  p.contact = p.master->rows(p.mesh.coords, p.slaveNodes, displacement);
-  if (p.contact.rows.empty())
-    throw std::invalid_argument(
-        "no slave node of \"" + slaveName + "\" is within the search radius of " +
-        (masterName.empty() ? std::string("the rigid obstacle (Contact problem/Rigid obstacle: its "
-                                          "Point or Centre, Normal, Radius, Gap direction)")
-                            : "\"" + masterName + "\""));
+namespace {
+
+// The rows of one pair; throws naming the pair when it has none.
+NodeToSegmentResult pairRows(const ElasticContactProblem& p,
+                             const ElasticContactProblem::Pair& pair,
+                             const std::vector<double>& displacement) {
+  NodeToSegmentResult r = pair.master->rows(p.mesh.coords, pair.slaveNodes, displacement);
+  if (!r.rows.empty()) return r;
+  const ContactPairSpec& ps = pair.spec;
+  const std::string what =
+      ps.master.empty() ? (ps.name.empty() ? std::string("the rigid obstacle (Contact problem/"
+                                                         "Rigid obstacle: its Point or Centre, "
+                                                         "Normal, Radius, Gap direction)")
+                                           : "the rigid obstacle (" + ps.where +
+                                                 "/Rigid obstacle: its Point or Centre, Normal, "
+                                                 "Radius, Gap direction; or its Search radius)")
+                        : "\"" + ps.master + "\"";
+  throw std::invalid_argument((ps.name.empty() ? std::string() : ps.where + ": ") +
+                              "no slave node of \"" + ps.slave +
+                              "\" is within the search radius of " + what);
+}
+
+}  // namespace
+
+void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank) {
   const int dim = p.dim();
+  if (p.pairs.size() == 1) {  // one pair: its rows as they have always been
+    p.contact = pairRows(p, p.pairs.front(), displacement);
+    p.rowPair.assign(p.contact.rows.size(), 0);
+  } else {
+    p.contact = NodeToSegmentResult();
+    p.rowPair.clear();
+    std::map<int, int> pairOfSlave;  // the one pair a slave node has rows in
+    for (std::size_t k = 0; k < p.pairs.size(); ++k) {
+      NodeToSegmentResult r = pairRows(p, p.pairs[k], displacement);
+      for (const ContactRow& row : r.rows) {
+        const auto [it, fresh] = pairOfSlave.emplace(row.slaveNode, static_cast<int>(k));
+        if (!fresh) {
+          std::ostringstream at;
+          for (int c = 0; c < dim; ++c)
+            at << (c ? ", " : "") << p.mesh.coords[dim * row.slaveNode + c];
+          throw std::invalid_argument(
+              "Contact problem/Contact pairs: the slave node at (" + at.str() + ") has rows in " +
+              pairLabel(p.pairs[it->second].spec) + " and in " + pairLabel(p.pairs[k].spec) +
+              "; a slave node may have rows in one pair only (their masters overlap within the "
+              "Search radius: make the radii smaller or the slave surfaces disjoint)");
+        }
+      }
+      p.contact.rows.insert(p.contact.rows.end(), r.rows.begin(), r.rows.end());
+      p.rowPair.insert(p.rowPair.end(), r.rows.size(), static_cast<int>(k));
+      p.contact.candidatePairs += r.candidatePairs;
+      p.contact.allPairs += r.allPairs;
+      p.contact.beyondRadius += r.beyondRadius;
+      p.contact.beyondEnd += r.beyondEnd;
+      p.contact.gridCells += r.gridCells;
+      p.contact.cellSize = std::max(p.contact.cellSize, r.cellSize);
+    }
+  }
   auto dofOf = [&](int node, int component) {
     return std::make_pair(p.copyOf[node].first, dim * p.copyOf[node].second + component);
   };
   p.inequalities.clear();
   if (rank == 0)
     for (const auto& row : p.contact.rows) p.inequalities.push_back(toInequalityRow(row, dofOf));
+}
+
+std::vector<double> contactRowWeights(const ElasticContactProblem& p) {
+  std::vector<std::map<int, double>> weight(p.pairs.size());
+  for (std::size_t k = 0; k < p.pairs.size(); ++k)
+    for (std::size_t i = 0; i < p.pairs[k].slaveNodes.size(); ++i)
+      weight[k][p.pairs[k].slaveNodes[i]] = p.pairs[k].slaveWeights[i];
+  std::vector<double> w;
+  // A mortar row carries its own weight (the integral of its dual basis function).
+  for (std::size_t r = 0; r < p.contact.rows.size(); ++r)
+    w.push_back(p.contact.rows[r].weight > 0.0
+                    ? p.contact.rows[r].weight
+                    : weight[p.rowPair[r]].at(p.contact.rows[r].slaveNode));
+  return w;
 }
 
 }  // namespace contact

@@ -1,10 +1,11 @@
 #pragma once
 // Elastic bodies in frictionless contact on an unstructured Gmsh mesh, 2D (plane strain) or 3D,
 // torn for TFETI: every body is partitioned by METIS into subdomains, Dirichlet and symmetry
-// conditions are rows of B (every subdomain floats, also a body held only by contact), and one
-// slave/master pair of named boundaries gives the non-penetration rows B_I (node-to-segment in
-// 2D, node-to-face in 3D), or the slave boundary against a rigid obstacle. The dimension is the
-// mesh's: one code path, dim unknowns per node.
+// conditions are rows of B (every subdomain floats, also a body held only by contact), and the
+// contact pairs (slave/master pairs of named boundaries, or a slave boundary against a rigid
+// obstacle; contact_ContactPairs.hpp) give the non-penetration rows B_I (node-to-segment in 2D,
+// node-to-face in 3D), every pair's rows in the one B_I. The dimension is the mesh's: one code
+// path, dim unknowns per node.
 #include <array>
 #include <memory>
 #include <optional>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "contact_ContactMaster.hpp"
+#include "contact_ContactPairs.hpp"
 #include "contact_GmshMesh.hpp"
 #include "contact_KinematicCoupling.hpp"
 #include "contact_LoadRamp.hpp"
@@ -47,16 +49,12 @@ struct ElasticContactSpec {
   // Body loads: the total force (per unit thickness in 2D) of a body, dim components, spread
   // uniformly over its area (volume in 3D).
   std::vector<std::pair<std::string, std::vector<double>>> bodyLoads;
-  std::string slave, master;  // the contact pair
-  // A rigid obstacle as the master instead of a Master boundary (its dim is the mesh's).
-  std::optional<RigidObstacle> obstacle;
-  double searchRadius = 0.0;  // 0: a tenth of the mesh's extent
-  bool tied = false;          // Contact type = tied or bonded: the rows held with equality
+  // The contact pairs (at least one): the old keys' single pair, or those of Contact pairs.
+  std::vector<ContactPairSpec> pairs;
+  bool namedPairs = false;  // given by Contact pairs: the output names every row's pair
+  bool tied = false;        // Contact type = tied or bonded: the rows held with equality
   // Contact type = bonded: the contact rows' tangential rows join them (held with equality too).
   bool bonded = false;
-  // Contact discretization: node_to_segment (collocation at the slave nodes) or mortar (dual
-  // mortar weighted gaps, contact_Mortar.hpp).
-  std::string discretization = "node_to_segment";
   std::string distribution = "graph";  // subdomains to ranks: graph (Zoltan2) or block
   // The contact zone's shape (how its extent is reported): auto, line or point; point needs a
   // 3D mesh.
@@ -93,18 +91,24 @@ struct ElasticContactProblem {
   };
   std::vector<RampedLoad> rampedLoads;
   std::vector<std::vector<double>> proportionalLoad;  // per local subdomain (when rampedLoads)
-  // What re-evaluating the contact on another configuration needs (updateContact).
-  // The Master boundary's segments (oriented by the master body's elements) or the obstacle.
-  std::shared_ptr<const ContactMaster> master;
-  double searchRadius = 0.0;  // the radius in force (the spec's, or a tenth of the extent)
-  std::vector<std::pair<int, int>> copyOf;  // node -> (subdomain, local node) of its first copy
-  std::vector<int> surfaceNodes;            // slave and master nodes, sorted
-  std::vector<int> slaveNodes;              // global node ids of the slave boundary, as in contact
-  // Per slave node: its share of the slave boundary's length (2D) or area (3D).
-  std::vector<double> slaveWeights;
-  // The bodies (indices into spec.bodies) of the contact pair's Slave and Master boundaries
-  // (-1 for a rigid obstacle as the master): whose materials Hertz's combined modulus takes.
-  int slaveBody = -1, masterBody = -1;
+  // What re-evaluating the contact on another configuration needs (updateContact): per pair.
+  struct Pair {
+    ContactPairSpec spec;
+    // The Master boundary's segments (oriented by the master body's elements) or the obstacle.
+    std::shared_ptr<const ContactMaster> master;
+    double searchRadius = 0.0;    // the radius in force (the spec's, or a tenth of the extent)
+    std::vector<int> slaveNodes;  // global node ids of the slave boundary, sorted
+    // Per slave node: its share of the slave boundary's length (2D) or area (3D).
+    std::vector<double> slaveWeights;
+    // The bodies (indices into spec.bodies) of the Slave and Master boundaries (-1 for a rigid
+    // obstacle as the master): whose materials Hertz's combined modulus takes.
+    int slaveBody = -1, masterBody = -1;
+  };
+  std::vector<Pair> pairs;
+  bool namedPairs = false;   // given by Contact pairs: the output names every row's pair
+  std::vector<int> rowPair;  // per row of contact.rows: its pair (index into pairs)
+  std::vector<std::pair<int, int>> copyOf;   // node -> (subdomain, local node) of its first copy
+  std::vector<int> surfaceNodes;             // every pair's slave and master nodes, sorted
   double appliedForce[3] = {0.0, 0.0, 0.0};  // resultant of the tractions and body loads
 };
 
@@ -125,14 +129,18 @@ std::vector<tfeti::EqualityRow> equalityRowsAt(const ElasticContactProblem& p, d
 ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
                                                  const tfeti::Comm& comm);
 
-// The contact rows on the configuration reference + displacement (dim per mesh node; only the
-// surfaceNodes' entries are read): p.contact and, on rank 0, p.inequalities. Throws when no
-// slave node is within the search radius.
-void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank,
-                   const std::string& slaveName = "slave",
-                   const std::string& masterName = "master");
+// The contact rows of every pair on the configuration reference + displacement (dim per mesh
+// node; only the surfaceNodes' entries are read), concatenated pair by pair: p.contact,
+// p.rowPair and, on rank 0, p.inequalities. Throws std::invalid_argument naming the pair when
+// no slave node of a pair is within its search radius, and naming the node's coordinates and
+// both pairs when a slave node has rows in two pairs (the rule: one pair per slave node).
+void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank);
 
-// The elastic laws of the contact pair's bodies (slave, then master; one with a rigid
+// Per row of p.contact: its slave node's share of its pair's slave boundary (the weight that
+// turns the row's multiplier into a pressure); a mortar row's own weight.
+std::vector<double> contactRowWeights(const ElasticContactProblem& p);
+
+// The elastic laws of the first contact pair's bodies (slave, then master; one with a rigid
 // obstacle), for Hertz's combined modulus.
 std::vector<plasticity::ElasticLaw> contactBodyLaws(const ElasticContactSpec& spec,
                                                     const ElasticContactProblem& p);

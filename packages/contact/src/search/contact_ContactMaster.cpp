@@ -55,9 +55,6 @@ class ObstacleMaster : public ContactMaster {
     return computeObstacleRows(b_, coords, slaves, o_, u);
   }
   std::vector<int> masterNodes() const override { return {}; }
-  std::unique_ptr<ContactMaster> withObstacle(const RigidObstacle& at) const override {
-    return std::make_unique<ObstacleMaster>(at, o_);
-  }
 
  private:
   RigidObstacle b_;

@@ -6,12 +6,6 @@
 
 namespace contact {
 
-std::unique_ptr<ContactMaster> ContactMaster::withObstacle(const RigidObstacle&) const {
-  throw std::logic_error(
-      "ContactMaster::withObstacle: the master is a mesh surface, not a rigid "
-      "obstacle");
-}
-
 void validateSearchOptions(const ContactSearchOptions& options, const char* who) {
   if (!(options.searchRadius > 0.0) || !std::isfinite(options.searchRadius))
     throw std::invalid_argument(std::string(who) + ": searchRadius must be positive and finite");

@@ -20,8 +20,6 @@
 
 namespace contact {
 
-struct RigidObstacle;
-
 // One term of a row: coef times component `component` (0: x, 1: y, 2: z) of the displacement of
 // `node`.
 struct NodeEntry {
@@ -126,9 +124,6 @@ class ContactMaster {
                                  const std::vector<double>& displacement = {}) const = 0;
   // The mesh nodes the rows' master entries refer to (empty for a rigid obstacle), sorted.
   virtual std::vector<int> masterNodes() const = 0;
-  // A rigid obstacle's master with the obstacle moved to `at` (a prescribed motion), the same
-  // discretization and options. Throws std::logic_error for a mesh master.
-  virtual std::unique_ptr<ContactMaster> withObstacle(const RigidObstacle& at) const;
 };
 
 }  // namespace contact

@@ -118,9 +118,6 @@ class ObstacleMortarMaster : public ContactMaster {
   }
   int dimension() const override { return slave_.dim; }
   std::vector<int> masterNodes() const override { return {}; }
-  std::unique_ptr<ContactMaster> withObstacle(const RigidObstacle& at) const override {
-    return std::make_unique<ObstacleMortarMaster>(slave_, at, o_);
-  }
 
   ContactRowsResult rows(const std::vector<double>& coords, const std::vector<int>& slaveNodes,
                          const std::vector<double>& u) const override {
