@@ -987,13 +987,16 @@ def arc_grows(d09, d099):
     print(f"OK: contact half-angle {t09:.2f} deg (R_pin/R_hole = 0.9) < {t099:.2f} deg (0.99)")
 
 
-def friction(d, expect, force, mu, tol, resultant_tol=None):
+def friction(d, expect, force, mu, tol, resultant_tol=None, magnitudes=False):
     """A frictional nonlinear run: the friction rows' conditions of the last solve (multipliers
     within their box, no slip where they stick, slip along the multiplier where it is at the
     bound), and per node in the contact CSV: expect = slide: every closed node slips and the
     tangential force is `force` (Tresca: -g times the closed length), or -mu times the normal
     force P = sum of the normal multipliers (Coulomb, mu > 0), to tol; expect = stick: every closed node sticks, its slip
-    increment zero against the largest displacement."""
+    increment zero against the largest displacement. magnitudes (3D, --magnitudes): at full
+    sliding the nodes' tangential forces point different ways, so `force` is compared with the
+    sum of their magnitudes |lambda_T| (Tresca: g times the slave area), and every closed node
+    has a non-zero slip increment."""
     resultant_tol = tol if resultant_tol is None else resultant_tol
     s = load(d)
     if not s["converged"]:
@@ -1005,8 +1008,9 @@ def friction(d, expect, force, mu, tol, resultant_tol=None):
         force = -mu * c["normal_force"]
         g = mu * c["p_max"]
     u = s["max_abs_u"]
-    for key in ("tangential_force", "slip_nodes", "stick_nodes", "stick_half_width",
-                "max_tangential_ratio", "friction_law"):
+    for key in ("tangential_force", "slip_nodes", "stick_nodes",
+                "stick_radius" if magnitudes else "stick_half_width", "max_tangential_ratio",
+                "friction_law"):
         if key not in c:
             fail(f"{d}: contact lacks {key}")
     if k["max_friction_bound_excess"] > 1e-10 * g:
@@ -1022,7 +1026,14 @@ def friction(d, expect, force, mu, tol, resultant_tol=None):
     if expect == "slide":
         if c["stick_nodes"] != 0 or c["slip_nodes"] != len(closed):
             fail(f"{d}: {c['stick_nodes']} stick, {c['slip_nodes']} slip of {len(closed)} closed")
-        if abs(c["tangential_force"] - force) > resultant_tol * abs(force):
+        if magnitudes:
+            lt = sum(abs(float(r["tangential_force"])) for r in closed)
+            if abs(lt - abs(force)) > resultant_tol * abs(force):
+                fail(f"{d}: sum |lambda_T| {lt:.10e}, expected {abs(force):.10e}")
+            slip = min(abs(float(r["slip_increment"])) for r in closed)
+            if not slip > KKT_TOL * u:
+                fail(f"{d}: a sliding node's slip increment is {slip:.2e} (max |u| {u:.2e})")
+        elif abs(c["tangential_force"] - force) > resultant_tol * abs(force):
             fail(f"{d}: tangential force {c['tangential_force']:.10e}, expected {force:.10e}")
         if mu > 0:
             # In the contact's own frame: the tangential multipliers sum to mu times the normal
@@ -1350,7 +1361,8 @@ if __name__ == "__main__":
         same_final(args)
     elif mode == "friction":
         friction(args[0], args[1], option(args, "--force", 0.0), option(args, "--mu", 0.0),
-                 option(args, "--tol", 1e-6), option(args, "--resultant-tol", None))
+                 option(args, "--tol", 1e-6), option(args, "--resultant-tol", None),
+                 "--magnitudes" in args)
     elif mode == "friction_fields":
         friction_fields(args[0])
     elif mode == "tresca_bonded":

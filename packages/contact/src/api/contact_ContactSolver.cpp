@@ -177,11 +177,6 @@ void ContactSolver::setup() {
     r.loadNorm = globalNorm(*comm_, f);  // the residual's scale; an unloaded problem is valid
   } else {
     checkNonlinearOptionsFor(r.options, dim, obstacles);
-    // Known limitation (docs/friction.md): say so before a long run, not after it.
-    if (dim == 3 && r.friction.active() && comm_->getRank() == 0)
-      std::cerr << "tfeti_contact: warning: 3D friction is verified for sticking contact only; a "
-                   "step in which nodes slide does not converge yet (docs/friction.md, \"3D "
-                   "sliding does not converge yet\")\n";
     r.loadNorm = requireLoadOrMotion(*comm_, problem.local, r.options, !problem.prescribed.empty());
   }
   const double* F = problem.appliedForce;

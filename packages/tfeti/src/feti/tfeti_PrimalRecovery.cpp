@@ -68,6 +68,19 @@ void FetiSolver::markRowsHoldingWithEquality(Vector& mask) const {
     bool holds = true;
     if (tearing_.isInequality(row)) {
       const InequalityRow& r = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
+      if (r.disc == 1) {
+        // A disc pair (3D friction; both rows here, consecutive): it sticks, and both rows
+        // hold, only strictly inside |lambda_T| <= g. On the circle the node slides: each
+        // multiplier is inside [-g, g], so the test per row would count both as holding, and
+        // the fit, pulled towards a zero slip there, would leave the gluing and Dirichlet rows
+        // violated (the next Newton iteration's dual then has b outside the range of F where
+        // those rows are redundant, and no minimizer).
+        const double g = r.upperBound, t = std::hypot(l[i], l[i + 1]);
+        holds = t < g && !(std::abs(t - g) <= 1e-10 * g);
+        m[i] = m[i + 1] = holds ? 1.0 : 0.0;
+        ++i;
+        continue;
+      }
       holds = r.boundActive(l[i]) == 0;
     }
     m[i] = holds ? 1.0 : 0.0;

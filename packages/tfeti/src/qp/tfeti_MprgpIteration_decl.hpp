@@ -29,13 +29,19 @@
 // MPGP (Dostál's modified proportioning with gradient projections; Kučera 2008, Dostál et al.
 // 2012 for 3D friction): with disc constraints |(x_i, x_{i+1})| <= r (BoundConstrainedQp::discs)
 // the same steps run on the product of intervals and discs (tfeti_SeparableSet.hpp): projection
-// onto the discs, the feasible step to the circle, the free and chopped gradients of a disc
-// (the chopped one: g - min(n.g, 0) n on the circle, n the outward normal) and the reduced free
-// gradient phi~ = (x - P(x - alphaBar phi)) / alphaBar. The proportioning step is MPRGP's while
-// -beta stays inside the discs up to the minimizing length; where a disc must slide along its
-// circle it is x = P(x - alpha beta), accepted when f decreases, else the projected gradient step
-// of the active components, x = P(x - alphaBar (g - phi)) (which decreases f). Without discs
-// nothing changes: MPRGP is MPGP on boxes, and one class runs both (MpgpIteration names it).
+// onto the discs, the feasible step to the circle, the reduced free gradient
+// phi~ = (x - P(x - alphaBar phi)) / alphaBar. On an active disc (n the outward normal) the free
+// gradient is g's tangential part and the chopped gradient max(n.g, 0) n: CG runs on the face
+// that holds each active disc's tangent, as it holds the free component of a box pair at one
+// bound. The circle is curved, so such a CG step is followed by the projection onto the circle
+// and a fresh gradient (one more multiplication), its length uses p^T A p plus the circle's
+// curvature sum nu_k |p_k|^2 / r_k (nu = max(-n.g, 0)), the next direction is moved onto the new
+// tangents (and restarted when that leaves no descent), and a step that does not decrease f is
+// replaced by the projected gradient step x = P(x - alphaBar g). Held out of the face (phi = 0
+// on an active disc, the implementation before 2026-11-27) the discs moved along their circles
+// by proportioning steps only, which on a badly conditioned A took thousands of steps. The
+// proportioning step is MPRGP's along -beta, into the discs. Without discs nothing changes: MPRGP
+// is MPGP on boxes, and one class runs both (MpgpIteration names it).
 //
 // The iteration works in place on the problem's x (projected onto the bounds by initialize()),
 // so a status test can read the iterate through getProblem().getLHS().
@@ -135,14 +141,13 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   void updateGradientSplit();
   // p (or z) = the CG restart direction from phi.
   void precondition(MV& z);
-  void cgStep(S alphaCg);
+  const char* cgStep(S alphaCg);  // returns the step's name
   // Returns the kind of expansion taken, for the verbose output.
   const char* expansionStep(S alphaFeasible, S alphaCg);
   bool tryProjectedCgExpansion(S alphaFeasible, S alphaCg);
   bool tryOptimalExpansion();
   S energy() const;
   void proportioningStep();
-  void slidingProportioningStep(S alpha);
   void record(const char* kind);
 
   BoundConstrainedQp<S, MV, OP> qp_;

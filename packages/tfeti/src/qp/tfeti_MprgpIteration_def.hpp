@@ -169,6 +169,8 @@ void MprgpIteration<S, MV, OP>::iterate() {
     }
     if (betaNorm2_ <= opts_.gamma * opts_.gamma * phiTildePhi_) {
       applyA(*p_, *Ap_);
+      // MPGP: the curvature of the circles p slides along (zero without active discs).
+      if (set_->hasDiscs()) set_->addCircleCurvature(*qp_.x, *g_, *p_, *Ap_);
       std::vector<S> d(1);
       MVT::MvDot(*p_, *Ap_, d);
       const S pAp = d[0];
@@ -195,12 +197,13 @@ void MprgpIteration<S, MV, OP>::iterate() {
              << " for a non-zero direction p at step " << iter_ << ")";
         throw std::runtime_error(os.str());
       }
-      MVT::MvDot(*g_, *p_, d);
+      // g^T p = phi^T p in the face; with discs phi's, which rounding in g's normal part on the
+      // circles (the multipliers, much larger than phi near the solution) cannot reach.
+      MVT::MvDot(set_->hasDiscs() ? *phi_ : *g_, *p_, d);
       const S alphaCg = d[0] / pAp;
-      const S alphaF = set_->maxFeasibleStep(*qp_.x, *p_);
+      const S alphaF = set_->maxFeasibleStep(*qp_.x, *p_, true);
       if (alphaCg <= alphaF) {
-        cgStep(alphaCg);
-        record("CG");
+        record(cgStep(alphaCg));
       } else {
         record(expansionStep(alphaF, alphaCg));
       }
@@ -213,11 +216,52 @@ void MprgpIteration<S, MV, OP>::iterate() {
 }
 
 template <class S, class MV, class OP>
-void MprgpIteration<S, MV, OP>::cgStep(S alphaCg) {
+const char* MprgpIteration<S, MV, OP>::cgStep(S alphaCg) {
+  const bool discs = set_->hasDiscs();
+  // MPGP: a step along the tangent of an active disc leaves the circle; the projection brings
+  // x back, no longer linear in alpha, so the gradient is computed afresh (one more
+  // multiplication), and the step is kept only when f decreased: f(y) - f(x) =
+  // 1/2 (y - x)^T (g(x) + g(y)) exactly for a quadratic.
+  const bool slides = discs && set_->slidesOnCircles(*qp_.x, *p_);
+  if (slides) {
+    MVT::Assign(*qp_.x, *xHalf_);
+    MVT::Assign(*g_, *gHalf_);
+  }
   MVT::MvAddMv(S(1), *qp_.x, -alphaCg, *p_, *qp_.x);
-  // Mathematically feasible; the projection only removes rounding below the bounds.
+  // Mathematically feasible; the projection only removes rounding below the bounds (and puts
+  // sliding discs back on their circles).
   set_->project(*qp_.x);
-  MVT::MvAddMv(S(1), *g_, -alphaCg, *Ap_, *g_);
+  if (slides) {
+    applyA(*qp_.x, *g_);
+    MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+    MVT::MvAddMv(S(1), *qp_.x, S(-1), *xHalf_, *phi_);
+    MVT::MvAddMv(S(1), *g_, S(1), *gHalf_, *beta_);
+    std::vector<S> change(1);
+    MVT::MvDot(*phi_, *beta_, change);
+    // Rounding must not decide (nor the order of summation, which depends on the rank count):
+    // the projection puts x on the circle to eps r, which moves f by eps r nu per disc, so an
+    // increase below 100 eps |x| |g(x) + g(y)| counts as none. Near the solution the steps'
+    // true changes are below that, and they are taken.
+    std::vector<magnitude_type> xn(1), gs(1);
+    MVT::MvNorm(*qp_.x, xn);
+    MVT::MvNorm(*beta_, gs);
+    const magnitude_type slack =
+        magnitude_type(100) * std::numeric_limits<magnitude_type>::epsilon() * xn[0] * gs[0];
+    if (!(change[0] <= slack)) {
+      // The circles' curvature beyond second order spoiled the step: the projected gradient
+      // step from x instead, which decreases f for alphaBar < 2 / ||A||; CG restarts.
+      MVT::MvAddMv(S(1), *xHalf_, -opts_.alphaBar, *gHalf_, *qp_.x);
+      set_->project(*qp_.x);
+      applyA(*qp_.x, *g_);
+      MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+      updateGradientSplit();
+      precondition(*p_);
+      ++counters_.expansionSteps;
+      return "expansion (sliding fall-back)";
+    }
+  } else {
+    MVT::MvAddMv(S(1), *g_, -alphaCg, *Ap_, *g_);
+  }
   updateGradientSplit();
   // p = z - (z^T A p / p^T A p) p keeps the new direction A-conjugate to the previous one.
   MV& z = M_.is_null() ? *phi_ : *z_;
@@ -226,7 +270,16 @@ void MprgpIteration<S, MV, OP>::cgStep(S alphaCg) {
   MVT::MvDot(z, *Ap_, zAp);
   MVT::MvDot(*p_, *Ap_, pAp);
   MVT::MvAddMv(S(1), z, -zAp[0] / pAp[0], *p_, *p_);
+  if (discs) {
+    // The circles' tangents turned with x: p moved onto the new ones (conjugacy then holds
+    // only approximately), and restarted as z when that left it no descent direction.
+    set_->restrictToCircleTangents(*qp_.x, *p_);
+    std::vector<S> gp(1);
+    MVT::MvDot(*phi_, *p_, gp);
+    if (!(gp[0] > S(0))) MVT::Assign(z, *p_);
+  }
   ++counters_.cgSteps;
+  return "CG";
 }
 
 template <class S, class MV, class OP>
@@ -290,6 +343,9 @@ bool MprgpIteration<S, MV, OP>::tryProjectedCgExpansion(S alphaFeasible, S alpha
 
 template <class S, class MV, class OP>
 const char* MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible, S alphaCg) {
+  // MPGP: where p slides on circles the half step's gradient g - alpha (A + K) p is the
+  // curvature model's, not A x - b at the projected half step; it only chooses the direction
+  // (and the projected CG variant's comparison), and every path below ends with g = A x - b.
   if (opts_.projectedCgExpansion) {
     if (tryProjectedCgExpansion(alphaFeasible, alphaCg)) {
       ++counters_.expansionSteps;
@@ -339,51 +395,15 @@ void MprgpIteration<S, MV, OP>::proportioningStep() {
   if (upper_ != nullptr || set_->hasDiscs()) {
     // With two bounds the step may carry a component from one bound past the other: stop at
     // the first one reached (f still decreases, alpha <= the minimizing length), and project
-    // away the rounding, as in a CG step.
-    using BT = BoundTraits<S, MV>;
-    alpha = std::min(alpha, BT::maxFeasibleStep(*qp_.x, *qp_.lower, upper_, *beta_));
-    // MPGP: a disc whose -beta is tangential (or leaves the disc before alpha) slides along
-    // its circle, which only the projection follows.
-    if (set_->hasDiscs() && set_->maxFeasibleStep(*qp_.x, *beta_) < alpha) {
-      slidingProportioningStep(alpha);
-      return;
-    }
+    // away the rounding, as in a CG step. On an active disc -beta points along -n, into the
+    // disc: the step may cross it to the far side of the circle at most.
+    alpha = std::min(alpha, set_->maxFeasibleStep(*qp_.x, *beta_));
     MVT::MvAddMv(S(1), *qp_.x, -alpha, *beta_, *qp_.x);
     set_->project(*qp_.x);
   } else {
     MVT::MvAddMv(S(1), *qp_.x, -alpha, *beta_, *qp_.x);
   }
   MVT::MvAddMv(S(1), *g_, -alpha, *Ap_, *g_);
-  updateGradientSplit();
-  precondition(*p_);
-  ++counters_.proportioningSteps;
-}
-
-template <class S, class MV, class OP>
-void MprgpIteration<S, MV, OP>::slidingProportioningStep(S alpha) {
-  // x = P(x - alpha beta) with alpha the minimizer along -beta (capped at the intervals),
-  // accepted when f decreases; otherwise the projected gradient step on the active components,
-  // x = P(x - alphaBar (g - phi)), which decreases f for alphaBar < 2 / ||A|| (the free
-  // components do not move, the active ones take a projected gradient step of their own block).
-  // f(y) - f(x) = 1/2 (y - x)^T (g(x) + g(y)), accurate where f(y) - f(x) from two energies
-  // would be rounding (and decide differently on another rank count).
-  MVT::Assign(*qp_.x, *xHalf_);
-  MVT::Assign(*g_, *Ap_);
-  MVT::MvAddMv(S(1), *g_, S(-1), *phi_, *gHalf_);
-  MVT::MvAddMv(S(1), *qp_.x, -alpha, *beta_, *qp_.x);
-  set_->project(*qp_.x);
-  applyA(*qp_.x, *g_);
-  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
-  MVT::MvAddMv(S(1), *qp_.x, S(-1), *xHalf_, *beta_);
-  MVT::MvAddMv(S(1), *Ap_, S(1), *g_, *Ap_);
-  std::vector<S> change(1);
-  MVT::MvDot(*beta_, *Ap_, change);
-  if (!(change[0] <= S(0))) {
-    MVT::MvAddMv(S(1), *xHalf_, -opts_.alphaBar, *gHalf_, *qp_.x);
-    set_->project(*qp_.x);
-    applyA(*qp_.x, *g_);
-    MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
-  }
   updateGradientSplit();
   precondition(*p_);
   ++counters_.proportioningSteps;

@@ -15,13 +15,17 @@
 // back onto the circle, which hits r only to rounding, so the test has a relative tolerance
 // (boxes are tested exactly, as the projection sets x_i = l_i exactly). A disc with r = 0 is the
 // point 0, always active and fixed (like l_i = u_i). With n = x / |x| the outward normal:
-//  - free gradient phi: g on a free disc, 0 on an active one;
-//  - chopped gradient beta on an active disc: g - min(n.g, 0) n, the projection of g onto the
-//    cone of the directions that -beta may take (n.g >= 0: -g points into the disc, the whole
-//    g; n.g < 0: its tangential part, along which x slides on the circle); 0 when r = 0;
-//  - reduced free gradient on a free disc: phi~ = (x - P(x - alphaBar phi)) / alphaBar (for an
-//    interval the same as MPRGP's min((x - l) / alphaBar, phi) form);
-//  - the feasible step along -p: the positive root of |x - alpha p| = r.
+//  - free gradient phi: g on a free disc; on an active one its tangential part g - (n.g) n, the
+//    direction in which x slides along the circle (the CG face of an active disc is its
+//    tangent, as the free component of a box pair at one bound is free; MPGP's CG steps there
+//    are followed by the projection back onto the circle);
+//  - chopped gradient beta on an active disc: max(n.g, 0) n, the part that -g moves into the
+//    disc (0 when -g points out); 0 when r = 0. phi + beta is the projection of g onto the
+//    tangent cone, zero exactly at a KKT point;
+//  - reduced free gradient: phi~ = (x - P(x - alphaBar phi)) / alphaBar (for an interval the
+//    same as MPRGP's min((x - l) / alphaBar, phi) form);
+//  - the feasible step along -p: the positive root of |x - alpha p| = r (CG steps leave out
+//    the active discs, whose tangential move the projection follows).
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_MultiVector.hpp>
 
@@ -144,9 +148,14 @@ class SeparableSet<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     BT::freeGradient(x, l_, u_, g, phi);
     if (first_.empty()) return;
     auto xv = x.getData(0);
+    auto gv = g.getData(0);
     auto pv = phi.getDataNonConst(0);
-    for (std::size_t k = 0; k < first_.size(); ++k)
-      if (active(xv, k)) pv[first_[k]] = pv[first_[k] + 1] = S(0);
+    for (std::size_t k = 0; k < first_.size(); ++k) {
+      const LO i = first_[k];
+      pv[i] = gv[i];
+      pv[i + 1] = gv[i + 1];
+      if (active(xv, k)) tangential(xv, k, pv[i], pv[i + 1]);
+    }
   }
 
   void choppedGradient(const MV& x, const MV& g, MV& beta) const {
@@ -161,19 +170,61 @@ class SeparableSet<S, Tpetra::MultiVector<S, LO, GO, Node>> {
       if (!active(xv, k) || !(radius_[k] > S(0))) continue;
       S n0, n1;
       normal(xv, k, n0, n1);
-      const S ng = std::min(n0 * gv[i] + n1 * gv[i + 1], S(0));
-      bv[i] = gv[i] - ng * n0;
-      bv[i + 1] = gv[i + 1] - ng * n1;
+      const S ng = std::max(n0 * gv[i] + n1 * gv[i + 1], S(0));
+      bv[i] = ng * n0;
+      bv[i + 1] = ng * n1;
     }
   }
 
   void restrictToFree(const MV& x, MV& z) const {
     BT::restrictToFree(x, l_, u_, z);
+    restrictToCircleTangents(x, z);
+  }
+
+  // z on each active disc replaced by its tangential part (0 where r = 0); the rest untouched.
+  void restrictToCircleTangents(const MV& x, MV& z) const {
     if (first_.empty()) return;
     auto xv = x.getData(0);
     auto zv = z.getDataNonConst(0);
     for (std::size_t k = 0; k < first_.size(); ++k)
-      if (active(xv, k)) zv[first_[k]] = zv[first_[k] + 1] = S(0);
+      if (active(xv, k)) tangential(xv, k, zv[first_[k]], zv[first_[k] + 1]);
+  }
+
+  // Whether some active disc has a non-zero p (a step along p then slides on a circle, which
+  // the projection follows: x is no longer linear in the step). Collective.
+  bool slidesOnCircles(const MV& x, const MV& p) const {
+    if (!hasDiscs_) return false;
+    auto xv = x.getData(0);
+    auto pv = p.getData(0);
+    int mine = 0;
+    for (std::size_t k = 0; k < first_.size(); ++k)
+      if (radius_[k] > S(0) && active(xv, k) &&
+          (pv[first_[k]] != S(0) || pv[first_[k] + 1] != S(0)))
+        mine = 1;
+    int any = mine;
+    Teuchos::reduceAll(*x.getMap()->getComm(), Teuchos::REDUCE_MAX, 1, &mine, &any);
+    return any == 1;
+  }
+
+  // Ap += K p with K = (nu / r) I on the tangent of each active disc, nu = max(-n.g, 0) the
+  // multiplier that holds x on the circle: the circle's curvature in f along the circle,
+  // f(P(x - t p)) = f(x) - t g^T p + t^2 / 2 (p^T A p + sum nu |p_k|^2 / r) + O(t^3) for a
+  // tangential p. Without it a CG step on the tangent overshoots by the ratio of the two.
+  void addCircleCurvature(const MV& x, const MV& g, const MV& p, MV& Ap) const {
+    if (first_.empty()) return;
+    auto xv = x.getData(0);
+    auto gv = g.getData(0);
+    auto pv = p.getData(0);
+    auto av = Ap.getDataNonConst(0);
+    for (std::size_t k = 0; k < first_.size(); ++k) {
+      const LO i = first_[k];
+      if (!(radius_[k] > S(0)) || !active(xv, k)) continue;
+      S n0, n1;
+      normal(xv, k, n0, n1);
+      const S nu = std::max(-(n0 * gv[i] + n1 * gv[i + 1]), S(0));
+      av[i] += nu / radius_[k] * pv[i];
+      av[i + 1] += nu / radius_[k] * pv[i + 1];
+    }
   }
 
   // phi~^T phi over the free components (collective).
@@ -192,7 +243,7 @@ class SeparableSet<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     S local = 0;
     for (std::size_t k = 0; k < first_.size(); ++k) {
       const LO i = first_[k];
-      if (active(xv, k)) continue;
+      if (!(radius_[k] > S(0))) continue;
       // y = P(x - alphaBar phi) - c, x - c: the disc's coordinates about its centre.
       const S x0 = xv[i] - center_[2 * k], x1 = xv[i + 1] - center_[2 * k + 1];
       S y0 = x0 - alphaBar * pv[i], y1 = x1 - alphaBar * pv[i + 1];
@@ -207,8 +258,10 @@ class SeparableSet<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     return boxes + sum(x, local);
   }
 
-  // The largest alpha with x - alpha p in the set (collective); +infinity when unbounded.
-  S maxFeasibleStep(const MV& x, const MV& p) const {
+  // The largest alpha with x - alpha p in the set (collective); +infinity when unbounded. With
+  // alongCircles the active discs are left out: a CG step moves them along their tangent and
+  // the projection keeps them on the circle.
+  S maxFeasibleStep(const MV& x, const MV& p, bool alongCircles = false) const {
     const S boxes = BT::maxFeasibleStep(x, l_, u_, p);
     if (!hasDiscs_) return boxes;
     auto xv = x.getData(0);
@@ -216,6 +269,7 @@ class SeparableSet<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     S local = std::numeric_limits<S>::infinity();
     for (std::size_t k = 0; k < first_.size(); ++k) {
       const LO i = first_[k];
+      if (alongCircles && radius_[k] > S(0) && active(xv, k)) continue;
       const S a = pv[i] * pv[i] + pv[i + 1] * pv[i + 1];
       if (!(a > S(0))) continue;
       const S r = radius_[k];
@@ -282,6 +336,23 @@ class SeparableSet<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     const S len = norm(xv, k);
     n0 = (xv[first_[k]] - center_[2 * k]) / len;
     n1 = (xv[first_[k] + 1] - center_[2 * k + 1]) / len;
+  }
+  // (v0, v1) on active disc k replaced by its tangential part; 0 where r = 0.
+  template <class View>
+  void tangential(const View& xv, std::size_t k, S& v0, S& v1) const {
+    if (!(radius_[k] > S(0))) {
+      v0 = v1 = S(0);
+      return;
+    }
+    // (t.v) t with the unit tangent t = (-n1, n0), not v - (n.v) n: where v is mostly normal
+    // (g on a sliding disc: its multiplier nu >> its tangential part near the solution) the
+    // difference leaves a normal residue of eps |v|, which in g^T p would outweigh the
+    // tangential part; (t.v) t is tangential to eps relative to itself.
+    S n0, n1;
+    normal(xv, k, n0, n1);
+    const S tv = n0 * v1 - n1 * v0;
+    v0 = -n1 * tv;
+    v1 = n0 * tv;
   }
   static S sum(const MV& x, S local) {
     S global = local;
