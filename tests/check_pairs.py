@@ -135,16 +135,24 @@ def same_across(results):
         for key in ("p_max", extent):
             if abs(c[key] - c0[key]) > 1e-6 * abs(c0[key]):
                 fail(f"{d}: {key} {c[key]}, {c0[key]} in {d0}")
+        # Rows matched by position: the nearest row of the other run, within 1e-6 of the rows'
+        # extent (positions are the current ones in a nonlinear run: rounding apart).
+        def points(rs, k):
+            return [([float(r["x"]), float(r["y"]), float(r.get("z", 0.0))], float(r["lambda"]))
+                    for r in rs if int(r["pair"]) == k]
         for k in range(len(c0["pairs"])):
-            a = sorted((r["x"], r["y"], r.get("z", "0"), float(r["lambda"])) for r in rows0
-                       if int(r["pair"]) == k)
-            b = sorted((r["x"], r["y"], r.get("z", "0"), float(r["lambda"])) for r in rows
-                       if int(r["pair"]) == k)
+            a, b = points(rows0, k), points(rows, k)
             if len(a) != len(b):
                 fail(f"{d}: pair {k} has {len(b)} contact rows, {len(a)} in {d0}")
-            for ra, rb in zip(a, b):
-                if abs(ra[3] - rb[3]) > 1e-5 * lscale:
-                    fail(f"{d}: pair {k}: lambda {rb[3]:.8e} vs {ra[3]:.8e} at {ra[:3]}")
+            coords = [x for p, _ in a for x in p]
+            span = max(coords) - min(coords) if coords else 0.0
+            for pa, la in a:
+                dist, lb = min((sum((u - v) ** 2 for u, v in zip(pa, pb)) ** 0.5, l)
+                               for pb, l in b)
+                if dist > 1e-6 * span:
+                    fail(f"{d}: pair {k}: no contact row at {pa} (nearest {dist:.3e} away)")
+                if abs(la - lb) > 1e-5 * lscale:
+                    fail(f"{d}: pair {k}: lambda {lb:.8e} vs {la:.8e} at {pa}")
     print("OK: the same pair forces and contact rows in", [r[0] for r in results])
 
 
