@@ -5,7 +5,9 @@
 // master together B_T u = -omega gap (the relative displacement omega x (gap n) is along t),
 // while moving the slave node alone by a along t gives B_T u = -a (the slip of the slave). In
 // 3D the two tangents and n form a right-handed orthonormal basis. Rows that do not list dim
-// components per node are refused.
+// components per node are refused. Friction's rows leave out the directions in which the row's
+// nodes are held (a symmetry plane through the contact): the rest is tangential, orthogonal to
+// the held direction, and the row set is tangentialRows' where nothing is held.
 #include <Teuchos_UnitTestHarness.hpp>
 
 #include <algorithm>
@@ -218,6 +220,88 @@ TEUCHOS_UNIT_TEST(TangentialRows, ThreeDimensionalFrameDoesNotFlip) {
   out << "frame change / normal change: rounding " << worst << ", 1e-6: " << worstSmall << "\n";
   TEST_COMPARE(worst, <, 100.0);
   TEST_COMPARE(worstSmall, <, 10.0);
+}
+
+// A 3D node-to-face row: slave node 0 above the face of master nodes 1, 2, 3 (weights w).
+ContactRow faceRow(const std::array<double, 3>& n, const std::array<double, 3>& w) {
+  ContactRow row;
+  row.slaveNode = 0;
+  row.normal = n;
+  for (int node = 0; node < 4; ++node) {
+    const double s = node == 0 ? -1.0 : w[static_cast<std::size_t>(node - 1)];
+    for (int c = 0; c < 3; ++c)
+      row.entries.push_back({node, c, s * n[static_cast<std::size_t>(c)]});
+  }
+  return row;
+}
+
+TEUCHOS_UNIT_TEST(TangentialRows, FrictionLeavesOutHeldDirections) {
+  const double e = 1e-3;  // the deformed normal's tilt out of the symmetry plane
+  const std::array<double, 3> n{0.1 / std::sqrt(1.01 + e * e), -e / std::sqrt(1.01 + e * e),
+                                1.0 / std::sqrt(1.01 + e * e)};
+  auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  };
+  // Nodes 0, 1, 2 on the symmetry plane y = 0 (u_y held), node 3 off it.
+  const auto heldY = [](int node, int c) { return c == 1 && node != 3; };
+  // The closest point on the held edge (node 3's weight 0), then tilted off it by 1e-5.
+  for (double w3 : {0.0, 1e-5}) {
+    const ContactRow row = faceRow(n, {0.4, 0.6 - w3, w3});
+    const auto t = contact::frictionTangentialRows(row, 3, heldY);
+    TEST_EQUALITY(t.size(), 1u);
+    if (t.size() != 1u) continue;
+    TEST_FLOATING_EQUALITY(dot(t[0].normal, t[0].normal), 1.0, 1e-14);
+    TEST_COMPARE(std::abs(dot(t[0].normal, n)), <, 1e-15);
+    TEST_EQUALITY(t[0].normal[1], 0.0);  // no y: independent of the symmetry rows
+    // The row is the tangent applied to the same nodes: sliding the slave along it by a.
+    std::vector<double> u(12, 0.0);
+    for (int c = 0; c < 3; ++c) u[static_cast<std::size_t>(c)] = 1e-3 * t[0].normal[c];
+    TEST_COMPARE(std::abs(contact::applyRow(t[0], 3, u) + 1e-3), <, 1e-17);
+  }
+  // A master point well inside the face (node 3 free, 30 % of the weight): both tangents.
+  {
+    const ContactRow row = faceRow(n, {0.3, 0.4, 0.3});
+    const auto t = contact::frictionTangentialRows(row, 3, heldY);
+    const auto plain = tangentialRows(row, 3);
+    TEST_EQUALITY(t.size(), 2u);
+    for (std::size_t j = 0; j < std::min(t.size(), plain.size()); ++j)
+      for (std::size_t k = 0; k < plain[j].entries.size(); ++k)
+        TEST_EQUALITY(t[j].entries[k].coef, plain[j].entries[k].coef);
+  }
+  // The slave not held: friction holds the master along y, both tangents stay.
+  TEST_EQUALITY(contact::frictionTangentialRows(faceRow(n, {0.4, 0.6, 0.0}), 3,
+                                                [](int node, int c) { return c == 1 && node > 0; })
+                    .size(),
+                2u);
+  // Nothing held: tangentialRows'.
+  TEST_EQUALITY(contact::frictionTangentialRows(faceRow(n, {0.4, 0.6, 0.0}), 3,
+                                                [](int, int) { return false; })
+                    .size(),
+                2u);
+  // Held in x and y (the axis of a quarter model), or everywhere: no tangential row. Held in
+  // z only (along n): no tangent is held, both stay.
+  TEST_EQUALITY(contact::frictionTangentialRows(faceRow(n, {0.4, 0.6, 0.0}), 3,
+                                                [](int node, int c) { return c < 2 && node != 3; })
+                    .size(),
+                0u);
+  TEST_EQUALITY(contact::frictionTangentialRows(faceRow(n, {0.4, 0.6, 0.0}), 3,
+                                                [](int node, int c) { return c == 2 && node != 3; })
+                    .size(),
+                2u);
+  // 2D: a slave and master held along the tangent x (a symmetry axis x = 0 through a contact
+  // along y): no tangential row; held along y (the normal): the tangent stays.
+  ContactRow row2;
+  row2.slaveNode = 0;
+  row2.normal = {0.0, 1.0, 0.0};
+  row2.entries = {{0, 0, 0.0}, {0, 1, -1.0}, {1, 0, 0.0}, {1, 1, 1.0}, {2, 0, 0.0}, {2, 1, 0.0}};
+  TEST_EQUALITY(
+      contact::frictionTangentialRows(row2, 2, [](int node, int c) { return c == 0 && node < 2; })
+          .size(),
+      0u);
+  TEST_EQUALITY(
+      contact::frictionTangentialRows(row2, 2, [](int node, int c) { return c == 1 && node < 2; })
+          .size(),
+      1u);
 }
 
 TEUCHOS_UNIT_TEST(TangentialRows, RowsWithoutAllComponentsRefused) {

@@ -130,6 +130,13 @@ std::pair<int, int> dofOfNode(const ElasticContactProblem& p, int node, int comp
   return {p.copyOf[node].first, p.dim() * p.copyOf[node].second + component};
 }
 
+// The tangential rows friction adds beside contact row k (frictionTangentialRows).
+std::vector<ContactRow> frictionTangents(const ElasticContactProblem& p, std::size_t k) {
+  return frictionTangentialRows(p.contact.rows[k], p.dim(), [&](int node, int c) {
+    return p.heldComponents.count({node, c}) > 0;
+  });
+}
+
 std::vector<double> difference(const std::vector<double>& a, const std::vector<double>& b) {
   std::vector<double> d(std::max(a.size(), b.size()), 0.0);
   for (std::size_t i = 0; i < d.size(); ++i)
@@ -165,14 +172,18 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
       const auto it = bounds.find(p.contact.rows[k].slaveNode);
       bound = it == bounds.end() ? 0.0 : it->second;
     }
-    const std::vector<ContactRow> tangents = tangentialRows(p.contact.rows[k], dim);
+    // A zero bound holds the multipliers at 0: the rows would change nothing but the QP's size
+    // (an open node under Coulomb, and every node in the first fixed-point iteration).
+    if (!(bound > 0.0)) continue;
+    const std::vector<ContactRow> tangents = frictionTangents(p, k);
     for (std::size_t j = 0; j < tangents.size(); ++j) {
       tfeti::InequalityRow row = toInequalityRow(tangents[j], dofOf);
       row.gap = back.empty() ? 0.0 : applyRow(tangents[j], dim, back);
       row.lowerBound = -bound;
       row.upperBound = bound;
-      // 3D: the two rows' multipliers in the disc |lambda_T| <= g (isotropic friction).
-      if (dim == 3) row.disc = static_cast<int>(j) + 1;
+      // Two rows (3D): their multipliers in the disc |lambda_T| <= g (isotropic friction); one
+      // row (2D, or 3D on a symmetry plane): the box.
+      if (tangents.size() == 2) row.disc = static_cast<int>(j) + 1;
       out.push_back(std::move(row));
     }
   }
@@ -200,32 +211,51 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
     if (!friction.onRow(p, k)) continue;
     const ContactRow& row = p.contact.rows[k];
     ContactNode& node = *bySlave.at(row.slaveNode);
-    const std::vector<ContactRow> tangents = tangentialRows(row, dim);
-    std::vector<std::size_t> index;
+    const std::vector<ContactRow> tangents = frictionTangents(p, k);
+    // Each tangential row's multiplier and bound; a node without its rows had a zero bound
+    // (frictionRows leaves them out): multipliers 0.
+    std::vector<double> lambda, bound;
     for (const ContactRow& t : tangents) {
       const auto it = byEntries.find(entryKey(toInequalityRow(t, dofOf)));
-      if (it == byEntries.end())
-        throw std::logic_error("addFrictionResults: no tangential row of slave node " +
-                               std::to_string(row.slaveNode) + " in the solver's rows");
-      index.push_back(it->second);
+      if (it == byEntries.end() && !lambda.empty())
+        throw std::logic_error("addFrictionResults: one tangential row of slave node " +
+                               std::to_string(row.slaveNode) + " is not in the solver's rows");
+      if (it == byEntries.end()) break;
+      lambda.push_back(lambdas[it->second]);
+      bound.push_back(rows[it->second].upperBound);
     }
+    lambda.resize(tangents.size(), 0.0);
+    bound.resize(tangents.size(), 0.0);
     for (int c = 0; c < 3; ++c) node.force[c] = node.lambda * node.normal[c];
     for (std::size_t j = 0; j < tangents.size(); ++j)
-      for (int c = 0; c < dim; ++c) node.force[c] += lambdas[index[j]] * tangents[j].normal[c];
-    const tfeti::InequalityRow& r = rows[index[0]];
-    node.slipBound = r.upperBound;
-    if (dim == 2) {
-      node.tangentialForce = lambdas[index[0]];
+      for (int c = 0; c < dim; ++c) node.force[c] += lambda[j] * tangents[j].normal[c];
+    if (tangents.empty()) {
+      // Held in every tangential direction: no slip, and the supports carry the tangential
+      // force. The bound is the one the rows would have had (Coulomb: of the final state).
+      const auto basis = tangentBasis(row.normal, dim);
+      for (int c = 0; c < 3; ++c) node.tangent[c] = basis[0][c];
+      node.tangentialForce = 0.0;
+      node.slip = 0.0;
+      node.slipBound = friction.law == FrictionSpec::Law::Tresca
+                           ? friction.slipBound * w[k]
+                           : friction.coefficient * std::max(node.lambda, 0.0);
+      node.frictionState = node.lambda > 0.0 ? 1 : 0;
+    } else if (tangents.size() == 1) {
+      // One tangent (2D; 3D on a symmetry plane): the signed force along it.
+      node.slipBound = bound[0];
+      node.tangentialForce = lambda[0];
       node.slip = step.empty() ? 0.0 : -applyRow(tangents[0], dim, step);
       for (int c = 0; c < 3; ++c) node.tangent[c] = tangents[0].normal[c];
-      node.frictionState = !(node.lambda > 0.0)                       ? 0
-                           : r.boundActive(node.tangentialForce) == 0 ? 1
-                                                                      : 2;
+      tfeti::InequalityRow box;
+      box.lowerBound = -bound[0];
+      box.upperBound = bound[0];
+      node.frictionState = !(node.lambda > 0.0) ? 0 : box.boundActive(lambda[0]) == 0 ? 1 : 2;
     } else {
-      // 3D: the tangent is the direction of the tangential force (the first tangent where it is
-      // zero), tangentialForce its magnitude, slip the step's slip along it; slip where
+      // A disc: the tangent is the direction of the tangential force (the first tangent where
+      // it is zero), tangentialForce its magnitude, slip the step's slip along it; slip where
       // |lambda_T| is at the disc's radius.
-      const double l1 = lambdas[index[0]], l2 = lambdas[index[1]], lt = std::hypot(l1, l2);
+      node.slipBound = bound[0];
+      const double l1 = lambda[0], l2 = lambda[1], lt = std::hypot(l1, l2);
       const double c1 = lt > 0.0 ? l1 / lt : 1.0, c2 = lt > 0.0 ? l2 / lt : 0.0;
       node.tangentialForce = lt;
       for (int c = 0; c < 3; ++c)
@@ -234,7 +264,7 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
           step.empty()
               ? 0.0
               : -(c1 * applyRow(tangents[0], dim, step) + c2 * applyRow(tangents[1], dim, step));
-      const double g = r.upperBound;
+      const double g = bound[0];
       node.frictionState = !(node.lambda > 0.0) ? 0 : (g > 0.0 && lt < g * (1.0 - 1e-10)) ? 1 : 2;
     }
     node.tangentialTraction = w[k] > 0.0 ? node.tangentialForce / w[k] : 0.0;

@@ -18,6 +18,7 @@
 // node, read back from the normal row as s = sum_c coef_c n_c) times t_c, so a rigid obstacle's
 // rows (slave entries only) are handled alike.
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "contact_ContactRows.hpp"
@@ -32,6 +33,24 @@ std::vector<std::array<double, 3>> tangentBasis(const std::array<double, 3>& n, 
 // argument of the friction bound) and the same entries (nodes, components) as the normal row.
 // Throws std::invalid_argument when the row's entries are not dim components per node.
 std::vector<ContactRow> tangentialRows(const ContactRow& normalRow, int dim);
+
+// Whether a mesh node's component is held by a Dirichlet condition (Fixed, Symmetry or
+// Prescribed boundaries).
+using HeldComponent = std::function<bool(int node, int component)>;
+
+// The tangential rows that friction adds beside a normal row: tangentialRows' rows, less the
+// directions in which the pair cannot slide because the row's nodes are held there: the slave
+// node, and the master nodes it is projected between but for at most 5 % of the row's weight
+// (the deformed normal tilts the closest point a little off a held master edge). On a symmetry
+// plane y = 0 that cuts the contact (a half model) both sides have u_y = 0: the tangential row
+// along y would be a combination of the symmetry rows, which makes the dual Hessian singular
+// with a disc on that direction, and its multiplier is the symmetry's reaction, not friction
+// (zero by symmetry). Each held direction e_c that is not along n (|e_c - (e_c . n) n| > 0.1,
+// orthogonalized against the others) removes one tangent: 3D keeps t = n x e_c / |n x e_c|
+// (one row, a box) or none; 2D keeps its tangent or none. Where nothing is held, the rows are
+// tangentialRows' bit for bit.
+std::vector<ContactRow> frictionTangentialRows(const ContactRow& normalRow, int dim,
+                                               const HeldComponent& held);
 
 // Sum of the row's coefficients times the displacement (dim per mesh node): B_T,i u.
 double applyRow(const ContactRow& row, int dim, const std::vector<double>& displacement);

@@ -214,6 +214,11 @@ Supports dirichletConditions(const ElasticContactSpec& spec, ElasticContactProbl
       },
       spec.fixed, spec.symmetry);
   requireEveryBodyHeld(mesh, spec, h.fixedNodes, h.fixedComponents, p.prescribed);
+  p.heldComponents = h.fixedComponents;
+  for (int n : h.fixedNodes)
+    for (int c = 0; c < dim; ++c) p.heldComponents.insert({n, c});
+  for (const auto& [nc, value] : p.prescribed)
+    p.heldComponents.insert({static_cast<int>(nc.first), nc.second});
   return h;
 }
 

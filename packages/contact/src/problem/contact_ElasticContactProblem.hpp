@@ -9,6 +9,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,10 @@ struct ElasticContactProblem {
   // The prescribed displacements: values per (node, component), and this rank's rows of them at
   // their full value (prescribedDisplacementRows at load factor 1).
   PrescribedValues prescribed;
+  // Every (mesh node, component) a Dirichlet condition holds: the Fixed boundaries' nodes (all
+  // components), the Symmetry boundaries' and the prescribed ones. Friction leaves out the
+  // tangents in which both sides of a contact row are held (frictionTangentialRows).
+  std::set<std::pair<int, int>> heldComponents;
   std::vector<tfeti::EqualityRow> equalities;
   // The kinematic couplings' rows (rank 0 holds them; included in `equalities`).
   std::vector<tfeti::EqualityRow> couplingRows;
