@@ -34,6 +34,13 @@ void addFrictionParameters(Teuchos::ParameterList& cp) {
         "Coulomb: the most fixed-point iterations of a load step (more: the step is rejected and "
         "cut back)",
         tfeti::strict::intBetween(1, 100000));
+  f.set("Coulomb scheme", "in_newton",
+        "Coulomb: in_newton (the bounds are set to mu lambda_N after every Newton iteration's "
+        "QP; the step converges when Eta 1, Eta 2 and the Fixed-point tolerance hold together) "
+        "or fixed_point (each fixed-point iteration re-solves the load step's Newton loop with "
+        "the bounds of the previous one: 2-2.5x the multiplications)",
+        Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+            Teuchos::tuple<std::string>("fixed_point", "in_newton"), "Coulomb scheme")));
   f.set("Slave", "", "the contact pair this friction is for: its Slave (empty: the pair's)");
   f.set("Master", "", "the contact pair this friction is for: its Master (empty: the pair's)");
 }
@@ -52,6 +59,10 @@ FrictionSpec frictionOf(const Teuchos::ParameterList& params, const Teuchos::Par
                                 "\") is not a contact pair of the problem (its pair: Slave \"" +
                                 slave + "\", Master \"" + master + "\")");
   FrictionSpec spec;
+  const std::string scheme = f.get<std::string>("Coulomb scheme");
+  if (scheme != "in_newton" && law != "Coulomb")
+    throw std::invalid_argument(where + "\"Coulomb scheme\" = " + scheme +
+                                " is Coulomb's; \"Friction law\" is " + law);
   spec.slipBound = f.get<double>("Slip bound");
   spec.coefficient = f.get<double>("Friction coefficient");
   if (law == "none") {
@@ -89,6 +100,8 @@ FrictionSpec frictionOf(const Teuchos::ParameterList& params, const Teuchos::Par
                                 "coefficient\"");
   spec.fixedPointTolerance = f.get<double>("Fixed-point tolerance");
   spec.maxFixedPointIterations = f.get<int>("Fixed-point iterations");
+  spec.scheme =
+      scheme == "in_newton" ? FrictionSpec::Scheme::InNewton : FrictionSpec::Scheme::Outer;
   return spec;
 }
 

@@ -36,6 +36,11 @@ struct FrictionSpec {
   double coefficient = 0.0;  // Coulomb: mu
   double fixedPointTolerance = 1e-6;
   int maxFixedPointIterations = 50;
+  // Coulomb: the bounds updated after every Newton iteration (InNewton, the default), or a fixed
+  // point around the step's Newton loop (Outer, `Coulomb scheme` = fixed_point;
+  // contact_FrictionStep.hpp).
+  enum class Scheme { Outer, InNewton };
+  Scheme scheme = Scheme::InNewton;
   // The contact pair (index into ElasticContactProblem::pairs) it acts on; -1: every row (the
   // old keys' single pair).
   int pair = -1;

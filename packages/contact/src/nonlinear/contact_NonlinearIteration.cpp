@@ -202,8 +202,9 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
         if (!qp.converged) out.reason = "the contact QP did not converge (" + qp.qp.message + ")";
         return out;
       }
+      const bool settled = !boundsSettled || boundsSettled();
       // Only a full step of an exact QP ends a step: the multipliers reported are that QP's.
-      if (check.converged && factor == 1.0 && trial.alpha == 1.0) {
+      if (check.converged && settled && factor == 1.0 && trial.alpha == 1.0) {
         out.converged = true;
         return out;
       }

@@ -65,6 +65,11 @@ class LoadStepIteration {
   // Progress lines per iteration (Verbosity 2): called with the record of each iteration.
   std::function<void(const IterationRecord&)> onIteration;
 
+  // Coulomb with its bounds inside the Newton loop (contact_FrictionStep.hpp): called after each
+  // iteration's QP; it updates frictionBounds and says whether they have settled, which the step
+  // then needs besides Eta 1 and Eta 2.
+  std::function<bool()> boundsSettled;
+
   // The named steps.
   void updateContact(const Field& u, double t) const;
   tfeti::DualResult solveIncrement(const Field& u, const Field& fint, double t,
