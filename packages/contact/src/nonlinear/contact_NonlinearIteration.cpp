@@ -1,10 +1,13 @@
 #include "contact_NonlinearIteration.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <iostream>
 #include <utility>
 
 #include "contact_ContactMaster.hpp"
 #include "contact_PrescribedDisplacement.hpp"
+#include "contact_TangentialRows.hpp"
 
 namespace contact {
 
@@ -48,7 +51,19 @@ void LoadStepIteration::updateContact(const Field& u, double t) const {
       pair.master = makePairMaster(problem.mesh, at, search);
     }
   const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
-  contact::updateContact(problem, current, comm_->getRank());
+  if (contactFrozen_) {
+    // The frozen rows, their gaps moved by the displacement since the freeze.
+    std::vector<double> moved(current.size(), 0.0);
+    for (std::size_t i = 0; i < current.size(); ++i)
+      moved[i] = current[i] - (i < frozenAt_.size() ? frozenAt_[i] : 0.0);
+    for (std::size_t k = 0; k < problem.contact.rows.size(); ++k)
+      problem.contact.rows[k].gap =
+          frozenGaps_[k] - applyRow(problem.contact.rows[k], problem.dim(), moved);
+    setInequalitiesFromRows(problem, comm_->getRank());
+  } else {
+    contact::updateContact(problem, current, comm_->getRank());
+  }
+  contactAt_ = current;
   if (friction.active()) {
     const std::vector<tfeti::InequalityRow> rows =
         frictionRows(problem, friction, frictionBounds,
@@ -134,7 +149,17 @@ LoadStepIteration::Trial LoadStepIteration::tryStep(const Field& u, const Field&
   return trial;
 }
 
+bool LoadStepIteration::twoCycle(const std::vector<IterationRecord>& it) {
+  const std::size_t n = it.size();
+  if (n < 4) return false;
+  const IterationRecord &a = it[n - 3], &b = it[n - 2], &c = it[n - 1];
+  return std::abs(c.solutionNorm - a.solutionNorm) <= 1e-9 * c.solutionNorm &&
+         std::abs(c.relativeIncrement - b.relativeIncrement) <= 1e-3 * c.relativeIncrement &&
+         c.relativeIncrement > 0.0;
+}
+
 StepOutcome LoadStepIteration::attempt(int step, double t) const {
+  contactFrozen_ = false;
   StepOutcome out;
   out.u = model_.u;
   Field& u = out.u;
@@ -207,6 +232,18 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
       if (check.converged && settled && factor == 1.0 && trial.alpha == 1.0) {
         out.converged = true;
         return out;
+      }
+      if (!contactFrozen_ && !check.converged && twoCycle(out.iterations)) {
+        contactFrozen_ = true;
+        frozenAt_ = contactAt_;
+        frozenGaps_.clear();
+        for (const ContactRow& row : model_.problem.contact.rows) frozenGaps_.push_back(row.gap);
+        if (comm_->getRank() == 0)
+          std::cout << "  step " << step << " iteration " << it
+                    << ": the contact update alternates between two states (||du||/||u|| = "
+                    << check.relativeIncrement
+                    << " twice, u back where it was): its rows are kept for the rest of the step"
+                    << std::endl;
       }
       factor = check.converged ? 1.0
                                : std::clamp(check.relativeResidual / options_.eta2, 1.0,

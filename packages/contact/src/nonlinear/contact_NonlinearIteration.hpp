@@ -96,6 +96,17 @@ class LoadStepIteration {
   Trial tryStep(const Field& u, const Field& du, double alpha, const Field& forces,
                 const Field& previousForces, double t) const;
 
+  // A contact update that 2-cycles (the iterates alternate between two sets of rows: a slave
+  // node whose closest point jumps between master facets with different normals, and back) is
+  // stopped by freezing the rows: from then on the step keeps them and only moves their gaps
+  // with the displacement, g = g_frozen - B (u - u_frozen), which is a linear problem for Newton.
+  mutable bool contactFrozen_ = false;
+  mutable std::vector<double> contactAt_;   // the surface displacement the rows are at
+  mutable std::vector<double> frozenAt_;    // ... when they were frozen
+  mutable std::vector<double> frozenGaps_;  // their gaps then
+  // Whether the last three iterations show the 2-cycle: u_k = u_(k-2) and |du_k| = |du_(k-1)|.
+  static bool twoCycle(const std::vector<IterationRecord>& iterations);
+
   // The solver's factor is of the elastic stiffness (it is built with it; a small-strain
   // tangent with every point elastic is it again).
   mutable bool factorIsElastic_ = true;

@@ -632,6 +632,11 @@ void updateContact(ElasticContactProblem& p, const std::vector<double>& displace
       p.contact.cellSize = std::max(p.contact.cellSize, r.cellSize);
     }
   }
+  setInequalitiesFromRows(p, rank);
+}
+
+void setInequalitiesFromRows(ElasticContactProblem& p, int rank) {
+  const int dim = p.dim();
   auto dofOf = [&](int node, int component) {
     return std::make_pair(p.copyOf[node].first, dim * p.copyOf[node].second + component);
   };

@@ -141,6 +141,9 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
 // both pairs when a slave node has rows in two pairs (the rule: one pair per slave node).
 void updateContact(ElasticContactProblem& p, const std::vector<double>& displacement, int rank);
 
+// p.inequalities from p.contact's rows (rank 0 contributes them; the others none).
+void setInequalitiesFromRows(ElasticContactProblem& p, int rank);
+
 // Per row of p.contact: its slave node's share of its pair's slave boundary (the weight that
 // turns the row's multiplier into a pressure); a mortar row's own weight.
 std::vector<double> contactRowWeights(const ElasticContactProblem& p);
