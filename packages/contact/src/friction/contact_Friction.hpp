@@ -4,7 +4,8 @@
 // friction results.
 //
 // The increment QP of a load step (contact_NonlinearIteration.hpp) gets, beside each
-// non-penetration row, dim - 1 tangential rows (contact_TangentialRows.hpp) with the bounds
+// non-penetration row, dim - 1 tangential rows (contact_TangentialRows.hpp; fewer where both
+// sides are held along a tangent, frictionTangentialRows) with the bounds
 // -g_i <= lambda_T <= g_i, g_i = g w_i (w_i the slave node's share of the slave boundary, the
 // same lumping that turns the normal multiplier into the pressure, so g is a force per unit
 // length in 2D). The term g_i |s_i| of the step's dissipation is in the slip s_i = -B_T,i (u -
@@ -73,9 +74,10 @@ FrictionSpec modelFriction(const Teuchos::ParameterList& params,
                            const std::vector<ContactPairSpec>& pairs);
 
 // The friction rows of the contact rows p.contact (rank 0 contributes them, as the normal rows):
-// per contact row dim - 1 rows with the box +-g_i (Tresca: slipBound times the slave node's
+// per contact row the rows of frictionTangentialRows (dim - 1 unless a tangent is held; 3D: two
+// rows form a disc, one a box) with the bound g_i (Tresca: slipBound times the slave node's
 // weight; Coulomb: `bounds`, 0 for a node it lacks) and c_T = B_T (stepStart - current) (surface
-// displacements, dim per mesh node).
+// displacements, dim per mesh node). A row whose bound is 0 is left out (its multiplier is 0).
 std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
                                                const FrictionSpec& friction,
                                                const SlipBounds& bounds,
