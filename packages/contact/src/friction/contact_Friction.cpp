@@ -203,6 +203,58 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
   return out;
 }
 
+namespace {
+
+// A node's tangential force, slip, bound and state from its tangential rows' multipliers and
+// bounds (none: held in every tangent; one: a box; two: a disc). `step` is the step's surface
+// displacement, w the node's weight.
+void setNodeFriction(ContactNode& node, const ContactRow& row,
+                     const std::vector<ContactRow>& tangents, const std::vector<double>& lambda,
+                     const std::vector<double>& bound, const FrictionSpec& friction, int dim,
+                     const std::vector<double>& step, double w) {
+  if (tangents.empty()) {
+    // Held in every tangential direction: no slip, and the supports carry the tangential
+    // force. The bound is the one the rows would have had (Coulomb: of the final state).
+    const auto basis = tangentBasis(row.normal, dim);
+    for (int c = 0; c < 3; ++c) node.tangent[c] = basis[0][c];
+    node.tangentialForce = 0.0;
+    node.slip = 0.0;
+    node.slipBound = friction.law == FrictionSpec::Law::Tresca
+                         ? friction.slipBound * w
+                         : friction.coefficient * std::max(node.lambda, 0.0);
+    node.frictionState = node.lambda > 0.0 ? 1 : 0;
+  } else if (tangents.size() == 1) {
+    // One tangent (2D; 3D on a symmetry plane): the signed force along it.
+    node.slipBound = bound[0];
+    node.tangentialForce = lambda[0];
+    node.slip = step.empty() ? 0.0 : -applyRow(tangents[0], dim, step);
+    for (int c = 0; c < 3; ++c) node.tangent[c] = tangents[0].normal[c];
+    tfeti::InequalityRow box;
+    box.lowerBound = -bound[0];
+    box.upperBound = bound[0];
+    node.frictionState = !(node.lambda > 0.0) ? 0 : box.boundActive(lambda[0]) == 0 ? 1 : 2;
+  } else {
+    // A disc: the tangent is the direction of the tangential force (the first tangent where
+    // it is zero), tangentialForce its magnitude, slip the step's slip along it; slip where
+    // |lambda_T| is at the disc's radius.
+    node.slipBound = bound[0];
+    const double l1 = lambda[0], l2 = lambda[1], lt = std::hypot(l1, l2);
+    const double c1 = lt > 0.0 ? l1 / lt : 1.0, c2 = lt > 0.0 ? l2 / lt : 0.0;
+    node.tangentialForce = lt;
+    for (int c = 0; c < 3; ++c)
+      node.tangent[c] = c1 * tangents[0].normal[c] + c2 * tangents[1].normal[c];
+    node.slip =
+        step.empty()
+            ? 0.0
+            : -(c1 * applyRow(tangents[0], dim, step) + c2 * applyRow(tangents[1], dim, step));
+    const double g = bound[0];
+    node.frictionState = !(node.lambda > 0.0) ? 0 : (g > 0.0 && lt < g * (1.0 - 1e-10)) ? 1 : 2;
+  }
+  node.tangentialTraction = w > 0.0 ? node.tangentialForce / w : 0.0;
+}
+
+}  // namespace
+
 void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactProblem& p,
                         const tfeti::FetiSolver& solver, const FrictionSpec& friction,
                         const std::vector<double>& stepStart, const std::vector<double>& current) {
@@ -242,45 +294,7 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
     for (int c = 0; c < 3; ++c) node.force[c] = node.lambda * node.normal[c];
     for (std::size_t j = 0; j < tangents.size(); ++j)
       for (int c = 0; c < dim; ++c) node.force[c] += lambda[j] * tangents[j].normal[c];
-    if (tangents.empty()) {
-      // Held in every tangential direction: no slip, and the supports carry the tangential
-      // force. The bound is the one the rows would have had (Coulomb: of the final state).
-      const auto basis = tangentBasis(row.normal, dim);
-      for (int c = 0; c < 3; ++c) node.tangent[c] = basis[0][c];
-      node.tangentialForce = 0.0;
-      node.slip = 0.0;
-      node.slipBound = friction.law == FrictionSpec::Law::Tresca
-                           ? friction.slipBound * w[k]
-                           : friction.coefficient * std::max(node.lambda, 0.0);
-      node.frictionState = node.lambda > 0.0 ? 1 : 0;
-    } else if (tangents.size() == 1) {
-      // One tangent (2D; 3D on a symmetry plane): the signed force along it.
-      node.slipBound = bound[0];
-      node.tangentialForce = lambda[0];
-      node.slip = step.empty() ? 0.0 : -applyRow(tangents[0], dim, step);
-      for (int c = 0; c < 3; ++c) node.tangent[c] = tangents[0].normal[c];
-      tfeti::InequalityRow box;
-      box.lowerBound = -bound[0];
-      box.upperBound = bound[0];
-      node.frictionState = !(node.lambda > 0.0) ? 0 : box.boundActive(lambda[0]) == 0 ? 1 : 2;
-    } else {
-      // A disc: the tangent is the direction of the tangential force (the first tangent where
-      // it is zero), tangentialForce its magnitude, slip the step's slip along it; slip where
-      // |lambda_T| is at the disc's radius.
-      node.slipBound = bound[0];
-      const double l1 = lambda[0], l2 = lambda[1], lt = std::hypot(l1, l2);
-      const double c1 = lt > 0.0 ? l1 / lt : 1.0, c2 = lt > 0.0 ? l2 / lt : 0.0;
-      node.tangentialForce = lt;
-      for (int c = 0; c < 3; ++c)
-        node.tangent[c] = c1 * tangents[0].normal[c] + c2 * tangents[1].normal[c];
-      node.slip =
-          step.empty()
-              ? 0.0
-              : -(c1 * applyRow(tangents[0], dim, step) + c2 * applyRow(tangents[1], dim, step));
-      const double g = bound[0];
-      node.frictionState = !(node.lambda > 0.0) ? 0 : (g > 0.0 && lt < g * (1.0 - 1e-10)) ? 1 : 2;
-    }
-    node.tangentialTraction = w[k] > 0.0 ? node.tangentialForce / w[k] : 0.0;
+    setNodeFriction(node, row, tangents, lambda, bound, friction, dim, step, w[k]);
   }
 }
 

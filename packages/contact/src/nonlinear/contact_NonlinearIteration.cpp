@@ -36,6 +36,17 @@ LoadStepIteration::LoadStepIteration(const Teuchos::RCP<const tfeti::Comm>& comm
                                      const NonlinearOptions& options, double loadNorm)
     : comm_(comm), model_(model), solver_(solver), options_(options), loadNorm_(loadNorm) {}
 
+void LoadStepIteration::moveFrozenGaps(const std::vector<double>& current) const {
+  ElasticContactProblem& problem = model_.problem;
+  std::vector<double> moved(current.size(), 0.0);
+  for (std::size_t i = 0; i < current.size(); ++i)
+    moved[i] = current[i] - (i < frozenAt_.size() ? frozenAt_[i] : 0.0);
+  for (std::size_t k = 0; k < problem.contact.rows.size(); ++k)
+    problem.contact.rows[k].gap =
+        frozenGaps_[k] - applyRow(problem.contact.rows[k], problem.dim(), moved);
+  setInequalitiesFromRows(problem, comm_->getRank());
+}
+
 void LoadStepIteration::updateContact(const Field& u, double t) const {
   ElasticContactProblem& problem = model_.problem;
   if (!options_.obstacleDisplacement.empty())
@@ -51,18 +62,10 @@ void LoadStepIteration::updateContact(const Field& u, double t) const {
       pair.master = makePairMaster(problem.mesh, at, search);
     }
   const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
-  if (contactFrozen_) {
-    // The frozen rows, their gaps moved by the displacement since the freeze.
-    std::vector<double> moved(current.size(), 0.0);
-    for (std::size_t i = 0; i < current.size(); ++i)
-      moved[i] = current[i] - (i < frozenAt_.size() ? frozenAt_[i] : 0.0);
-    for (std::size_t k = 0; k < problem.contact.rows.size(); ++k)
-      problem.contact.rows[k].gap =
-          frozenGaps_[k] - applyRow(problem.contact.rows[k], problem.dim(), moved);
-    setInequalitiesFromRows(problem, comm_->getRank());
-  } else {
+  if (contactFrozen_)
+    moveFrozenGaps(current);
+  else
     contact::updateContact(problem, current, comm_->getRank());
-  }
   contactAt_ = current;
   if (friction.active()) {
     const std::vector<tfeti::InequalityRow> rows =
@@ -158,6 +161,19 @@ bool LoadStepIteration::twoCycle(const std::vector<IterationRecord>& it) {
          c.relativeIncrement > 0.0;
 }
 
+void LoadStepIteration::freezeContact(int step, int iteration, double relativeIncrement) const {
+  contactFrozen_ = true;
+  frozenAt_ = contactAt_;
+  frozenGaps_.clear();
+  for (const ContactRow& row : model_.problem.contact.rows) frozenGaps_.push_back(row.gap);
+  if (comm_->getRank() == 0)
+    std::cout << "  step " << step << " iteration " << iteration
+              << ": the contact update alternates between two states (||du||/||u|| = "
+              << relativeIncrement
+              << " twice, u back where it was): its rows are kept for the rest of the step"
+              << std::endl;
+}
+
 StepOutcome LoadStepIteration::attempt(int step, double t) const {
   contactFrozen_ = false;
   StepOutcome out;
@@ -233,18 +249,8 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
         out.converged = true;
         return out;
       }
-      if (!contactFrozen_ && !check.converged && twoCycle(out.iterations)) {
-        contactFrozen_ = true;
-        frozenAt_ = contactAt_;
-        frozenGaps_.clear();
-        for (const ContactRow& row : model_.problem.contact.rows) frozenGaps_.push_back(row.gap);
-        if (comm_->getRank() == 0)
-          std::cout << "  step " << step << " iteration " << it
-                    << ": the contact update alternates between two states (||du||/||u|| = "
-                    << check.relativeIncrement
-                    << " twice, u back where it was): its rows are kept for the rest of the step"
-                    << std::endl;
-      }
+      if (!contactFrozen_ && !check.converged && twoCycle(out.iterations))
+        freezeContact(step, it, check.relativeIncrement);
       factor = check.converged ? 1.0
                                : std::clamp(check.relativeResidual / options_.eta2, 1.0,
                                             options_.inexactQpFactor);

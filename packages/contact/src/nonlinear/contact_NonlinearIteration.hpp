@@ -106,6 +106,10 @@ class LoadStepIteration {
   mutable std::vector<double> frozenGaps_;  // their gaps then
   // Whether the last three iterations show the 2-cycle: u_k = u_(k-2) and |du_k| = |du_(k-1)|.
   static bool twoCycle(const std::vector<IterationRecord>& iterations);
+  // Keeps the rows in force (their gaps at contactAt_) for the rest of the step, and says so.
+  void freezeContact(int step, int iteration, double relativeIncrement) const;
+  // The frozen rows' gaps at the surface displacement `current`, and their dual rows.
+  void moveFrozenGaps(const std::vector<double>& current) const;
 
   // The solver's factor is of the elastic stiffness (it is built with it; a small-strain
   // tangent with every point elastic is it again).

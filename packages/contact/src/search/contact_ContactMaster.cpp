@@ -78,21 +78,25 @@ std::unique_ptr<ContactMaster> makeObstacleMaster(const RigidObstacle& obstacle,
   return std::make_unique<ObstacleMaster>(obstacle, options);
 }
 
-std::unique_ptr<ContactMaster> makeMeshContactMaster(const GmshMesh& mesh,
-                                                     const std::string& boundary,
-                                                     const ContactSearchOptions& options) {
-  const GmshBoundary& g = mesh.boundary(boundary);
-  if (mesh.dim == 3) return makeFaceMaster(masterFacesOfBoundary(mesh, g), options);
+MasterSurface masterSegmentsOfBoundary(const GmshMesh& mesh, const GmshBoundary& g) {
   int body = -1;
   for (int e = 0; e < g.numEdges() && body < 0; ++e) body = g.edgeBody[e];
   if (body < 0)
-    throw std::invalid_argument(mesh.source + ": boundary \"" + boundary + "\" is on no body");
+    throw std::invalid_argument(mesh.source + ": boundary \"" + g.name + "\" is on no body");
   MasterSurface m;
   m.nodesPerSegment = g.nodesPerEdge;
   m.segments = g.edges;
   const GmshBody& b = mesh.bodies[body];
   orientSegmentsByElements(m, mesh.coords, b.type, b.connectivity);
-  return makeSegmentMaster(std::move(m), options);
+  return m;
+}
+
+std::unique_ptr<ContactMaster> makeMeshContactMaster(const GmshMesh& mesh,
+                                                     const std::string& boundary,
+                                                     const ContactSearchOptions& options) {
+  const GmshBoundary& g = mesh.boundary(boundary);
+  if (mesh.dim == 3) return makeFaceMaster(masterFacesOfBoundary(mesh, g), options);
+  return makeSegmentMaster(masterSegmentsOfBoundary(mesh, g), options);
 }
 
 }  // namespace contact

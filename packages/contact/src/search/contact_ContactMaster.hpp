@@ -22,6 +22,11 @@ std::unique_ptr<ContactMaster> makeFaceMaster(MasterFaceSurface master,
 std::unique_ptr<ContactMaster> makeObstacleMaster(const RigidObstacle& obstacle,
                                                   const ContactSearchOptions& options);
 
+// A 2D boundary's segments oriented out of the body it belongs to (orientSegmentsByElements with
+// the body of its first related edge), the 2D counterpart of masterFacesOfBoundary. Throws
+// std::invalid_argument naming the file and the boundary when it is on no body.
+MasterSurface masterSegmentsOfBoundary(const GmshMesh& mesh, const GmshBoundary& boundary);
+
 // The named boundary of a mesh as master, oriented out of the body it belongs to: segments in
 // 2D (orientSegmentsByElements with the body of its first related edge), faces in 3D
 // (masterFacesOfBoundary). Throws std::invalid_argument naming the file and the boundary (an

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "contact_BucketGrid.hpp"
+#include "contact_ContactMaster.hpp"
 #include "contact_MortarIntegration.hpp"
 #include "contact_NodeToFace.hpp"
 #include "contact_NodeToSegment.hpp"
@@ -182,15 +183,7 @@ MortarSurface mortarSurfaceOfBoundary(const GmshMesh& mesh, const std::string& n
     s.facets = std::move(m.faces);
     return s;
   }
-  int body = -1;
-  for (int e = 0; e < g.numEdges() && body < 0; ++e) body = g.edgeBody[e];
-  if (body < 0)
-    throw std::invalid_argument(mesh.source + ": boundary \"" + name + "\" is on no body");
-  MasterSurface m;
-  m.nodesPerSegment = g.nodesPerEdge;
-  m.segments = g.edges;
-  const GmshBody& b = mesh.bodies[body];
-  orientSegmentsByElements(m, mesh.coords, b.type, b.connectivity);
+  MasterSurface m = masterSegmentsOfBoundary(mesh, g);
   s.type = g.type;
   s.facets = std::move(m.segments);
   return s;

@@ -137,6 +137,8 @@ class MprgpIteration : public Belos::Iteration<S, MV, OP> {
   using OPT = Belos::OperatorTraits<S, MV, OP>;
 
   void applyA(const MV& in, MV& out);
+  // g = A x - b afresh (one multiplication).
+  void computeGradient();
   // phi, beta, ||g^P|| and the proportioning test quantities from x and g.
   void updateGradientSplit();
   // p (or z) = the CG restart direction from phi.

@@ -78,6 +78,12 @@ void MprgpIteration<S, MV, OP>::applyA(const MV& in, MV& out) {
 }
 
 template <class S, class MV, class OP>
+void MprgpIteration<S, MV, OP>::computeGradient() {
+  applyA(*qp_.x, *g_);
+  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+}
+
+template <class S, class MV, class OP>
 void MprgpIteration<S, MV, OP>::updateGradientSplit() {
   set_->freeGradient(*qp_.x, *g_, *phi_);
   set_->choppedGradient(*qp_.x, *g_, *beta_);
@@ -144,8 +150,7 @@ void MprgpIteration<S, MV, OP>::initialize() {
   if (!g0_.is_null()) {
     MVT::Assign(*g0_, *g_);
   } else {
-    applyA(*qp_.x, *g_);
-    MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+    computeGradient();
   }
   if (!BT::allFinite(*g_))
     throw std::runtime_error("MPRGP: A x contains NaN or Inf for the initial guess x");
@@ -232,8 +237,7 @@ const char* MprgpIteration<S, MV, OP>::cgStep(S alphaCg) {
   // sliding discs back on their circles).
   set_->project(*qp_.x);
   if (slides) {
-    applyA(*qp_.x, *g_);
-    MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+    computeGradient();
     MVT::MvAddMv(S(1), *qp_.x, S(-1), *xHalf_, *phi_);
     MVT::MvAddMv(S(1), *g_, S(1), *gHalf_, *beta_);
     std::vector<S> change(1);
@@ -252,8 +256,7 @@ const char* MprgpIteration<S, MV, OP>::cgStep(S alphaCg) {
       // step from x instead, which decreases f for alphaBar < 2 / ||A||; CG restarts.
       MVT::MvAddMv(S(1), *xHalf_, -opts_.alphaBar, *gHalf_, *qp_.x);
       set_->project(*qp_.x);
-      applyA(*qp_.x, *g_);
-      MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+      computeGradient();
       updateGradientSplit();
       precondition(*p_);
       ++counters_.expansionSteps;
@@ -303,8 +306,7 @@ bool MprgpIteration<S, MV, OP>::tryOptimalExpansion() {
   MVT::Assign(*qp_.x, *xHalf_);
   MVT::MvAddMv(S(1), *qp_.x, -phiPhi[0] / phiAphi[0], *phi_, *qp_.x);
   set_->project(*qp_.x);
-  applyA(*qp_.x, *g_);
-  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  computeGradient();
   if (energy() <= fHalf) {
     updateGradientSplit();
     precondition(*p_);
@@ -329,8 +331,7 @@ bool MprgpIteration<S, MV, OP>::tryProjectedCgExpansion(S alphaFeasible, S alpha
   const S fHalf = S(0.5) * (xg[0] - xb[0]);
   MVT::MvAddMv(S(1), *qp_.x, -alphaCg, *p_, *qp_.x);
   set_->project(*qp_.x);
-  applyA(*qp_.x, *g_);
-  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  computeGradient();
   if (BT::allFinite(*g_) && energy() <= fHalf) {
     updateGradientSplit();
     precondition(*p_);
@@ -366,8 +367,7 @@ const char* MprgpIteration<S, MV, OP>::expansionStep(S alphaFeasible, S alphaCg)
   set_->project(*qp_.x);
   // The projection changed x non-linearly: recompute the gradient, which also stops the
   // recursive update from drifting.
-  applyA(*qp_.x, *g_);
-  MVT::MvAddMv(S(1), *g_, S(-1), *qp_.b, *g_);
+  computeGradient();
   updateGradientSplit();
   precondition(*p_);
   ++counters_.expansionSteps;
