@@ -2,7 +2,8 @@
 """Checks a run with several contact pairs ("Contact problem/Contact pairs").
 
   check_pairs.py DIR [DIR2 ...] --names A,B[,...] --load F|support [--tol T]
-                 [--magnitude-tol M] [--friction-pair K]
+                 [--magnitude-tol M] [--friction-pair K[,K2...]]
+                 [--pair-reference NAME=REFDIR ...] [--reference-tol R]
 
 For every DIR: the run converged; summary.json's contact.pairs lists the pairs A, B, ... in
 input order, each with force = |force_vector|; each pair's force component along z carries the
@@ -14,9 +15,13 @@ bonded pairs: no penetration and gluing) to 1e-6 of the solution's scale. contac
 nothing else; solution_*.vtu hold the point field contact_pair with the same indices (and -1).
 With several DIRs (rank counts) the pair forces, p_max and the contact extent agree to 1e-6 and
 the contact CSV has the same rows per pair with the same multipliers (to 1e-5 of the largest).
-With --friction-pair K only pair K has friction: summary.json has the friction keys, every CSV
-row of pair K a friction state (open, stick, slip) and at least one closed, every other row the
-state none.
+With --friction-pair K only pair K has friction (K2, ...: those pairs): summary.json has the
+friction keys (friction_law "mixed" where the pairs' laws differ), each friction pair's entry of
+contact.pairs its own friction record and every other entry none, every CSV row of a friction
+pair a friction state (open, stick, slip) and at least one closed, every other row the state
+none. With --pair-reference NAME=REFDIR the friction record of pair NAME equals the friction
+keys of the single-pair run REFDIR (the same contact problem alone): forces, stick and slip
+node counts, the stick and contact extents and the largest slip, to R (relative, default 1e-6).
 """
 import csv
 import glob
@@ -60,20 +65,55 @@ def vtu_pairs(d):
     return values
 
 
-def check_friction_pair(d, s, rows, k):
-    if "friction_law" not in s["contact"]:
+def check_friction_pairs(d, s, rows, ks):
+    c = s["contact"]
+    if "friction_law" not in c:
         fail(f"{d}: no friction keys in summary.json contact")
+    laws = set()
+    for k, p in enumerate(c["pairs"]):
+        if (k in ks) != ("friction" in p):
+            fail(f"{d}: pair {p['name']}: friction record {p.get('friction')}, expected "
+                 f"{'one' if k in ks else 'none'}")
+        if k in ks:
+            laws.add(p["friction"]["friction_law"])
+    expected = laws.pop() if len(laws) == 1 else "mixed"
+    if c["friction_law"] != expected:
+        fail(f"{d}: friction_law {c['friction_law']}, expected {expected}")
     states = {}
     for r in rows:
         states.setdefault(int(r["pair"]), set()).add(r.get("state", "none"))
     for pair, found in states.items():
-        if pair == k and ("none" in found or not found & {"stick", "slip"}):
-            fail(f"{d}: friction pair {k}: states {sorted(found)}")
-        if pair != k and found != {"none"}:
+        if pair in ks and ("none" in found or not found & {"stick", "slip"}):
+            fail(f"{d}: friction pair {pair}: states {sorted(found)}")
+        if pair not in ks and found != {"none"}:
             fail(f"{d}: pair {pair} without friction has the states {sorted(found)}")
 
 
-def check_one(d, names, load, tol, magnitude_tol, friction_pair):
+REFERENCE_KEYS = ("normal_force", "tangential_force", "slip_nodes", "stick_nodes",
+                  "stick_half_width", "contact_half_width", "stick_radius", "contact_radius",
+                  "max_accumulated_slip")
+
+
+def check_pair_reference(d, s, name, ref, tol):
+    entry = next((p for p in s["contact"]["pairs"] if p["name"] == name), None)
+    if entry is None or "friction" not in entry:
+        fail(f"{d}: no friction record for pair {name}")
+    r = summary(ref)
+    if not r["converged"]:
+        fail(f"{ref}: did not converge")
+    mine, theirs = entry["friction"], r["contact"]
+    for key in REFERENCE_KEYS:
+        if key not in theirs:
+            continue
+        a, b = mine.get(key), theirs[key]
+        if a is None or abs(a - b) > tol * max(abs(b), 1e-300):
+            fail(f"{d}: pair {name}: {key} {a}, {b} alone ({ref})")
+    print(f"OK: {d}: pair {name} is its single-pair run {ref} (tangential force "
+          f"{mine['tangential_force']:.10g}, {mine['stick_nodes']} stick, "
+          f"{mine['slip_nodes']} slip nodes)")
+
+
+def check_one(d, names, load, tol, magnitude_tol, friction_pairs):
     s = summary(d)
     if not s["converged"]:
         fail(f"{d}: did not converge")
@@ -106,8 +146,8 @@ def check_one(d, names, load, tol, magnitude_tol, friction_pair):
             if value > limit:
                 fail(f"{d}: {name} {value:.3e} > {limit:.3e}")
     rows = csv_rows(d)
-    if friction_pair is not None:
-        check_friction_pair(d, s, rows, friction_pair)
+    if friction_pairs is not None:
+        check_friction_pairs(d, s, rows, friction_pairs)
     indices = {int(r["pair"]) for r in rows}
     if indices != set(range(len(names))):
         fail(f"{d}: contact_pressure.csv pair indices {sorted(indices)}, expected "
@@ -162,18 +202,26 @@ def option(args, name, default):
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    flags = {"--names", "--load", "--tol", "--magnitude-tol", "--friction-pair"}
+    flags = {"--names", "--load", "--tol", "--magnitude-tol", "--friction-pair",
+             "--pair-reference", "--reference-tol"}
     dirs = [a for i, a in enumerate(args) if a not in flags and (i == 0 or args[i - 1] not in flags)]
     names = option(args, "--names", "").split(",")
     load = option(args, "--load", "nan")
     load = load if load == "support" else float(load)
     tol = float(option(args, "--tol", 1e-6))
     magnitude_tol = float(option(args, "--magnitude-tol", tol))
-    friction_pair = option(args, "--friction-pair", None)
-    friction_pair = None if friction_pair is None else int(friction_pair)
+    friction_pairs = option(args, "--friction-pair", None)
+    friction_pairs = None if friction_pairs is None else \
+        {int(k) for k in friction_pairs.split(",")}
+    references = [args[i + 1].split("=", 1) for i, a in enumerate(args)
+                  if a == "--pair-reference"]
+    reference_tol = float(option(args, "--reference-tol", 1e-6))
     if not dirs or not names[0] or load != load:  # nan: no --load
         fail("usage: check_pairs.py DIR [DIR2 ...] --names A,B --load F [--tol T]")
-    results = [(d, *check_one(d, names, load, tol, magnitude_tol, friction_pair))
+    results = [(d, *check_one(d, names, load, tol, magnitude_tol, friction_pairs))
                for d in dirs]
+    for d, s, _ in results:
+        for name, ref in references:
+            check_pair_reference(d, s, name, ref, reference_tol)
     if len(results) > 1:
         same_across(results)

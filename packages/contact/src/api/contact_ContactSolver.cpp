@@ -93,7 +93,7 @@ struct ContactSolver::Run {
   double loadNorm = 0.0, appliedForce = 0.0;
   double loadDirection[3] = {0.0, 0.0, 0.0};
   NonlinearHistory history;
-  FrictionSpec friction;
+  ModelFriction friction;
   FrictionHistory frictionHistory;  // read by a restart, kept up to date by the load steps
   std::vector<plasticity::StressField> stresses;  // elastic_contact: of the solution
   std::vector<ContactNode> nodes;                 // elastic_contact: of the solution
@@ -379,7 +379,7 @@ void ContactSolver::acceptStep(LoadSteps& s, int step, double t, StepOutcome& ou
     evaluateLinearSolution(rec);
   else
     s.output.fill(rec, r.loadDirection);
-  if (s.iteration.friction.law == FrictionSpec::Law::Coulomb)
+  if (s.iteration.friction.coulomb())
     s.fixedPointSteps.push_back({step, fixedPoint.iterations, fixedPoint.change});
   r.history.steps.push_back(rec);
   s.control.accept();

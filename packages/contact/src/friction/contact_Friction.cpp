@@ -115,24 +115,70 @@ FrictionSpec frictionSpec(const Teuchos::ParameterList& params, const std::strin
                     master);
 }
 
-FrictionSpec modelFriction(const Teuchos::ParameterList& params,
-                           const std::vector<ContactPairSpec>& pairs) {
-  if (pairs.size() == 1 && pairs.front().name.empty())
-    return frictionSpec(params, pairs.front().slave, pairs.front().master);
+bool ModelFriction::active() const {
+  return std::any_of(pairs.begin(), pairs.end(), [](const FrictionSpec& f) { return f.active(); });
+}
+
+bool ModelFriction::coulomb() const {
+  return std::any_of(pairs.begin(), pairs.end(),
+                     [](const FrictionSpec& f) { return f.law == FrictionSpec::Law::Coulomb; });
+}
+
+int ModelFriction::frictionPairs() const {
+  return static_cast<int>(
+      std::count_if(pairs.begin(), pairs.end(), [](const FrictionSpec& f) { return f.active(); }));
+}
+
+const FrictionSpec& ModelFriction::ofPair(int k) const {
+  static const FrictionSpec none;
+  const std::size_t i = k < 0 ? 0 : static_cast<std::size_t>(k);
+  return i < pairs.size() ? pairs[i] : none;
+}
+
+namespace {
+
+// The Coulomb controls of `f` become the model's; a second Coulomb pair must give the same.
+void takeCoulombControls(ModelFriction& m, const FrictionSpec& f, const std::string& where,
+                         const std::string& first) {
+  if (first.empty()) {
+    m.scheme = f.scheme;
+    m.fixedPointTolerance = f.fixedPointTolerance;
+    m.maxFixedPointIterations = f.maxFixedPointIterations;
+    return;
+  }
+  std::string key;
+  if (f.scheme != m.scheme)
+    key = "Coulomb scheme";
+  else if (f.fixedPointTolerance != m.fixedPointTolerance)
+    key = "Fixed-point tolerance";
+  else if (f.maxFixedPointIterations != m.maxFixedPointIterations)
+    key = "Fixed-point iterations";
+  if (!key.empty())
+    throw std::invalid_argument(where + "\"" + key + "\" differs from Coulomb pair \"" + first +
+                                "\"'s; the Coulomb pairs share one Newton loop, so they must "
+                                "give the same Coulomb scheme, Fixed-point tolerance and "
+                                "Fixed-point iterations");
+}
+
+}  // namespace
+
+ModelFriction modelFriction(const Teuchos::ParameterList& params,
+                            const std::vector<ContactPairSpec>& pairs) {
+  ModelFriction out;
+  if (pairs.size() == 1 && pairs.front().name.empty()) {
+    out.pairs.push_back(frictionSpec(params, pairs.front().slave, pairs.front().master));
+    takeCoulombControls(out, out.pairs.back(), "", "");
+    return out;
+  }
   const auto& list = params.sublist("Contact problem").sublist("Contact pairs");
-  FrictionSpec out;
-  for (std::size_t k = 0; k < pairs.size(); ++k) {
-    const ContactPairSpec& pair = pairs[k];
-    FrictionSpec f =
-        frictionOf(params, list.sublist(pair.name).sublist("Friction"),
-                   pair.where + "/Friction: ", pair.contactType, pair.slave, pair.master);
-    if (!f.active()) continue;
-    if (out.active())
-      throw std::invalid_argument(pair.where + "/Friction: pair \"" + pairs[out.pair].name +
-                                  "\" has friction too; friction on several contact pairs is "
-                                  "not available in this build (friction on one pair at most)");
-    out = f;
-    out.pair = static_cast<int>(k);
+  std::string firstCoulomb;
+  for (const ContactPairSpec& pair : pairs) {
+    const std::string where = pair.where + "/Friction: ";
+    out.pairs.push_back(frictionOf(params, list.sublist(pair.name).sublist("Friction"), where,
+                                   pair.contactType, pair.slave, pair.master));
+    if (out.pairs.back().law != FrictionSpec::Law::Coulomb) continue;
+    takeCoulombControls(out, out.pairs.back(), where, firstCoulomb);
+    if (firstCoulomb.empty()) firstCoulomb = pair.name;
   }
   return out;
 }
@@ -168,7 +214,7 @@ EntryKey entryKey(const tfeti::InequalityRow& r) {
 }  // namespace
 
 std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
-                                               const FrictionSpec& friction,
+                                               const ModelFriction& friction,
                                                const SlipBounds& bounds,
                                                const std::vector<double>& stepStart,
                                                const std::vector<double>& current, int rank) {
@@ -179,9 +225,10 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
   const std::vector<double> w = contactRowWeights(p);
   auto dofOf = [&](int n, int c) { return dofOfNode(p, n, c); };
   for (std::size_t k = 0; k < p.contact.rows.size(); ++k) {
-    if (!friction.onRow(p, k)) continue;
-    double bound = friction.slipBound * w[k];
-    if (friction.law == FrictionSpec::Law::Coulomb) {
+    const FrictionSpec& f = friction.ofRow(p, k);
+    if (!f.active()) continue;
+    double bound = f.slipBound * w[k];
+    if (f.law == FrictionSpec::Law::Coulomb) {
       const auto it = bounds.find(p.contact.rows[k].slaveNode);
       bound = it == bounds.end() ? 0.0 : it->second;
     }
@@ -256,7 +303,7 @@ void setNodeFriction(ContactNode& node, const ContactRow& row,
 }  // namespace
 
 void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactProblem& p,
-                        const tfeti::FetiSolver& solver, const FrictionSpec& friction,
+                        const tfeti::FetiSolver& solver, const ModelFriction& friction,
                         const std::vector<double>& stepStart, const std::vector<double>& current) {
   if (!friction.active()) return;
   const int dim = p.dim();
@@ -273,7 +320,8 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
   const std::vector<double> w = contactRowWeights(p);
   auto dofOf = [&](int n, int c) { return dofOfNode(p, n, c); };
   for (std::size_t k = 0; k < p.contact.rows.size(); ++k) {
-    if (!friction.onRow(p, k)) continue;
+    const FrictionSpec& f = friction.ofRow(p, k);
+    if (!f.active()) continue;
     const ContactRow& row = p.contact.rows[k];
     ContactNode& node = *bySlave.at(row.slaveNode);
     const std::vector<ContactRow> tangents = frictionTangents(p, k);
@@ -294,7 +342,7 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
     for (int c = 0; c < 3; ++c) node.force[c] = node.lambda * node.normal[c];
     for (std::size_t j = 0; j < tangents.size(); ++j)
       for (int c = 0; c < dim; ++c) node.force[c] += lambda[j] * tangents[j].normal[c];
-    setNodeFriction(node, row, tangents, lambda, bound, friction, dim, step, w[k]);
+    setNodeFriction(node, row, tangents, lambda, bound, f, dim, step, w[k]);
   }
 }
 
@@ -329,14 +377,10 @@ void addCattaneoMindlin(Json& f, const FrictionSpec& friction, double q, double 
   f["cattaneo_mindlin"] = std::move(cm);
 }
 
-}  // namespace
-
-void addFrictionJson(Json& f, const std::vector<ContactNode>& allNodes,
-                     const FrictionSpec& friction, int dim) {
-  // The nodes of the pair with friction (all of them for the old keys' pair).
-  std::vector<ContactNode> nodes;
-  for (const auto& n : allNodes)
-    if (friction.pair < 0 || n.pair == friction.pair) nodes.push_back(n);
+// The friction record over `nodes`, those of the friction pairs `pairs` (each node's bound from
+// its own pair's law).
+void frictionRecord(Json& f, const std::vector<ContactNode>& nodes, const ModelFriction& friction,
+                    const std::vector<int>& pairs, int dim) {
   double force = 0.0, ratio = 0.0, stickLo = 0.0, stickHi = 0.0, closedLo = 0.0, closedHi = 0.0;
   double stickRadius = 0.0, contactRadius = 0.0;  // 3D: from the contact axis
   long long slip = 0, stick = 0, closed = 0;
@@ -355,8 +399,9 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& allNodes,
     ++closed;
     // Coulomb: against mu lambda_N of the final state (the bound in force is the last
     // fixed-point iterate's, equal to it within the fixed point's tolerance).
+    const FrictionSpec& law = friction.ofPair(n.pair);
     const double bound =
-        friction.law == FrictionSpec::Law::Coulomb ? friction.coefficient * n.lambda : n.slipBound;
+        law.law == FrictionSpec::Law::Coulomb ? law.coefficient * n.lambda : n.slipBound;
     if (bound > 0.0) ratio = std::max(ratio, std::abs(n.tangentialForce) / bound);
     if (n.frictionState == 2) ++slip;
     if (n.frictionState == 1) {
@@ -365,9 +410,24 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& allNodes,
       ++stick;
     }
   }
-  f["friction_law"] = friction.law == FrictionSpec::Law::Tresca ? "Tresca" : "Coulomb";
-  if (friction.law == FrictionSpec::Law::Tresca) f["slip_bound"] = friction.slipBound;
-  if (friction.law == FrictionSpec::Law::Coulomb) f["friction_coefficient"] = friction.coefficient;
+  // The law, and its parameter where all the pairs share it.
+  const FrictionSpec& first = friction.ofPair(pairs.front());
+  bool sameLaw = true, sameParameter = true;
+  for (int k : pairs) {
+    const FrictionSpec& other = friction.ofPair(k);
+    sameLaw = sameLaw && other.law == first.law;
+    sameParameter = sameParameter && other.slipBound == first.slipBound &&
+                    other.coefficient == first.coefficient;
+  }
+  f["friction_law"] = !sameLaw                                 ? "mixed"
+                      : first.law == FrictionSpec::Law::Tresca ? "Tresca"
+                                                               : "Coulomb";
+  if (sameLaw && sameParameter && first.law == FrictionSpec::Law::Tresca)
+    f["slip_bound"] = first.slipBound;
+  if (sameLaw && sameParameter && first.law == FrictionSpec::Law::Coulomb)
+    f["friction_coefficient"] = first.coefficient;
+  // Cattaneo-Mindlin's stick zone is one pair's.
+  const FrictionSpec& single = pairs.size() == 1 ? first : FrictionSpec();
   f["normal_force"] = normal;
   f["tangential_force"] = force;
   // The resultant of the contact forces on the slave nodes: unlike the sums above it does not
@@ -391,16 +451,41 @@ void addFrictionJson(Json& f, const std::vector<ContactNode>& allNodes,
     // contact radius a and the stick radius c of a point contact (ContactExtentRule).
     f["contact_radius"] = contactRadius;
     f["stick_radius"] = stickRadius;
-    addCattaneoMindlin(f, friction, std::abs(force), normal, contactRadius, stickRadius, 3);
+    addCattaneoMindlin(f, single, std::abs(force), normal, contactRadius, stickRadius, 3);
   }
   if (dim == 2) {
     // Half the x extent of the closed nodes: the contact half-width a that goes with the stick
     // half-width c (both measured on the nodes, so that their ratio shares the mesh's bias).
     const double a = closed ? 0.5 * (closedHi - closedLo) : 0.0;
     f["contact_half_width"] = a;
-    addCattaneoMindlin(f, friction, std::abs(force), normal, a,
+    addCattaneoMindlin(f, single, std::abs(force), normal, a,
                        stick ? 0.5 * (stickHi - stickLo) : 0.0, 2);
   }
+}
+
+}  // namespace
+
+void addFrictionJson(Json& f, const std::vector<ContactNode>& allNodes,
+                     const ModelFriction& friction, int dim) {
+  // The nodes of the pairs with friction (all of them for the old keys' pair).
+  std::vector<ContactNode> nodes;
+  for (const auto& n : allNodes)
+    if (friction.ofPair(n.pair).active()) nodes.push_back(n);
+  std::vector<int> pairs;
+  for (std::size_t k = 0; k < friction.pairs.size(); ++k)
+    if (friction.pairs[k].active()) pairs.push_back(static_cast<int>(k));
+  if (!pairs.empty()) frictionRecord(f, nodes, friction, pairs, dim);
+}
+
+void addPairFrictionJson(Json& pairEntry, const std::vector<ContactNode>& allNodes,
+                         const ModelFriction& friction, int k, int dim) {
+  if (!friction.ofPair(k).active()) return;
+  std::vector<ContactNode> nodes;
+  for (const auto& n : allNodes)
+    if (n.pair == k) nodes.push_back(n);
+  Json f = Json::object();
+  frictionRecord(f, nodes, friction, {k}, dim);
+  pairEntry["friction"] = std::move(f);
 }
 
 }  // namespace contact

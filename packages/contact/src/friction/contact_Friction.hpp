@@ -1,7 +1,8 @@
 #pragma once
-// Friction on the contact pair, Tresca and Coulomb: the parameters of `Contact problem/Friction`,
-// the tangential rows B_T of a load-step iteration with their multipliers' box, and the per-node
-// friction results.
+// Friction on the contact pairs, Tresca and Coulomb: the parameters of `Contact problem/Friction`
+// (or of each pair's `Friction` sublist, one FrictionSpec per pair in a ModelFriction), the
+// tangential rows B_T of a load-step iteration with their multipliers' box or disc, and the
+// per-node friction results.
 //
 // The increment QP of a load step (contact_NonlinearIteration.hpp) gets, beside each
 // non-penetration row, dim - 1 tangential rows (contact_TangentialRows.hpp; fewer where both
@@ -42,13 +43,27 @@ struct FrictionSpec {
   // contact_FrictionStep.hpp).
   enum class Scheme { Outer, InNewton };
   Scheme scheme = Scheme::InNewton;
-  // The contact pair (index into ElasticContactProblem::pairs) it acts on; -1: every row (the
-  // old keys' single pair).
-  int pair = -1;
   bool active() const { return law != Law::None; }
-  // Whether contact row k of p.contact has friction.
-  bool onRow(const ElasticContactProblem& p, std::size_t k) const {
-    return pair < 0 || p.rowPair[k] == pair;
+};
+
+// The friction of a model: one FrictionSpec per contact pair (law none on a pair without
+// friction), so that pairs may differ in law and bound. Coulomb's fixed-point controls (scheme,
+// tolerance, iterations) belong to the model's one Newton loop: modelFriction takes them from
+// the Coulomb pairs, which must agree on them.
+struct ModelFriction {
+  std::vector<FrictionSpec> pairs;  // per pair of ElasticContactProblem::pairs (old keys: one)
+  FrictionSpec::Scheme scheme = FrictionSpec::Scheme::InNewton;
+  double fixedPointTolerance = 1e-6;
+  int maxFixedPointIterations = 50;
+  bool active() const;        // some pair has friction
+  bool coulomb() const;       // some pair has Coulomb friction
+  int frictionPairs() const;  // how many pairs have friction
+  // The friction of pair k (-1, a ContactNode of the old keys' pair: the first); law none for a
+  // pair the model does not have.
+  const FrictionSpec& ofPair(int k) const;
+  // The friction of contact row k of p.contact.
+  const FrictionSpec& ofRow(const ElasticContactProblem& p, std::size_t k) const {
+    return ofPair(p.rowPair[k]);
   }
 };
 
@@ -66,12 +81,12 @@ void addFrictionParameters(Teuchos::ParameterList& contactProblem);
 FrictionSpec frictionSpec(const Teuchos::ParameterList& params, const std::string& slave,
                           const std::string& master);
 
-// The friction of the model: that of the old keys' pair (frictionSpec), or of the one pair of
-// Contact pairs whose Friction sublist chooses a law (its `pair` set). Throws
-// std::invalid_argument naming the pairs when several pairs have friction (not in this build),
-// and as frictionSpec for the pair's sublist.
-FrictionSpec modelFriction(const Teuchos::ParameterList& params,
-                           const std::vector<ContactPairSpec>& pairs);
+// The friction of the model: that of the old keys' pair (frictionSpec), or of each pair of
+// Contact pairs from its Friction sublist. Throws std::invalid_argument as frictionSpec for a
+// pair's sublist, and naming both pairs when two Coulomb pairs differ in Coulomb scheme,
+// Fixed-point tolerance or Fixed-point iterations (one Newton loop updates all bounds).
+ModelFriction modelFriction(const Teuchos::ParameterList& params,
+                            const std::vector<ContactPairSpec>& pairs);
 
 // The friction rows of the contact rows p.contact (rank 0 contributes them, as the normal rows):
 // per contact row the rows of frictionTangentialRows (dim - 1 unless a tangent is held; 3D: two
@@ -79,7 +94,7 @@ FrictionSpec modelFriction(const Teuchos::ParameterList& params,
 // weight; Coulomb: `bounds`, 0 for a node it lacks) and c_T = B_T (stepStart - current) (surface
 // displacements, dim per mesh node). A row whose bound is 0 is left out (its multiplier is 0).
 std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
-                                               const FrictionSpec& friction,
+                                               const ModelFriction& friction,
                                                const SlipBounds& bounds,
                                                const std::vector<double>& stepStart,
                                                const std::vector<double>& current, int rank);
@@ -91,7 +106,7 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
 // contactNodes on the same problem; stepStart and current as for frictionRows.
 // The bound of each row is read from the solver's rows.
 void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactProblem& p,
-                        const tfeti::FetiSolver& solver, const FrictionSpec& friction,
+                        const tfeti::FetiSolver& solver, const ModelFriction& friction,
                         const std::vector<double>& stepStart, const std::vector<double>& current);
 
 // The friction keys of summary.json's contact record c: friction_law, slip_bound (Tresca),
@@ -104,8 +119,16 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
 // |lambda_T| / its bound over the closed nodes: 1 at a slipping node), max_slip_increment (max
 // |slip of the step| over the closed nodes), max_accumulated_slip and max_net_slip (the largest
 // path length and |signed sum| of the slip over the steps, contact_FrictionHistory.hpp).
-void addFrictionJson(Json& c, const std::vector<ContactNode>& nodes, const FrictionSpec& friction,
+// With several pairs of friction the keys are over all their nodes, friction_law is "mixed"
+// where their laws differ (slip_bound and friction_coefficient only where the pairs share them),
+// and there is no cattaneo_mindlin record; each pair's own record is addPairFrictionJson's.
+void addFrictionJson(Json& c, const std::vector<ContactNode>& nodes, const ModelFriction& friction,
                      int dim);
+
+// The record of addFrictionJson for the nodes of contact pair k alone, as the object "friction"
+// of its entry in summary.json's contact.pairs (no-op for a pair without friction).
+void addPairFrictionJson(Json& pairEntry, const std::vector<ContactNode>& nodes,
+                         const ModelFriction& friction, int k, int dim);
 
 const char* frictionStateName(int state);  // 0 open, 1 stick, 2 slip
 

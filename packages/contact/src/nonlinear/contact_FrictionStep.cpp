@@ -10,15 +10,17 @@ namespace contact {
 
 namespace {
 
-// mu lambda_N of the solver's last multipliers per slave node of the friction's pair, and the
-// relative change from `bounds` (2-norm; a node that lost its row counts with its old bound).
+// mu lambda_N of the solver's last multipliers per slave node of the Coulomb pairs (each its own
+// mu), and the relative change from `bounds` (2-norm; a node that lost its row counts with its
+// old bound).
 SlipBounds coulombBounds(const tfeti::FetiSolver& solver, const ElasticContactProblem& problem,
-                         const ContactExtentRule& rule, const FrictionSpec& f,
+                         const ContactExtentRule& rule, const ModelFriction& friction,
                          const SlipBounds& bounds, double& change) {
   SlipBounds next;
   double diff = 0.0, norm = 0.0;
   for (const ContactNode& n : contactNodes(problem, solver, rule, {})) {
-    if (f.pair >= 0 && n.pair != f.pair) continue;  // a pair without friction
+    const FrictionSpec& f = friction.ofPair(n.pair);
+    if (f.law != FrictionSpec::Law::Coulomb) continue;  // Tresca's bounds are given
     const double g = f.coefficient * std::max(n.lambda, 0.0);
     next[n.slaveNode] = g;
     const auto it = bounds.find(n.slaveNode);
@@ -37,7 +39,7 @@ SlipBounds coulombBounds(const tfeti::FetiSolver& solver, const ElasticContactPr
 StepOutcome attemptInNewton(LoadStepIteration& iteration, const tfeti::FetiSolver& solver,
                             const ElasticContactProblem& problem, const ContactExtentRule& rule,
                             int step, double t, FixedPointRecord& record) {
-  const FrictionSpec& f = iteration.friction;
+  const ModelFriction& f = iteration.friction;
   const SlipBounds start = iteration.frictionBounds;
   iteration.boundsSettled = [&]() {
     iteration.frictionBounds =
@@ -65,8 +67,8 @@ StepOutcome attemptFrictionalStep(LoadStepIteration& iteration, const tfeti::Fet
                                   const ContactExtentRule& rule, int step, double t,
                                   FixedPointRecord& record) {
   record = FixedPointRecord();
-  const FrictionSpec& f = iteration.friction;
-  if (f.law != FrictionSpec::Law::Coulomb) {
+  const ModelFriction& f = iteration.friction;
+  if (!f.coulomb()) {
     record.iterations = 1;
     return iteration.attempt(step, t);
   }

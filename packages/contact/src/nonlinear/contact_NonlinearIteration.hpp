@@ -59,7 +59,7 @@ class LoadStepIteration {
 
   // Friction on the contact pair: the tangential rows join the contact rows of every
   // iteration (contact_Friction.hpp), their slip measured from the step's start model.u.
-  FrictionSpec friction;
+  ModelFriction friction;
   SlipBounds frictionBounds;  // Coulomb: the slip bound per slave node (contact_FrictionStep)
 
   // Progress lines per iteration (Verbosity 2): called with the record of each iteration.

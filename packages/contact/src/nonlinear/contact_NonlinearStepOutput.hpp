@@ -35,7 +35,7 @@ class NonlinearStepOutput {
   // Friction on the contact pair: evaluate adds each contact node's friction results (the
   // step's slip from model.u, the step's start) and its slip accumulated over the steps
   // (`accumulatedSlip`, the converged steps' sums, plus this step's).
-  FrictionSpec friction;
+  ModelFriction friction;
   std::map<int, AccumulatedSlip> accumulatedSlip;
   // After a converged step's evaluate: its slip joins accumulatedSlip.
   void commitSlip() { commitAccumulatedSlip(accumulatedSlip, nodes_); }

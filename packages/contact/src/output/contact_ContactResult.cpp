@@ -165,11 +165,13 @@ Json nonlinearSummary(const ContactResult& r) {
 
 namespace {
 
-// contact.pairs: per pair its name, force (the resultant's magnitude) and force_vector.
-void addPairForces(Json& c, const std::vector<PairForce>& pairs) {
+// contact.pairs: per pair its name, force (the resultant's magnitude) and force_vector, and a
+// pair with friction its friction record (nonlinear runs).
+void addPairForces(Json& c, const std::vector<PairForce>& pairs, const ContactResult* frictional) {
   if (pairs.empty()) return;
   Json list = Json::array();
-  for (const PairForce& p : pairs) {
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const PairForce& p = pairs[k];
     Json j = Json::object();
     j["name"] = p.name;
     j["discretization"] = p.discretization;
@@ -177,6 +179,9 @@ void addPairForces(Json& c, const std::vector<PairForce>& pairs) {
     Json v = Json::array();
     for (double x : p.vector) v.push(x);
     j["force_vector"] = std::move(v);
+    if (frictional)
+      addPairFrictionJson(j, frictional->contactNodes, frictional->friction, static_cast<int>(k),
+                          frictional->dimension);
     list.push(std::move(j));
   }
   c["pairs"] = std::move(list);
@@ -189,12 +194,12 @@ Json contactJson(const ContactResult& r) {
     Json c = Json::object();
     addNonlinearContact(c, r.contact);
     if (r.friction.active()) addFrictionJson(c, r.contactNodes, r.friction, r.dimension);
-    addPairForces(c, r.pairs);
+    addPairForces(c, r.pairs, r.friction.active() ? &r : nullptr);
     return c;
   }
   Json c = constraintJson(r.contact.constraints);
   addElasticContact(c, r.contact);
-  addPairForces(c, r.pairs);
+  addPairForces(c, r.pairs, nullptr);
   return c;
 }
 

@@ -125,7 +125,7 @@ struct ContactResult {
   NonlinearOutcome nonlinear;
   // Friction on the contact pair (nonlinear_contact): the law, and Coulomb's fixed point per
   // converged step; the per-node friction results are in contactNodes.
-  FrictionSpec friction;
+  ModelFriction friction;
   std::vector<FixedPointStep> fixedPoint;
 
   tfeti::FetiTimings timings;
