@@ -20,8 +20,9 @@ friction keys (friction_law "mixed" where the pairs' laws differ), each friction
 contact.pairs its own friction record and every other entry none, every CSV row of a friction
 pair a friction state (open, stick, slip) and at least one closed, every other row the state
 none. With --pair-reference NAME=REFDIR the friction record of pair NAME equals the friction
-keys of the single-pair run REFDIR (the same contact problem alone): forces, stick and slip
-node counts, the stick and contact extents and the largest slip, to R (relative, default 1e-6).
+keys of the single-pair run REFDIR (the same contact problem alone): the resultant contact force
+(to R of its magnitude), the normal and tangential sums, stick and slip node counts, the stick
+and contact extents and the largest slip, to R (relative, default 1e-6).
 """
 import csv
 import glob
@@ -102,6 +103,12 @@ def check_pair_reference(d, s, name, ref, tol):
     if not r["converged"]:
         fail(f"{ref}: did not converge")
     mine, theirs = entry["friction"], r["contact"]
+    # The resultant contact force: unlike the normal and tangential sums it does not depend on
+    # the frame a node at a master kink takes (docs/friction.md).
+    fa, fb = mine.get("contact_force", []), theirs["contact_force"]
+    size = sum(v * v for v in fb) ** 0.5
+    if len(fa) != len(fb) or any(abs(x - y) > tol * size for x, y in zip(fa, fb)):
+        fail(f"{d}: pair {name}: contact_force {fa}, {fb} alone ({ref})")
     for key in REFERENCE_KEYS:
         if key not in theirs:
             continue
