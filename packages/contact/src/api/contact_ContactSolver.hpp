@@ -13,6 +13,7 @@
 // algorithm (contact_NonlinearIteration.hpp). The elastic problem is its one-step case: a single
 // increment from u = 0 at load factor 1 on the reference geometry, which solves the linear
 // problem exactly (no second iteration, no refactorization, the contact rows of the set-up).
+// Where the two differ, the driver asks its run policy (contact_RunPolicy.hpp).
 // tfeti_contact runs through this object; its summary.json is summaryJson(result).
 //
 // Every collective call (setup, solve) must be made on every rank of the communicator.
@@ -31,6 +32,8 @@ namespace contact {
 
 struct StepOutcome;       // contact_NonlinearIteration.hpp
 struct FixedPointRecord;  // contact_FrictionStep.hpp
+struct ContactRun;        // contact_ContactRun.hpp: the state of a set-up run
+struct LoadSteps;         // contact_ContactRun.hpp: the state of solve()'s load-step loop
 
 class ContactSolver {
  public:
@@ -73,29 +76,25 @@ class ContactSolver {
   const std::vector<plasticity::StressField>& stresses() const;
 
  private:
-  struct Run;        // the state of a set-up run
-  struct LoadSteps;  // the state of solve()'s load-step loop
-  // solve(), as its named steps (contact_ContactSolver.cpp).
+  // solve(), as its named steps (contact_ContactSolver.cpp); where the two problems differ, the
+  // run's policy decides (contact_RunPolicy.hpp).
   void prepareLoadSteps(LoadSteps& s);
   void runLoadSteps(LoadSteps& s);
   bool rejectStep(LoadSteps& s, int step, double t, const std::string& reason);
   void acceptStep(LoadSteps& s, int step, double t, StepOutcome& out,
                   const FixedPointRecord& fixedPoint);
-  void evaluateLinearSolution(StepRecord& rec);
   void saveStep(LoadSteps& s, const StepRecord& rec);
-  void evaluateFinalState(LoadSteps& s);
   ContactResult fillResult(const LoadSteps& s) const;
-  void measureContact(ContactResult& res, const LoadSteps& s) const;
-  void measureFinalState(ContactResult& res, const LoadSteps& s);
-  void writeResultFiles(ContactResult& res, LoadSteps& s);
-  void reportResult(const ContactResult& res, const LoadSteps& s) const;
+  void measureContact(ContactResult& res) const;
+  void measureFinalState(ContactResult& res);
+  void writeResultFiles(ContactResult& res, const LoadSteps& s);
   void writeTables() const;
 
   Teuchos::RCP<const tfeti::Comm> comm_;
   Teuchos::ParameterList params_;
   std::string source_, dir_;
   bool haveParameters_ = false;
-  std::unique_ptr<Run> run_;
+  std::unique_ptr<ContactRun> run_;
 };
 
 // tfeti_contact's Problem = elastic_contact and nonlinear_contact: the solver on the validated

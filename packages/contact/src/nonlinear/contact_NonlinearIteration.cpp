@@ -91,20 +91,18 @@ std::vector<tfeti::EqualityRow> LoadStepIteration::prescribedIncrementRows(const
 
 tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field& fint, double t,
                                                     int iteration) const {
+  if (options_.solveAsBuilt && iteration == 1) return solver_.solve();
   const Field rhs = incrementLoads(fint, t);
   const std::vector<tfeti::EqualityRow> prescribed = prescribedIncrementRows(u, t);
   bool refactor =
       options_.stiffness == "iteration" || (options_.stiffness == "step" && iteration == 1);
   // In small strain a tangent with every point elastic is the elastic stiffness: when the factor
   // holds that already (the solver is built with it), refactorizing would only repeat it.
-  if (refactor && options_.kinematics == plasticity::Kinematics::SmallStrain && !options_.linear) {
+  if (refactor && options_.kinematics == plasticity::Kinematics::SmallStrain) {
     const bool elastic = !model_.plasticLoading(*comm_);
     refactor = !(elastic && factorIsElastic_);
     if (refactor) factorIsElastic_ = elastic;
   }
-  // The linear problem's only increment is the one the solver was built with (loads f, the
-  // rows of the reference geometry, the prescribed rows at their full value).
-  if (options_.linear && iteration == 1) return solver_.solve();
   // Inexact solves and partial steps leave jumps in u: the next increment closes them.
   if (inexact()) solver_.setIncrementOrigin(u);
   if (refactor)
@@ -117,7 +115,7 @@ tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field&
 }
 
 bool LoadStepIteration::inexact() const {
-  return !options_.linear && (options_.inexactQpFactor > 1.0 || options_.lineSearch);
+  return options_.inexactQpFactor > 1.0 || options_.lineSearch;
 }
 
 double LoadStepIteration::loadNormAt(const Field& load, double t) const {
@@ -180,17 +178,15 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
   out.u = model_.u;
   Field& u = out.u;
   try {
-    // f_int(0) = 0 for the linear problem's laws: no evaluation needed.
-    Field fint = options_.linear ? Field(u.size()) : model_.internalForce(u, options_.kinematics);
-    for (std::size_t i = 0; i < fint.size() && options_.linear; ++i)
-      fint[i].assign(u[i].size(), 0.0);
+    // The increment the solver was built with has its loads (f - f_int(0) = f) already.
+    Field fint = options_.solveAsBuilt ? Field() : model_.internalForce(u, options_.kinematics);
     // Inexact Newton: the first QP of a step at the loosest tolerance, later ones from the
     // residual they start from.
-    double factor = options_.linear ? 1.0 : options_.inexactQpFactor;
+    double factor = options_.inexactQpFactor;
     Field previousForces;
     double previousResidual = 0.0;
     for (int it = 1; it <= options_.maxIterations; ++it) {
-      if (!options_.linear) updateContact(u, t);
+      if (!(options_.solveAsBuilt && it == 1)) updateContact(u, t);
       solver_.setToleranceFactor(factor);
       out.qp = solveIncrement(u, fint, t, it);
       const tfeti::DualResult& qp = out.qp;
@@ -201,7 +197,7 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
       rec.mprgpIterations = qp.iterations;
       rec.hessianMultiplications = qp.qp.hessianMultiplications;
       rec.qpToleranceFactor = factor;
-      if (!qp.converged && !options_.linear) {
+      if (!qp.converged && !options_.singleIncrement) {
         out.iterations.push_back(rec);
         out.reason = "the contact QP did not converge in iteration " + std::to_string(it) + " (" +
                      qp.qp.message + ")";
@@ -236,9 +232,7 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
       rec.lineSearchStep = trial.alpha;
       out.iterations.push_back(rec);
       if (onIteration) onIteration(rec);
-      if (options_.linear) {
-        // One increment solves the linear problem: the QP's convergence is the step's (its
-        // state is kept either way and reported).
+      if (options_.singleIncrement) {  // its state is kept and reported either way
         out.converged = qp.converged;
         if (!qp.converged) out.reason = "the contact QP did not converge (" + qp.qp.message + ")";
         return out;

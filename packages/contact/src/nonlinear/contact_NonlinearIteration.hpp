@@ -12,8 +12,9 @@
 // Options: inexact QPs whose tolerance follows the residual (forcing terms) and a backtracking
 // line search on ||res||; a step then converges only on a full step of an exactly solved QP.
 // Step control (contact_LoadStepControl.hpp) decides the load factors and the cut-backs.
-// NonlinearOptions::linear makes it the one-step case of a linear problem: one increment from
-// u = 0 with the solver's own loads and rows, no contact update, no f_int(0).
+// NonlinearOptions::solveAsBuilt and singleIncrement make it the one-step case of a linear
+// problem: one increment from u = 0 with the solver's own loads and rows, no contact update, no
+// f_int(0).
 #include <functional>
 #include <string>
 #include <vector>

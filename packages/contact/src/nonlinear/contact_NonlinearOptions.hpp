@@ -31,12 +31,15 @@ struct NonlinearOptions {
   // lineSearchCuts times until the residual decreases).
   bool lineSearch = false;
   int lineSearchCuts = 5;
-  // The linear problem (elastic_contact, the loop's one-step case): small strain, linear laws
-  // and the contact rows of the reference geometry, so that one increment from u = 0 solves it.
-  // The iteration then neither searches the contact again nor evaluates f_int(0) = 0, solves
-  // the increment with the loads and rows the solver was built with, and stops after it (the
-  // QP's convergence is the step's).
-  bool linear = false;
+  // The one-step case of a linear problem (elastic_contact: small strain, linear laws, one
+  // increment from u = 0), set by its run policy (api/contact_ElasticContactPolicy.cpp).
+  // solveAsBuilt: the first increment is the one the solver was built with (loads f, the contact
+  // rows of the reference geometry, the prescribed rows at their full value), so the iteration
+  // neither searches the contact, nor evaluates f_int(0) = 0, nor updates the solver before it.
+  bool solveAsBuilt = false;
+  // singleIncrement: that increment solves the problem, so the step ends after it with its QP's
+  // convergence; a QP that did not converge still leaves a complete state to report.
+  bool singleIncrement = false;
 };
 
 // Throws std::invalid_argument naming the parameter that is wrong.

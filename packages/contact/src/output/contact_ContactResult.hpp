@@ -9,8 +9,9 @@
 // contact_NonlinearHistory.hpp for a per-step value, ContactResult for a top-level key), fill it
 // in one of ContactSolver::solve's named steps (contact_ContactSolver.cpp: measureContact for
 // ContactMeasures, measureFinalState for the final state's fields and reactions, fillResult for
-// the rest; a per-step value where the step is evaluated: NonlinearStepOutput::evaluate and fill,
-// contact_NonlinearStepOutput.cpp, or for elastic_contact ContactSolver::evaluateLinearSolution),
+// the rest), or where only one problem has it in its run policy (contact_ElasticContactPolicy.cpp,
+// contact_NonlinearContactPolicy.cpp: addContactMeasures); a per-step value where the policy
+// evaluates the step (evaluateStep: NonlinearStepOutput::evaluate and fill for nonlinear_contact),
 // and write its key in contactJson / summaryJson (contact_ContactResult.cpp), where each key of
 // the file is written.
 #include <optional>
