@@ -21,6 +21,53 @@ namespace contact {
 
 using Teuchos::ParameterList;
 
+namespace {
+
+// The applied load's resultant and the direction the contact force is reported along: the
+// applied load's, else the obstacle's motion, else the sum of the prescribed displacements.
+void setLoadDirection(ContactRun& r, int dim) {
+  const double* F = r.model->problem.appliedForce;
+  r.appliedForce = dim == 3 ? std::hypot(F[0], F[1], F[2]) : std::hypot(F[0], F[1]);
+  if (r.appliedForce > 0.0) {
+    for (int c = 0; c < dim; ++c) r.loadDirection[c] = F[c] / r.appliedForce;
+  } else if (!r.options.obstacleDisplacement.empty()) {
+    double n = 0.0;
+    for (double v : r.options.obstacleDisplacement) n += v * v;
+    for (int c = 0; c < dim; ++c)
+      r.loadDirection[c] = r.options.obstacleDisplacement[c] / std::sqrt(n);
+  } else if (!r.spec.prescribed.empty()) {
+    // Driven by prescribed boundary displacements: the force along their direction (the sum of
+    // the prescribed vectors), as a load in that direction would be reported.
+    double n = 0.0;
+    for (const PrescribedDisplacement& p : r.spec.prescribed)
+      r.loadDirection[p.component] += p.value;
+    for (int c = 0; c < dim; ++c) n += r.loadDirection[c] * r.loadDirection[c];
+    for (int c = 0; c < dim && n > 0.0; ++c) r.loadDirection[c] /= std::sqrt(n);
+  }
+}
+
+// Nonlinear/Restart: the history, the displacement, the committed plastic history and the
+// friction state of the last saved step, from DIR/restart.
+void restoreRestart(ContactRun& r, const std::string& dir) {
+  if (dir.empty())
+    throw std::invalid_argument(
+        "Nonlinear: \"Restart\" reads OUTPUT/restart: set the output directory");
+  NonlinearModel& model = *r.model;
+  ElasticContactProblem& problem = model.problem;
+  std::vector<SubdomainRestart> saved;
+  r.history = readRestart(dir + "/restart", problem, saved,
+                          r.friction.active() ? &r.frictionHistory : nullptr);
+  for (std::size_t i = 0; i < problem.local.size(); ++i) {
+    model.u[i] = saved[i].displacement;
+    if (model.plastic[i]) model.plastic[i]->setCommittedHistory(saved[i].history);
+  }
+  if (r.comm->getRank() == 0 && r.verbosity > 0)
+    std::cout << "nonlinear_contact: restart from step " << r.history.step << " (load factor "
+              << r.history.loadFactor << ")\n";
+}
+
+}  // namespace
+
 ContactSolver::ContactSolver(Teuchos::RCP<const tfeti::Comm> comm) : comm_(std::move(comm)) {
   if (comm_.is_null()) throw std::invalid_argument("ContactSolver: the communicator is null");
 }
@@ -81,42 +128,10 @@ void ContactSolver::setup() {
   const int dim = problem.dim();
   policy.fitOptions(params, dim, obstacles, r.options);
   r.loadNorm = policy.loadNorm(*comm_, problem, r.options);
-  const double* F = problem.appliedForce;
-  r.appliedForce = dim == 3 ? std::hypot(F[0], F[1], F[2]) : std::hypot(F[0], F[1]);
-  // The contact force is reported along the applied load, or along the obstacle's motion.
-  if (r.appliedForce > 0.0) {
-    for (int c = 0; c < dim; ++c) r.loadDirection[c] = F[c] / r.appliedForce;
-  } else if (!r.options.obstacleDisplacement.empty()) {
-    double n = 0.0;
-    for (double v : r.options.obstacleDisplacement) n += v * v;
-    for (int c = 0; c < dim; ++c)
-      r.loadDirection[c] = r.options.obstacleDisplacement[c] / std::sqrt(n);
-  } else if (!r.spec.prescribed.empty()) {
-    // Driven by prescribed boundary displacements: the force along their direction (the sum of
-    // the prescribed vectors), as a load in that direction would be reported.
-    double n = 0.0;
-    for (const PrescribedDisplacement& p : r.spec.prescribed)
-      r.loadDirection[p.component] += p.value;
-    for (int c = 0; c < dim; ++c) n += r.loadDirection[c] * r.loadDirection[c];
-    for (int c = 0; c < dim && n > 0.0; ++c) r.loadDirection[c] /= std::sqrt(n);
-  }
+  setLoadDirection(r, dim);
 
   r.history.stepSize = 1.0 / r.options.steps;
-  if (r.options.restart) {
-    if (dir_.empty())
-      throw std::invalid_argument(
-          "Nonlinear: \"Restart\" reads OUTPUT/restart: set the output directory");
-    std::vector<SubdomainRestart> saved;
-    r.history = readRestart(dir_ + "/restart", problem, saved,
-                            r.friction.active() ? &r.frictionHistory : nullptr);
-    for (std::size_t i = 0; i < problem.local.size(); ++i) {
-      model.u[i] = saved[i].displacement;
-      if (model.plastic[i]) model.plastic[i]->setCommittedHistory(saved[i].history);
-    }
-    if (comm_->getRank() == 0 && r.verbosity > 0)
-      std::cout << "nonlinear_contact: restart from step " << r.history.step << " (load factor "
-                << r.history.loadFactor << ")\n";
-  }
+  if (r.options.restart) restoreRestart(r, dir_);
   if (policy.savesSteps() && !dir_.empty() && comm_->getRank() == 0)
     std::filesystem::create_directories(dir_ + "/restart");
 

@@ -19,8 +19,7 @@ void addFrictionParameters(Teuchos::ParameterList& cp) {
         "none (frictionless), Tresca (|tangential traction| <= Slip bound), Coulomb (<= "
         "Friction coefficient times the pressure, by a fixed point on the slip bound in each "
         "load step)",
-        Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-            Teuchos::tuple<std::string>("none", "Tresca", "Coulomb"), "Friction law")));
+        tfeti::strict::choice({"none", "Tresca", "Coulomb"}));
   f.set("Slip bound", 0.0,
         "Tresca: g, the tangential traction at which the surface slips (force per unit length "
         "of the slave boundary in 2D, per unit area in 3D)",
@@ -39,8 +38,7 @@ void addFrictionParameters(Teuchos::ParameterList& cp) {
         "QP; the step converges when Eta 1, Eta 2 and the Fixed-point tolerance hold together) "
         "or fixed_point (each fixed-point iteration re-solves the load step's Newton loop with "
         "the bounds of the previous one: 2-2.5x the multiplications)",
-        Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-            Teuchos::tuple<std::string>("fixed_point", "in_newton"), "Coulomb scheme")));
+        tfeti::strict::choice({"fixed_point", "in_newton"}));
   f.set("Slave", "", "the contact pair this friction is for: its Slave (empty: the pair's)");
   f.set("Master", "", "the contact pair this friction is for: its Master (empty: the pair's)");
 }
@@ -122,11 +120,6 @@ bool ModelFriction::active() const {
 bool ModelFriction::coulomb() const {
   return std::any_of(pairs.begin(), pairs.end(),
                      [](const FrictionSpec& f) { return f.law == FrictionSpec::Law::Coulomb; });
-}
-
-int ModelFriction::frictionPairs() const {
-  return static_cast<int>(
-      std::count_if(pairs.begin(), pairs.end(), [](const FrictionSpec& f) { return f.active(); }));
 }
 
 const FrictionSpec& ModelFriction::ofPair(int k) const {

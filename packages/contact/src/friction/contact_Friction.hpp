@@ -55,9 +55,8 @@ struct ModelFriction {
   FrictionSpec::Scheme scheme = FrictionSpec::Scheme::InNewton;
   double fixedPointTolerance = 1e-6;
   int maxFixedPointIterations = 50;
-  bool active() const;        // some pair has friction
-  bool coulomb() const;       // some pair has Coulomb friction
-  int frictionPairs() const;  // how many pairs have friction
+  bool active() const;   // some pair has friction
+  bool coulomb() const;  // some pair has Coulomb friction
   // The friction of pair k (-1, a ContactNode of the old keys' pair: the first); law none for a
   // pair the model does not have.
   const FrictionSpec& ofPair(int k) const;

@@ -12,11 +12,7 @@
 namespace tfeti {
 
 namespace {
-Teuchos::RCP<Teuchos::StringToIntegralParameterEntryValidator<int>> choice(
-    const std::vector<std::string>& names) {
-  return Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-      Teuchos::Array<std::string>(names.begin(), names.end()), names.front()));
-}
+using strict::choice;
 
 // The method's choices: formulation, gluing, scaling, preconditioner, the local and coarse
 // solvers, the dual solver and the meaning of the inequality rows.

@@ -297,6 +297,11 @@ Validator intBetween(int lo, int hi) {
   v->atMost(hi);
   return v;
 }
+Teuchos::RCP<Teuchos::StringToIntegralParameterEntryValidator<int>> choice(
+    const std::vector<std::string>& names) {
+  return Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+      Teuchos::Array<std::string>(names.begin(), names.end()), names.front()));
+}
 Validator doubles(int length) {
   auto v = Teuchos::rcp(new NumberValidator(Kind::DoubleArray));
   if (length > 0) v->length(length);

@@ -15,9 +15,11 @@
 #include <Teuchos_ParameterEntryValidator.hpp>
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_RCP.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace tfeti {
 namespace strict {
@@ -83,6 +85,9 @@ Validator count(int min = 1);                                       // int >= mi
 Validator intBetween(int lo, int hi);
 Validator doubles(int length);       // array of `length` finite doubles (0: any length)
 Validator positiveInts(int length);  // array of ints >= 1 (0: any length)
+// A string parameter that takes one of `names` (an unknown value is an error listing them).
+Teuchos::RCP<Teuchos::StringToIntegralParameterEntryValidator<int>> choice(
+    const std::vector<std::string>& names);
 
 // "Contact problem/Hertz/Radius 1" from Teuchos's sublist name ("root->Contact
 // problem->Hertz") and the parameter's name.
