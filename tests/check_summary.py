@@ -41,11 +41,13 @@
                                           to 10 % (unless --solution-only) and the same solution
                                           along the contact side (contact.csv)
   check_summary.py hertz DIR [DIR2 ...] [--p-tol T] [--extent-tol T] [--estar E] [--force-tol F]
+                    [--vm-tol T]
                                           elastic contact against Hertz: p_max within 3 % (T),
                                           the half-width (2D) or contact radius (3D) within 5 %
                                           (T), the force balances the load to F (1e-6), the contact
                                           conditions hold; further DIRs (other rank counts) give
-                                          the same p_max and extent; with --estar, the
+                                          the same p_max and extent; with --vm-tol, the
+                                          max von Mises within T of Hertz's; with --estar, the
                                           summary's Hertz line contact is the closed form with
                                           that combined modulus E* (1e-9 relative)
   check_summary.py plane_strain DIR_2D DIR_3D [DIR_3D ...] [--tol T] [--u-tol U]
@@ -495,7 +497,7 @@ def hertz_line_reference(s, estar):
 
 
 def hertz(dirs, p_tol=HERTZ_TOL["p_max"], extent_tol=HERTZ_TOL["extent"], estar=0.0,
-          force_tol=1e-6):
+          force_tol=1e-6, vm_tol=None):
     s = load(dirs[0])
     if not s["converged"]:
         fail("did not converge: " + s["qp"].get("message", ""))
@@ -512,6 +514,11 @@ def hertz(dirs, p_tol=HERTZ_TOL["p_max"], extent_tol=HERTZ_TOL["extent"], estar=
         if c["relative_error"][key] > tol:
             fail(f"{key} {c[key]:.6e} differs from Hertz's {c['hertz'][key]:.6e} by "
                  f"{100 * c['relative_error'][key]:.2f} % > {100 * tol:.1f} %")
+    if vm_tol is not None:
+        vm, ref = s["max_von_mises"], c["hertz"]["max_von_mises"]
+        if abs(vm - ref) > vm_tol * ref:
+            fail(f"max von Mises {vm:.6e} differs from Hertz's {ref:.6e} by "
+                 f"{100 * abs(vm / ref - 1):.2f} % > {100 * vm_tol:.1f} %")
     if c["force_relative_error"] > force_tol:
         fail(f"contact force {c['force']} against the applied {c['applied_force']}: "
              f"{c['force_relative_error']:.1e} relative")
@@ -1314,12 +1321,12 @@ if __name__ == "__main__":
         only = "--solution-only" in args
         same_contact([a for a in args if a != "--solution-only"], only)
     elif mode == "hertz":
-        tols = {"--p-tol", "--extent-tol", "--estar", "--force-tol"}
+        tols = {"--p-tol", "--extent-tol", "--estar", "--force-tol", "--vm-tol"}
         dirs = [a for i, a in enumerate(args) if a not in tols and
                 (i == 0 or args[i - 1] not in tols)]
         hertz(dirs, option(args, "--p-tol", HERTZ_TOL["p_max"]),
               option(args, "--extent-tol", HERTZ_TOL["extent"]), option(args, "--estar", 0.0),
-              option(args, "--force-tol", 1e-6))
+              option(args, "--force-tol", 1e-6), option(args, "--vm-tol", None))
     elif mode == "plane_strain":
         tols = {"--tol", "--u-tol"}
         dirs = [a for i, a in enumerate(args) if a not in tols and

@@ -29,7 +29,7 @@ double biorthogonalityDefect(ElementType t, const contact::PlaneQuadrature& q) {
   std::vector<double> N;
   double v[9];
   for (const auto& p : q.points) {
-    contact::facetShapeFunctions(lm.type, p.data(), v, nullptr);
+    contact::multiplierShapeFunctions(lm, p.data(), v);
     N.insert(N.end(), v, v + n);
   }
   const auto A = contact::dualBasisCoefficients(n, q.weights, N);
@@ -73,6 +73,39 @@ TEUCHOS_UNIT_TEST(Mortar, DualBasisIsBiorthogonal) {
   one.weights = {1.0};
   std::vector<double> N = {0.4, 0.6};
   TEST_ASSERT(contact::dualBasisCoefficients(2, one.weights, N).empty());
+}
+
+// Tri6 and Quad8 multipliers: the modified quadratic functions sum to one, span the quadratic
+// space (they reproduce the facet's own functions: checked through a quadratic field), and each
+// integrates to the positive share the dual basis needs.
+TEUCHOS_UNIT_TEST(Mortar, ModifiedQuadraticMultipliers) {
+  for (ElementType t : {ElementType::Tri6, ElementType::Quad8}) {
+    const auto lm = contact::multiplierSpace(t);
+    TEST_EQUALITY(lm.count, contact::numNodes(t));
+    const auto q = contact::referenceFacetQuadrature(t);
+    std::vector<double> share(lm.count, 0.0);
+    double total = 0.0, v[9], N[9];
+    for (std::size_t k = 0; k < q.weights.size(); ++k) {
+      contact::multiplierShapeFunctions(lm, q.points[k].data(), v);
+      double sum = 0.0;
+      for (int a = 0; a < lm.count; ++a) sum += v[a], share[a] += q.weights[k] * v[a];
+      TEST_FLOATING_EQUALITY(sum, 1.0, 1e-14);
+      total += q.weights[k];
+      // The inverse of the modification maps them back onto the facet's own functions.
+      contact::facetShapeFunctions(t, q.points[k].data(), N, nullptr);
+      const int corners = t == ElementType::Tri6 ? 3 : 4;
+      for (int i = 0; i < corners; ++i) {
+        const double mi = v[corners + i] / (1.0 - 2.0 * lm.alpha);
+        const double mp = v[corners + (i + corners - 1) % corners] / (1.0 - 2.0 * lm.alpha);
+        TEST_COMPARE(std::abs(v[i] - lm.alpha * (mi + mp) - N[i]), <, 1e-14);
+        TEST_COMPARE(std::abs(mi - N[corners + i]), <, 1e-14);
+      }
+    }
+    const double corner = t == ElementType::Tri6 ? 2.0 / 15.0 : 1.0 / 20.0;
+    for (int a = 0; a < lm.count; ++a)
+      TEST_FLOATING_EQUALITY(share[a] / total, a < (t == ElementType::Tri6 ? 3 : 4) ? corner : 0.2,
+                             1e-13);
+  }
 }
 
 TEUCHOS_UNIT_TEST(Mortar, ClippingOfDegenerateOverlaps) {
@@ -262,13 +295,15 @@ TEUCHOS_UNIT_TEST(Mortar, RigidObstacleWeightedGap) {
     o.searchRadius = 0.1;
     std::vector<int> nodes(s.facets);
     const auto r = contact::makeMortarObstacleMaster(s, plane, o)->rows(x, nodes);
-    const std::size_t expected = t == ElementType::Quad9 ? 9 : 3;  // Tri6: corners only
-    TEST_EQUALITY(r.rows.size(), expected);
+    TEST_EQUALITY(r.rows.size(), s.facets.size());  // Tri6's midside nodes included
     double area = 0.0;
     for (const auto& row : r.rows) {
       TEST_FLOATING_EQUALITY(row.gap, 0.01, 1e-12);
       TEST_FLOATING_EQUALITY(row.normal[2], 1.0, 1e-14);
       area += row.weight;
+      // Tri6: the modified quadratic shares, 2/15 of the facet at a corner and 1/5 midside.
+      if (t == ElementType::Tri6)
+        TEST_FLOATING_EQUALITY(row.weight, row.slaveNode < 3 ? 0.5 * 2.0 / 15.0 : 0.5 / 5.0, 1e-13);
     }
     TEST_FLOATING_EQUALITY(area, t == ElementType::Quad9 ? 1.0 : 0.5, 1e-13);
   }

@@ -106,7 +106,7 @@ void addContactPairKeys(ParameterList& cp) {
          "(collocation; segments in 2D, faces in 3D); mortar: dual mortar, one row per slave node "
          "holding the weighted gap of its dual basis function over the overlaps of the slave and "
          "master facets (accurate pressures on non-matching and unstructured meshes; Tri6/Quad8 "
-         "slaves carry multipliers on their corners; docs/mortar_contact.md)",
+         "slaves use the modified quadratic dual basis; docs/mortar_contact.md)",
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
              Teuchos::tuple<std::string>("node_to_segment", "mortar"), "Contact discretization")));
 }

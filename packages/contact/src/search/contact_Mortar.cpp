@@ -110,7 +110,7 @@ bool integrateOverlap(const FacetGeometry& fs, const FacetGeometry& fm, int mast
           "(a distorted facet?)");
     facetShapeFunctions(fs.type, xs, Ns, nullptr);
     facetShapeFunctions(fm.type, xm, Nm, nullptr);
-    facetShapeFunctions(lm.type, xs, Nl, nullptr);
+    multiplierShapeFunctions(lm, xs, Nl);
     pts.w.push_back(q.weights[k]);
     pts.lm.insert(pts.lm.end(), Nl, Nl + lm.count);
     pts.slave.insert(pts.slave.end(), Ns, Ns + ns);
@@ -280,7 +280,7 @@ std::map<int, double> fullMultiplierWeights(const std::vector<double>& x,
   for (int e = 0; e < slave.numFacets(); ++e) {
     const FacetGeometry f = facetOf(slave, x, e);
     for (std::size_t k = 0; k < q.weights.size(); ++k) {
-      facetShapeFunctions(lm.type, q.points[k].data(), Nl, nullptr);
+      multiplierShapeFunctions(lm, q.points[k].data(), Nl);
       const double jw = q.weights[k] * f.jacobian(q.points[k].data());
       // int phi_j over the facet = int N_j (biorthogonality with the constant sum N_a = 1).
       for (int j = 0; j < lm.count; ++j) w[f.nodes[j]] += jw * Nl[j];

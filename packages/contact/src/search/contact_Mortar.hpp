@@ -16,8 +16,8 @@
 // so its multiplier is again a nodal force (z_j W_j), the row is node-to-segment's when D is
 // the identity and M the master's shape functions at the projection, and the pressure is the
 // multiplier divided by ContactRow::weight. D is diagonal for Line2, Line3, Tri3, Quad4 and
-// Quad9 slaves; Tri6 and Quad8 slaves carry linear multipliers on their corners
-// (multiplierSpace), whose rows also hold the facet's midside nodes.
+// Quad9 slaves; Tri6 and Quad8 slaves carry the dual basis of modified quadratic functions
+// (multiplierSpace), so their rows also hold the facet's other nodes.
 //
 // Integration (Puso and Laursen 2004, Popp et al. 2010): each slave facet and each master facet
 // facing it are projected onto the slave facet's auxiliary plane, the master polygon is clipped

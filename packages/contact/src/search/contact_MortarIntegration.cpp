@@ -50,10 +50,22 @@ void facetShapeFunctions(ElementType type, const double* xi, double* N, double* 
 }
 
 MultiplierSpace multiplierSpace(ElementType t) {
-  if (t == ElementType::Tri6) return {ElementType::Tri3, 3};
-  if (t == ElementType::Quad8) return {ElementType::Quad4, 4};
+  if (t == ElementType::Tri6 || t == ElementType::Quad8) return {t, numNodes(t), 0.2};
   facetParametricDimension(t);  // throws for a non-facet
   return {t, numNodes(t)};
+}
+
+void multiplierShapeFunctions(const MultiplierSpace& space, const double* xi, double* N) {
+  facetShapeFunctions(space.type, xi, N, nullptr);
+  if (space.alpha == 0.0) return;
+  // Tri6: midside 3 + i on the edge (i, i + 1); Quad8: midside 4 + i on the edge (i, i + 1).
+  const int corners = space.type == ElementType::Tri6 ? 3 : 4;
+  double mid[4];
+  for (int i = 0; i < corners; ++i) mid[i] = N[corners + i];
+  for (int i = 0; i < corners; ++i) {
+    N[i] += space.alpha * (mid[i] + mid[(i + corners - 1) % corners]);
+    N[corners + i] = (1.0 - 2.0 * space.alpha) * mid[i];
+  }
 }
 
 std::vector<double> dualBasisCoefficients(int n, const std::vector<double>& w,

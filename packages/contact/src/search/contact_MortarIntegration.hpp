@@ -23,18 +23,26 @@ int facetParametricDimension(ElementType type);
 // The parametric centre of a facet type.
 std::array<double, 2> facetCentre(ElementType type);
 
-// The multipliers of a slave facet live on `type`'s nodes `nodes` (local indices into the facet):
-//  - Line2, Line3, Tri3, Quad4, Quad9: every node, with the dual basis of the facet's own shape
-//    functions (each integrates to a positive share of the facet);
-//  - Tri6, Quad8: the corners, with the dual basis of the linear (Tri3, Quad4) functions. Their
-//    quadratic corner functions integrate to zero (Tri6) or a negative value (Quad8) over the
-//    facet, so a dual basis of them does not exist; piecewise linear multipliers on quadratic
-//    displacements are stable (the "linear Lagrange multipliers" of Popp et al. 2012).
+// The multipliers of a slave facet live on its first `count` nodes (local indices into the
+// facet), with the dual basis of the space's functions (multiplierShapeFunctions):
+//  - Line2, Line3, Tri3, Quad4, Quad9: every node, the facet's own shape functions (each
+//    integrates to a positive share of the facet);
+//  - Tri6, Quad8: every node, the quadratic functions modified by `alpha` (Popp, Wohlmuth, Gee
+//    and Wall 2012): a corner's function gains alpha times its two neighbouring midside
+//    functions, a midside function is scaled by 1 - 2 alpha. The plain quadratic corner
+//    functions integrate to zero (Tri6) or a negative value (Quad8) over the facet, so no dual
+//    basis of them exists; with alpha = 1/5 every share is positive (Tri6: 2/15 and 1/5 of the
+//    facet, Quad8: 1/20 and 1/5), the span is still the quadratic space, and the multipliers
+//    resolve the contact zone's edge at the midside nodes too.
 struct MultiplierSpace {
   ElementType type;
   int count;
+  double alpha = 0.0;
 };
 MultiplierSpace multiplierSpace(ElementType slaveFacetType);
+
+// The multiplier space's functions at xi (count values).
+void multiplierShapeFunctions(const MultiplierSpace& space, const double* xi, double* N);
 
 // The dual basis on a domain given by quadrature: points q with weights w[q] and the n
 // multiplier-space functions N[q * n + a] there. Returns A (n x n, row-major) such that

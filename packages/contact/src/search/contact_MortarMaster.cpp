@@ -136,7 +136,7 @@ class ObstacleMortarMaster : public ContactMaster {
       const FacetGeometry f{dim, slave_.type, nodes, &x};
       for (int k = 0; k < nq; ++k) {
         facetShapeFunctions(slave_.type, q.points[k].data(), N, nullptr);
-        facetShapeFunctions(lm.type, q.points[k].data(), L, nullptr);
+        multiplierShapeFunctions(lm, q.points[k].data(), L);
         for (int c = 0; c < dim; ++c) {
           double r = 0.0, d = 0.0;
           for (int a = 0; a < np; ++a) {
