@@ -26,6 +26,9 @@ cattaneo:   the Cattaneo-Mindlin problem (examples/cattaneo_cylinders.xml: Coulo
             --contact-max-dofs), and the same mesh and loads frictionless: Hessian
             multiplications and Newton iterations per step, Coulomb fixed-point iterations,
             times, memory, c/a against Cattaneo-Mindlin
+cattaneo_sphere: the 3D Cattaneo-Mindlin sphere (examples/cattaneo_sphere.xml: Coulomb mu =
+            0.3, dual mortar rows, normal then tangential loading) at about 28k and 0.1M
+            unknowns, and the same mesh and loads frictionless
 size2d:     the largest 2D linear solves: plane-strain elasticity, H/h = 16, from 1.2M to about
             23M unknowns (up to --max-dofs): times, iterations, peak memory per rank, bytes per
             unknown and the memory after every phase; a run whose estimated memory (the bytes
@@ -584,15 +587,21 @@ def hertz_sphere(o):
 CATTANEO_SIZES = ((0.31, 16), (0.1, 160))
 
 
-def cattaneo_run(o, name, sf, subdomains, friction=True):
+# examples/cattaneo_sphere.xml (3D, Tet4, a size field at the contact): 28,488 unknowns at size
+# factor 1 with 4 + 4 subdomains; about 0.1M at 0.6.
+CATTANEO_SPHERE_SIZES = ((1.0, 4, 2.85e4), (0.6, 14, 1.0e5))
+
+
+def cattaneo_run(o, name, sf, subdomains, friction=True, example="cattaneo_cylinders",
+                 defaults=("0.5", "{8, 8}")):
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
-    with open(os.path.join(root, "cattaneo_cylinders.xml")) as f:
+    with open(os.path.join(root, example + ".xml")) as f:
         xml = f.read()
-    xml = xml.replace('value="cattaneo_cylinders.geo"',
-                      'value="%s"' % os.path.join(root, "cattaneo_cylinders.geo"))
-    xml = xml.replace('<Parameter name="Mesh size factor" type="double" value="0.5"/>',
+    xml = xml.replace(f'value="{example}.geo"',
+                      'value="%s"' % os.path.join(root, example + ".geo"))
+    xml = xml.replace(f'<Parameter name="Mesh size factor" type="double" value="{defaults[0]}"/>',
                       f'<Parameter name="Mesh size factor" type="double" value="{sf}"/>')
-    xml = xml.replace('value="{8, 8}"', f'value="{{{subdomains}, {subdomains}}}"')
+    xml = xml.replace(f'value="{defaults[1]}"', f'value="{{{subdomains}, {subdomains}}}"')
     xml = xml.replace('<ParameterList name="FETI">', '<ParameterList name="Output">\n'
                       '    <Parameter name="VTU" type="bool" value="false"/>\n'
                       '  </ParameterList>\n  <ParameterList name="FETI">')
@@ -617,21 +626,21 @@ def cattaneo_run(o, name, sf, subdomains, friction=True):
         return None
 
 
-def cattaneo(o):
-    """Coulomb friction against the frictionless problem on the same mesh and load steps."""
-    print("\n## Cattaneo-Mindlin (Coulomb mu = 0.3) against frictionless, same mesh and steps, "
-          "SMALBE, 2 ranks\n")
+def cattaneo_table(o, title, cases, example, defaults):
+    """Coulomb friction against the frictionless problem on the same mesh and load steps: one
+    table row per case (size factor, subdomains per body, estimated unknowns) and friction."""
+    print(f"\n## {title} (Coulomb mu = 0.3) against frictionless, same mesh and steps, SMALBE, "
+          f"{o.ranks} ranks\n")
     print("| size factor | unknowns | subdomains | friction | Hessian mults step 1 / 2 | Newton "
           "it. step 1 / 2 | fixed-point it. step 1 / 2 | setup s | solve s | peak MiB/rank | "
           "Q/(mu P) | c/a | c/a closed form |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for sf, subs in CATTANEO_SIZES:
-        dofs = 2 * 4.8e3 / sf ** 2
+    for sf, subs, dofs in cases:
         if dofs > o.contact_max_dofs:
             continue
         for friction in (True, False):
             label = "Coulomb" if friction else "none"
-            progress(f"Cattaneo, size factor {sf} (about {dofs:,.0f} unknowns), friction {label}")
-            s = cattaneo_run(o, f"cattaneo_sf{sf}_{label}", sf, subs, friction)
+            progress(f"{title}, size factor {sf} (about {dofs:,.0f} unknowns), friction {label}")
+            s = cattaneo_run(o, f"{example}_sf{sf}_{label}", sf, subs, friction, example, defaults)
             if s is None:
                 print(f"| {sf} | failed | | {label} |", flush=True)
                 continue
@@ -643,11 +652,22 @@ def cattaneo(o):
             conv = "" if s["converged"] else " (not converged)"
             print(f"| {sf} | {s['primal_dim']:,} | {s['subdomains']} | {label}{conv} | {mults} | "
                   f"{newton} | {fp or '-'} | {t['setup_s']:.1f} | {t['solve_s']:.1f} | "
-                  f"{s['peak_rss_mb']:.0f} | {cm.get('q_over_mu_p', float('nan')):.3f} | "
-                  f"{cm.get('stick_ratio', float('nan')):.3f} | "
-                  f"{cm.get('stick_ratio_closed_form', float('nan')):.3f} |", flush=True)
+                  f"{s['peak_rss_mb']:.0f} | {cm.get('q_over_mu_p', float('nan')):.4f} | "
+                  f"{cm.get('stick_ratio', float('nan')):.4f} | "
+                  f"{cm.get('stick_ratio_closed_form', float('nan')):.4f} |", flush=True)
             progress(f"  {s['nonlinear']['total_hessian_multiplications']} Hessian "
                      f"multiplications, solve {t['solve_s']:.1f} s")
+
+
+def cattaneo(o):
+    cattaneo_table(o, "Cattaneo-Mindlin cylinders",
+                   [(sf, subs, 2 * 4.8e3 / sf ** 2) for sf, subs in CATTANEO_SIZES],
+                   "cattaneo_cylinders", ("0.5", "{8, 8}"))
+
+
+def cattaneo_sphere(o):
+    cattaneo_table(o, "Cattaneo-Mindlin sphere", CATTANEO_SPHERE_SIZES, "cattaneo_sphere",
+                   ("1.0", "{4, 4}"))
 
 
 def solvers(o):
@@ -685,4 +705,5 @@ if __name__ == "__main__":
         {"sweep": sweep, "reference": reference, "solvers": solvers, "membranes": membranes,
          "cylinders_convergence": cylinders_convergence, "cylinders": cylinders,
          "sweep3d": sweep3d, "cylinders_tied": cylinders_tied, "size2d": size2d,
-         "hertz_sphere": hertz_sphere, "cattaneo": cattaneo}[name](o)
+         "hertz_sphere": hertz_sphere, "cattaneo": cattaneo,
+         "cattaneo_sphere": cattaneo_sphere}[name](o)

@@ -290,37 +290,58 @@ TEUCHOS_UNIT_TEST(DiscQp, DiscsThatNeverBindGiveMprgpsAnswer) {
   TEST_COMPARE(maxAbsDiff(*p.x, xBoxes), <=, 1e-9 * std::max(1.0, xBoxes.normInf()));
 }
 
-TEUCHOS_UNIT_TEST(DiscQp, SmalbeWithEqualityAndDiscs) {
-  // sum x = 0 (Q: the projector onto constants) on top of the known problem's constraints.
-  auto p = knownDiscProblem(world(), 40);
-  auto Q = rcp(new SpanProjector(*vectorOf(p.x->getMap(), [](GO) { return 1.0; })));
-  Smalbe s(p.qp(), Q, smalbeParams(1e-10));
-  {
-    const Belos::ReturnType ret = s.solve();  // once: TEST_EQUALITY evaluates twice
-    TEST_EQUALITY(ret, Belos::Converged);
-  }
-  // The KKT conditions of the Lagrangian: b - mu in place of b.
+// The KKT conditions of SMALBE's Lagrangian (b - mu in place of b) and Q x = 0 at its result.
+void checkSmalbeSolution(const DiscProblem& p, const Smalbe& s, const SpanProjector& Q,
+                         Teuchos::FancyOStream& out, bool& success) {
   DiscProblem lagrangian = p;
   lagrangian.b = rcp(new Vector(*p.b, Teuchos::Copy));
   lagrangian.b->update(-1.0, *s.getMultiplier(), 1.0);
   TEST_COMPARE(discKktViolation(lagrangian), <=, 1e-7 * p.b->norm2());
   Vector Qx(p.x->getMap());
-  Q->apply(*p.x, Qx);
+  Q.apply(*p.x, Qx);
   TEST_COMPARE(Qx.norm2(), <=, 1e-8 * p.b->norm2());
-  // With a disc, the face solve (boxes only) is refused by name.
-  Teuchos::ParameterList face = smalbeParams(1e-10);
-  face.set("Face solve", "pcpg");
-  Smalbe bad(p.qp(), Q, face);
-  TEST_THROW(
-      {
-        try {
-          bad.solve();
-        } catch (const std::exception& e) {
-          TEST_ASSERT(std::string(e.what()).find("Face solve") != std::string::npos);
-          throw;
-        }
-      },
-      std::exception);
+}
+
+// sum x = 0 (Q: the projector onto constants) on top of the known problem's constraints, by
+// SMALBE alone and with its face solve (docs/qp_solvers.md, "The face solve with discs": a disc
+// on its circle is a face row along its normal, its tangent free with the circle's curvature,
+// the face's result retracted onto the circles). The face solve after every outer iteration
+// (Face settle iterations = 0), and from the start: the active set of a point near the solution
+// (the one of SMALBE alone, perturbed), as FETI's warm start gives. Both end in an accepted face
+// and give SMALBE's answer to the tolerance.
+TEUCHOS_UNIT_TEST(DiscQp, SmalbeWithEqualityAndDiscs) {
+  auto p = knownDiscProblem(world(), 40);
+  auto Q = rcp(new SpanProjector(*vectorOf(p.x->getMap(), [](GO) { return 1.0; })));
+  Smalbe alone(p.qp(), Q, smalbeParams(1e-10));
+  {
+    const Belos::ReturnType ret = alone.solve();  // once: TEST_EQUALITY evaluates twice
+    TEST_EQUALITY(ret, Belos::Converged);
+  }
+  checkSmalbeSolution(p, alone, *Q, out, success);
+  const Vector reference(*p.x, Teuchos::Copy);
+  auto start = vectorOf(p.x->getMap(), [](GO i) { return 0.01 * std::sin(0.9 * i); });
+  start->update(1.0, reference, 1.0);
+  for (const std::string initial : {"none", "start"}) {
+    Teuchos::ParameterList face = smalbeParams(1e-10);
+    face.set("Face solve", "pcpg");
+    face.set("Face settle iterations", 0);
+    face.set("Initial face", initial);
+    p.x->putScalar(0.0);
+    Smalbe s(p.qp(), Q, face);
+    if (initial == "start") s.setFaceStart(start);
+    {
+      const Belos::ReturnType ret = s.solve();  // once: TEST_EQUALITY evaluates twice
+      TEST_EQUALITY(ret, Belos::Converged);
+    }
+    const auto& c = s.counters();
+    out << "Initial face " << initial << ": " << c.outerIterations << " outer iterations, "
+        << c.hessianMultiplications << " multiplications (SMALBE alone "
+        << alone.counters().hessianMultiplications << "); " << c.message << "\n";
+    TEST_ASSERT(c.message.find("the last a face solve") != std::string::npos);
+    checkSmalbeSolution(p, s, *Q, out, success);
+    TEST_COMPARE(maxAbsDiff(*p.x, reference), <=, 1e-7 * std::max(1.0, reference.normInf()));
+    if (initial == "start") TEST_EQUALITY(c.outerIterations, 0);  // the first face holds
+  }
 }
 
 TEUCHOS_UNIT_TEST(DiscQp, MalformedDiscsNamed) {

@@ -286,11 +286,14 @@ class FetiSolver {
   void setDualQpBounds(BoundConstrainedQp<Scalar, MultiVector, Operator>& qp) const;
   bool warmStartAgreed() const;  // collective: every rank can start from the last solve
   Teuchos::RCP<Vector> initialIncrement(bool warm) const;
+  // The warm start before its projection onto ker G (previous lambda - lambda~).
+  Teuchos::RCP<Vector> warmIncrement() const;
   double projectedNormEstimate(const Operator& PFP, const MultiVector& b, bool smalbe, bool warm);
   void setQpOperators(DualQp& dual) const;
   Belos::ReturnType solveSmalbe(DualQp& dual, QpCounters& counters);
   Teuchos::RCP<Vector> smalbeInitialMultiplier(bool warm, const Operator& Q) const;
-  Teuchos::RCP<Vector> contactGapLevels() const;
+  // discs (may be null): the dual's disc vector, whose components get no level.
+  Teuchos::RCP<Vector> contactGapLevels(const MultiVector* discs = nullptr) const;
   Belos::ReturnType solvePenalty(DualQp& dual, QpCounters& counters);
   void completeQpResult(Belos::ReturnType ret, DualResult& result) const;
   // The primal solution (tfeti_PrimalRecovery.cpp).

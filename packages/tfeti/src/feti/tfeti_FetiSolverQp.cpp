@@ -128,6 +128,17 @@ bool FetiSolver::warmStartAgreed() const {
   return warmAll == 1;
 }
 
+Teuchos::RCP<Vector> FetiSolver::warmIncrement() const {
+  // lambda_previous - lambda~ as it is: on the bounds where the previous solution was.
+  const auto map = tearing_.multiplierMap;
+  auto mu = Teuchos::rcp(new Vector(map));
+  auto m = mu->getDataNonConst();
+  auto p = previousLambda_->getData();
+  auto l0 = lambda0_->getData();
+  for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) m[i] = p[i] - l0[i];
+  return mu;
+}
+
 Teuchos::RCP<Vector> FetiSolver::initialIncrement(bool warm) const {
   // From 0, or (warm start) from P (lambda_previous - lambda~): in the kernel of G, projected
   // onto the bounds by MPRGP. The rows of a nonlinear iteration keep their canonical order as
@@ -193,19 +204,26 @@ Belos::ReturnType FetiSolver::solveSmalbe(DualQp& dual, QpCounters& counters) {
   for (const char* tol : {"Relative tolerance", "Equality tolerance"})
     sp.set(tol, toleranceFactor_ * sp.get<double>(tol));
   sp.sublist("MPRGP").set(kPreconditioningInFace, !dual.prec.is_null());
-  // The face phase solves on faces of boxes; a dual with discs (3D friction) runs SMALBE with
-  // MPGP alone (docs/qp_solvers.md, "Disc constraints").
-  if (!dual.qp.discs.is_null()) sp.set("Face solve", "none");
+  // With discs (3D friction) the first face is the initial iterate's active set: the discs have
+  // no levels, and the inner MPGP solves are slow where discs slide (docs/qp_solvers.md, "The
+  // face solve with discs").
+  const bool discStart =
+      !dual.qp.discs.is_null() && dual.warm && sp.get<std::string>("Initial face") != "none";
+  if (discStart) sp.set("Initial face", "start");
   SmalbeSolMgr<Scalar, MultiVector, Operator> solver(dual.qp, dual.Q, sp, dual.prec);
   solver.setOutputStream(out_);
   solver.setAugmentedHessian(dual.H);
+  if (discStart) solver.setFaceStart(warmIncrement());
   const auto nu0 = smalbeInitialMultiplier(dual.warm, *dual.Q);
   if (!nu0.is_null()) solver.setInitialMultiplier(nu0);
   // The gaps as the levels of SMALBE's "Initial face" = levels (frictionless contact only:
   // the tangential rows' boxes have no level), not for warm starts, which have their face.
+  // With discs (3D friction) the normal rows have their gaps as levels and the friction rows
+  // none (their discs, and boxes on symmetry planes, start free); 2D friction's boxes keep
+  // SMALBE's own first face.
   if (!dual.warm && tearing_.numInequalityRows > 0 && !inequalitiesTied(params_) &&
-      dual.qp.upper.is_null() && dual.qp.discs.is_null())
-    solver.setFaceLevels(contactGapLevels());
+      (dual.qp.upper.is_null() || !dual.qp.discs.is_null()))
+    solver.setFaceLevels(contactGapLevels(dual.qp.discs.get()));
   const Belos::ReturnType ret = solver.solve();
   counters = solver.counters();
   equalityMultiplier_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
@@ -239,15 +257,23 @@ Teuchos::RCP<Vector> FetiSolver::smalbeInitialMultiplier(bool warm, const Operat
   return nu0;
 }
 
-Teuchos::RCP<Vector> FetiSolver::contactGapLevels() const {
+Teuchos::RCP<Vector> FetiSolver::contactGapLevels(const MultiVector* discs) const {
   const auto map = tearing_.multiplierMap;
   auto levels = Teuchos::rcp(new Vector(map));
   auto dst = levels->getDataNonConst();
   auto c = tearing_.rhs->getData();
-  for (std::size_t i = 0; i < map->getNodeNumElements(); ++i)
-    dst[i] = tearing_.isInequality(map->getGlobalElement(static_cast<LO>(i)))
-                 ? c[i]
-                 : std::numeric_limits<double>::quiet_NaN();
+  Teuchos::ArrayRCP<const double> dv;
+  if (discs != nullptr) dv = discs->getData(0);
+  for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) {
+    const GO row = map->getGlobalElement(static_cast<LO>(i));
+    // Friction rows (discs, or boxes with an upper bound) have no level.
+    const bool friction = (!dv.is_null() && !std::isnan(dv[i])) ||
+                          (tearing_.isInequality(row) &&
+                           tearing_.inequalityRows[row - tearing_.firstInequalityRow].upperBound <
+                               std::numeric_limits<double>::infinity());
+    dst[i] =
+        !friction && tearing_.isInequality(row) ? c[i] : std::numeric_limits<double>::quiet_NaN();
+  }
   return levels;
 }
 

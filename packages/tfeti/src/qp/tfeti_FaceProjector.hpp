@@ -10,17 +10,30 @@
 // among the faces of one solve). One application of P_F costs two of Q.
 // S is singular when a combination of active unit vectors lies in range(Q) (the active rows
 // together with the equality rows are dependent); valid() is false then and the face is not used.
+//
+// Discs (3D friction, tfeti_SeparableSet.hpp): a disc on its circle is a row n0 e_i + n1 e_{i+1}
+// of E_A (its outward normal at the face's entry point), so that the face holds n . (x - c) = r
+// and leaves the tangent free. Rows are the unit rows first, then the circles; they have unit
+// norm and disjoint supports, so E_A E_A^T = I still and S = I - E_A Q E_A^T as above.
 #include <BelosMultiVecTraits.hpp>
 #include <BelosOperatorTraits.hpp>
 #include <Teuchos_LAPACK.hpp>
 #include <Teuchos_RCP.hpp>
 
+#include <algorithm>
 #include <vector>
 
 #include "tfeti_BoundTraits.hpp"
 #include "tfeti_FaceGramian.hpp"
 
 namespace tfeti {
+
+// A circle row of a face: the disc's first component and its unit normal.
+template <class S>
+struct FaceCircle {
+  long long index;
+  S n0, n1;
+};
 
 template <class S, class MV, class OP>
 class FaceProjector {
@@ -33,26 +46,47 @@ class FaceProjector {
   // gramian (optional): the columns of Q shared by the faces of one solve; the result is the same
   // with or without it.
   FaceProjector(Teuchos::RCP<const OP> Q, std::vector<long long> active, const MV& like,
-                FaceGramian<S, MV, OP>* gramian = nullptr)
-      : Q_(std::move(Q)), active_(std::move(active)), m_(static_cast<int>(active_.size())) {
+                FaceGramian<S, MV, OP>* gramian = nullptr, std::vector<FaceCircle<S>> circles = {})
+      : Q_(std::move(Q)),
+        active_(std::move(active)),
+        circles_(std::move(circles)),
+        m_(static_cast<int>(active_.size() + circles_.size())) {
     t1_ = MVT::Clone(like, 1);
     t2_ = MVT::Clone(like, 1);
-    // S = I - E_A Q E_A^T, column by column (each a Q e_j gathered on the active rows).
+    // The components the rows touch: the unit rows', then both of each circle's.
+    idx_ = active_;
+    for (const auto& c : circles_) idx_.push_back(c.index), idx_.push_back(c.index + 1);
+    std::vector<long long> sorted = idx_;
+    std::sort(sorted.begin(), sorted.end());
+    // S = I - E_A Q E_A^T, column by column (each a Q c_j gathered on the rows).
     L_.assign(static_cast<std::size_t>(m_) * m_, S(0));
-    if (gramian != nullptr && gramian->covers(active_)) {
-      std::vector<std::size_t> at(active_.size());
-      for (int i = 0; i < m_; ++i) at[i] = gramian->position(active_[i]);
+    if (gramian != nullptr && gramian->covers(sorted)) {
+      std::vector<std::size_t> at(idx_.size());
+      for (std::size_t i = 0; i < idx_.size(); ++i) at[i] = gramian->position(idx_[i]);
+      // E_C Q c_j over the candidates C: a column of the gramian, or two combined (a circle).
+      std::vector<S> qc;
       for (int j = 0; j < m_; ++j) {
-        const std::vector<S>& col = gramian->column(active_[j]);
-        for (int i = 0; i < m_; ++i) L_[j * m_ + i] = (i == j ? S(1) : S(0)) - col[at[i]];
+        if (j < static_cast<int>(active_.size())) {
+          qc = gramian->column(active_[j]);
+        } else {
+          const auto& c = circles_[j - active_.size()];
+          qc = gramian->column(c.index);
+          const std::vector<S>& second = gramian->column(c.index + 1);
+          for (std::size_t i = 0; i < qc.size(); ++i) qc[i] = c.n0 * qc[i] + c.n1 * second[i];
+        }
+        std::vector<S> atRows(idx_.size());
+        for (std::size_t i = 0; i < idx_.size(); ++i) atRows[i] = qc[at[i]];
+        const std::vector<S> col = combine(atRows);
+        for (int i = 0; i < m_; ++i) L_[j * m_ + i] = (i == j ? S(1) : S(0)) - col[i];
       }
     } else {
-      const std::vector<S> one{S(1)};
       for (int j = 0; j < m_; ++j) {
         MVT::MvInit(*t1_, S(0));
-        BT::addAt({active_[j]}, one, S(1), *t1_);
+        std::vector<S> e(m_, S(0));
+        e[j] = S(1);
+        addRows(e, S(1), *t1_);
         applyQ(*t1_, *t2_);
-        const std::vector<S> col = BT::gatherAt(*t2_, active_);
+        const std::vector<S> col = gatherRows(*t2_);
         for (int i = 0; i < m_; ++i) L_[j * m_ + i] = (i == j ? S(1) : S(0)) - col[i];
       }
     }
@@ -72,14 +106,30 @@ class FaceProjector {
   }
 
   bool valid() const { return valid_; }
+  // The unit rows (sorted global indices) and the circles; rows are numbered in this order.
   const std::vector<long long>& active() const { return active_; }
+  const std::vector<FaceCircle<S>>& circles() const { return circles_; }
+  int rows() const { return m_; }
+
+  // The rows' values of v: v_i on a unit row, n . (v_i, v_{i+1}) on a circle (collective).
+  std::vector<S> gatherRows(const MV& v) const { return combine(BT::gatherAt(v, idx_)); }
+  // v += alpha E_A^T s.
+  void addRows(const std::vector<S>& s, S alpha, MV& v) const {
+    std::vector<S> values(s.begin(), s.begin() + active_.size());
+    for (std::size_t k = 0; k < circles_.size(); ++k) {
+      const S sk = s[active_.size() + k];
+      values.push_back(circles_[k].n0 * sk);
+      values.push_back(circles_[k].n1 * sk);
+    }
+    BT::addAt(idx_, values, alpha, v);
+  }
   long long projectorApplications() const { return qApplies_; }
 
   // sigma = S^{-1} E_A P g: the active rows' multipliers, with which
   // g = P_F g + E_A^T sigma + (a part in range(Q)).
   std::vector<S> activeMultipliers(const MV& g) const {
     applyP(g, *t1_);
-    std::vector<S> s = BT::gatherAt(*t1_, active_);
+    std::vector<S> s = gatherRows(*t1_);
     solveS(s);
     return s;
   }
@@ -87,23 +137,23 @@ class FaceProjector {
   // y = P_F x (y may be x).
   void apply(const MV& x, MV& y) const {
     applyP(x, *t1_);
-    std::vector<S> s = BT::gatherAt(*t1_, active_);
+    std::vector<S> s = gatherRows(*t1_);
     solveS(s);
     // P_F x = P x - P E_A^T s
     MVT::MvInit(*t2_, S(0));
-    BT::addAt(active_, s, S(1), *t2_);
+    addRows(s, S(1), *t2_);
     MVT::Assign(*t1_, y);
     applyP(*t2_, *t1_);
     MVT::MvAddMv(S(1), y, S(-1), *t1_, y);
   }
 
-  // The point of {Q x = 0, x_A = r} nearest to x: P_F x + P E_A^T S^{-1} r.
+  // The point of {Q x = 0, E_A x = r} nearest to x: P_F x + P E_A^T S^{-1} r.
   void projectAffine(const std::vector<S>& r, MV& x) const {
     apply(x, x);
     std::vector<S> s = r;
     solveS(s);
     MVT::MvInit(*t2_, S(0));
-    BT::addAt(active_, s, S(1), *t2_);
+    addRows(s, S(1), *t2_);
     applyP(*t2_, *t1_);
     MVT::MvAddMv(S(1), x, S(1), *t1_, x);
   }
@@ -112,8 +162,10 @@ class FaceProjector {
   static constexpr double kMinPivot = 1e-10;
   Teuchos::RCP<const OP> Q_;
   std::vector<long long> active_;
+  std::vector<FaceCircle<S>> circles_;
   int m_;
-  std::vector<S> L_;  // Cholesky factor of S, column-major, lower triangle
+  std::vector<long long> idx_;  // the unit rows, then each circle's two components
+  std::vector<S> L_;            // Cholesky factor of S, column-major, lower triangle
   bool valid_ = false;
   Teuchos::RCP<MV> t1_, t2_;
   mutable long long qApplies_ = 0;
@@ -126,6 +178,15 @@ class FaceProjector {
   void applyP(const MV& x, MV& y) const {
     applyQ(x, y);
     MVT::MvAddMv(S(1), x, S(-1), y, y);
+  }
+  // Row values from the values at idx_.
+  std::vector<S> combine(const std::vector<S>& atIdx) const {
+    std::vector<S> r(atIdx.begin(), atIdx.begin() + active_.size());
+    for (std::size_t k = 0; k < circles_.size(); ++k) {
+      const std::size_t i = active_.size() + 2 * k;
+      r.push_back(circles_[k].n0 * atIdx[i] + circles_[k].n1 * atIdx[i + 1]);
+    }
+    return r;
   }
   void solveS(std::vector<S>& s) const {
     if (m_ == 0) return;

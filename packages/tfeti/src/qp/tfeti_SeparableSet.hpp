@@ -299,6 +299,64 @@ class SeparableSet<S, Tpetra::MultiVector<S, LO, GO, Node>> {
     return boxes && any == 0;
   }
 
+  // A disc with r > 0 on its circle as a row of a face (SMALBE's face solve, tfeti_FaceProjector
+  // .hpp): the global index of its first component, the outward unit normal n at x, the radius
+  // and the centre. The face holds n . (x - c) = r and lets x move along the tangent.
+  struct Circle {
+    long long index;
+    S n0, n1, radius, c0, c1;
+  };
+  // The discs with r > 0 whose first component is in `among` (sorted global indices), with their
+  // normals at x, sorted by index, on every rank. A disc whose x is at its centre has no normal
+  // and is left out. Collective.
+  std::vector<Circle> circles(const MV& x, const std::vector<long long>& among) const {
+    std::vector<S> mine;
+    if (!first_.empty()) {
+      const auto map = x.getMap();
+      auto xv = x.getData(0);
+      for (std::size_t k = 0; k < first_.size(); ++k) {
+        const long long gi = static_cast<long long>(map->getGlobalElement(first_[k]));
+        if (!(radius_[k] > S(0)) || !std::binary_search(among.begin(), among.end(), gi)) continue;
+        if (!(norm(xv, k) > S(0))) continue;
+        S n0, n1;
+        normal(xv, k, n0, n1);
+        for (S v : {static_cast<S>(gi), n0, n1, radius_[k], center_[2 * k], center_[2 * k + 1]})
+          mine.push_back(v);
+      }
+    }
+    // Gathered as six numbers per disc (the index is exact in a double below 2^53).
+    const auto& comm = *x.getMap()->getComm();
+    long long count = static_cast<long long>(mine.size()), most = 0;
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &count, &most);
+    mine.resize(static_cast<std::size_t>(most), S(-1));
+    std::vector<S> all(static_cast<std::size_t>(most) * comm.getSize());
+    if (most > 0)
+      Teuchos::gatherAll(comm, static_cast<int>(most), mine.data(), static_cast<int>(all.size()),
+                         all.data());
+    std::vector<Circle> out;
+    for (std::size_t i = 0; i + 5 < all.size(); i += 6)
+      if (all[i] >= S(0))
+        out.push_back({static_cast<long long>(all[i]), all[i + 1], all[i + 2], all[i + 3],
+                       all[i + 4], all[i + 5]});
+    std::sort(out.begin(), out.end(),
+              [](const Circle& a, const Circle& b) { return a.index < b.index; });
+    return out;
+  }
+
+  // The global indices of both components of every disc of radius 0 (a point, always active),
+  // sorted, on every rank (collective).
+  std::vector<long long> pointComponents(const MV& x) const {
+    const auto map = x.getMap();
+    std::vector<long long> mine;
+    for (std::size_t k = 0; k < first_.size(); ++k)
+      if (!(radius_[k] > S(0))) {
+        const long long gi = static_cast<long long>(map->getGlobalElement(first_[k]));
+        mine.push_back(gi);
+        mine.push_back(gi + 1);
+      }
+    return BT::gatherIndices(*map, std::move(mine));
+  }
+
   // The global indices of the active components (both of an active disc), sorted, on every
   // rank.
   std::vector<long long> activeIndices(const MV& x) const {

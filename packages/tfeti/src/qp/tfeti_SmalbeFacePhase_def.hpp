@@ -4,14 +4,18 @@
 // levels, the bisection over the level sets for the first face. Included by
 // tfeti_SmalbeSolMgr_def.hpp.
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "tfeti_BoundTraits.hpp"
 #include "tfeti_FaceGramian.hpp"
 #include "tfeti_FacePcpg.hpp"
 #include "tfeti_FaceProjector.hpp"
+#include "tfeti_OperatorSum.hpp"
+#include "tfeti_SeparableSet.hpp"
 #include "tfeti_SmalbeSolMgr_decl.hpp"
 #include "tfeti_TimedOperator.hpp"
 
@@ -22,7 +26,12 @@ template <class S, class MV, class OP>
 struct SmalbeSolMgr<S, MV, OP>::FaceRun {
   bool root = false;
   Teuchos::RCP<const OP> A, M;  // the timed Hessian; the preconditioner (null: none)
-  Teuchos::RCP<MV> x, g;        // the face iterate and its gradient A x - b
+  // Discs: the circles of the current face (tfeti_SeparableSet.hpp), the curvature nu / r on
+  // their components (null without circles) and the face's Hessian A + diag(curvature).
+  std::vector<typename SeparableSet<S, MV>::Circle> circles;
+  Teuchos::RCP<MV> curvature;
+  Teuchos::RCP<const OP> faceA;
+  Teuchos::RCP<MV> x, g;  // the face iterate and its gradient A x - b
   Teuchos::RCP<MV> t, mu, phi, chopped;
   magnitude_type gTol = 0, eTol = 0, scale = 0;
   S tightTol = 0, looseTol = 0;
@@ -30,6 +39,8 @@ struct SmalbeSolMgr<S, MV, OP>::FaceRun {
   // Faces whose loose verdict already moved the active set: a verdict that leads back to one of
   // them (rows near a bound judged by a loose solution) is settled by the tight solve instead.
   std::vector<std::vector<long long>> visited;
+  // Faces with circles whose loose solve was already repeated from its retracted result.
+  std::vector<std::vector<long long>> relinearized;
 };
 
 // SMALBE's final test on a face solve's result.
@@ -46,9 +57,10 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
                                         const MV* start) {
   using MVT = Belos::MultiVecTraits<S, MV>;
   FaceRun run = startFaceRun(gTol, eTol, scale, start);
-  while (face_.solves < params_.get<int>("Maximum face solves")) {
+  while (face_.solves - face_.circleSteps < params_.get<int>("Maximum face solves")) {
     ++face_.solves;
-    FaceProjector<S, MV, OP> face(Q_, active, *run.x, gramian_.get());
+    const auto facePtr = faceOf(active, *run.x, run);
+    const FaceProjector<S, MV, OP>& face = *facePtr;
     qApplies_ += face.projectorApplications();
     if (!face.valid()) {
       if (out_.wants(Belos::IterationDetails) && run.root)
@@ -57,7 +69,7 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
             "solve\n");
       break;
     }
-    const std::vector<S> r = enterFace(face, active, run);
+    const std::vector<S> r = enterFace(face, run);
     // First to a loose tolerance (kFaceVerdictFactor): enough to tell whether the face holds (no
     // free row leaves the box, no active row pulls). Only a face that holds is solved to the
     // tight tolerance, from there; the active-set corrections before it cost loose solves only.
@@ -69,7 +81,7 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
     const FaceOutcome out = finalTestOnFace(face, active, r, run);
     const bool passed = out.gp <= gTol && out.qx <= eTol;
     std::vector<long long> next;
-    if (!passed) next = activeSetStep(*run.x, active, out.sigma);
+    if (!passed) next = activeSetStep(*run.x, face, out.sigma);
     reportFaceSolve(run, active.size(), steps, res.converged, out, passed, next.size());
     if (passed) {
       MVT::Assign(*run.x, *qp_.x);
@@ -80,7 +92,13 @@ bool SmalbeSolMgr<S, MV, OP>::faceSolve(std::vector<long long> active, magnitude
       face_.accepted = true;
       return true;
     }
-    if (next == active) break;  // the same face again would give the same result
+    // The same face again would give the same result; not with circles, whose normals and
+    // curvature the next face takes from the retracted iterate (a Newton step on the circles).
+    if (next == active && face.circles().empty()) break;
+    if (next == active) {
+      if (++face_.circleSteps > kMaxCircleSteps) break;
+      continue;
+    }
     run.visited.push_back(active);
     ++face_.activeSetChanges;
     active = std::move(next);
@@ -111,31 +129,97 @@ typename SmalbeSolMgr<S, MV, OP>::FaceRun SmalbeSolMgr<S, MV, OP>::startFaceRun(
 }
 
 template <class S, class MV, class OP>
+std::unique_ptr<FaceProjector<S, MV, OP>> SmalbeSolMgr<S, MV, OP>::faceOf(
+    const std::vector<long long>& active, const MV& x, FaceRun& run) const {
+  // A disc on its circle is a circle row (its normal held, its tangent free); the components of
+  // a disc of radius 0 (a point) stay unit rows, held where they are.
+  run.circles.clear();
+  if (qp_.discs.is_null() || !feasibleSet(qp_).hasDiscs())
+    return std::make_unique<FaceProjector<S, MV, OP>>(Q_, active, x, gramian_.get());
+  run.circles = feasibleSet(qp_).circles(x, active);
+  std::vector<long long> unit;
+  std::vector<FaceCircle<S>> rows;
+  std::size_t k = 0;
+  for (const long long i : active) {
+    while (k < run.circles.size() && run.circles[k].index + 1 < i) ++k;
+    const bool onCircle =
+        k < run.circles.size() && (run.circles[k].index == i || run.circles[k].index + 1 == i);
+    if (!onCircle) unit.push_back(i);
+  }
+  for (const auto& c : run.circles) rows.push_back({c.index, c.n0, c.n1});
+  return std::make_unique<FaceProjector<S, MV, OP>>(Q_, std::move(unit), x, gramian_.get(),
+                                                    std::move(rows));
+}
+
+template <class S, class MV, class OP>
 std::vector<S> SmalbeSolMgr<S, MV, OP>::enterFace(const FaceProjector<S, MV, OP>& face,
-                                                  const std::vector<long long>& active,
                                                   FaceRun& run) {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using OPT = Belos::OperatorTraits<S, MV, OP>;
   using BT = BoundTraits<S, MV>;
   const MV* upper = qp_.upper.get();
+  const std::vector<long long>& active = face.active();
   // The active rows' bound values: the upper bound where x reached it, else the lower one
-  // (rows that an active-set step added from outside the box go to the bound they crossed).
+  // (rows that an active-set step added from outside the box go to the bound they crossed). A
+  // component without bounds (a disc of radius 0) stays where it is (its centre).
   const std::vector<S> xa = BT::gatherAt(*run.x, active), la = BT::gatherAt(*qp_.lower, active);
   std::vector<S> ua(active.size(), std::numeric_limits<S>::infinity());
   if (upper != nullptr) ua = BT::gatherAt(*upper, active);
   std::vector<S> r(active.size());
-  for (std::size_t i = 0; i < active.size(); ++i) r[i] = xa[i] >= ua[i] ? ua[i] : la[i];
+  for (std::size_t i = 0; i < active.size(); ++i)
+    r[i] = xa[i] >= ua[i] ? ua[i] : std::isfinite(la[i]) ? la[i] : xa[i];
+  // A circle row holds n . x = r + n . c.
+  for (const auto& c : run.circles) r.push_back(c.radius + c.n0 * c.c0 + c.n1 * c.c1);
   face.projectAffine(r, *run.x);
   OPT::Apply(*run.A, *run.x, *run.g);
   MVT::MvAddMv(S(1), *run.g, S(-1), *qp_.b, *run.g);
   ++counters_.hessianMultiplications;
+  run.faceA = run.A;
+  run.curvature = Teuchos::null;
+  if (!run.circles.empty()) {
+    // The face's Hessian gains the circles' curvature nu / r (nu = -sigma, the multiplier that
+    // holds x on the circle, from the gradient at the entry point): the Hessian of the
+    // Lagrangian f + sum nu / (2 r) (|x_k - c_k|^2 - r^2), whose gradient g + (nu / r) (x - c)
+    // is g's tangential part on the circles. Its minimizer on the face, retracted onto the
+    // circles, is a Newton step for the problem with the circles themselves.
+    const std::vector<S> sigma = face.activeMultipliers(*run.g);
+    std::vector<long long> idx;
+    std::vector<S> d;
+    for (std::size_t k = 0; k < run.circles.size(); ++k) {
+      const auto& c = run.circles[k];
+      const S nu = std::max(-sigma[active.size() + k], S(0));
+      idx.push_back(c.index), idx.push_back(c.index + 1);
+      d.push_back(nu / c.radius), d.push_back(nu / c.radius);
+    }
+    run.curvature = MVT::Clone(*run.x, 1);
+    MVT::MvInit(*run.curvature, S(0));
+    BT::setAt(idx, d, *run.curvature);
+    run.faceA = OperatorSum<S, MV, OP>::shift(run.A, run.curvature);
+    addCurvatureGradient(run, *run.x, S(1), *run.g);
+  }
   return r;
+}
+
+template <class S, class MV, class OP>
+void SmalbeSolMgr<S, MV, OP>::addCurvatureGradient(const FaceRun& run, const MV& x, S alpha,
+                                                   MV& g) const {
+  using BT = BoundTraits<S, MV>;
+  // g += alpha (nu / r) (x - c) on the circles' components.
+  std::vector<long long> idx;
+  for (const auto& c : run.circles) idx.push_back(c.index), idx.push_back(c.index + 1);
+  const std::vector<S> xc = BT::gatherAt(x, idx), d = BT::gatherAt(*run.curvature, idx);
+  std::vector<S> v(idx.size());
+  for (std::size_t k = 0; k < run.circles.size(); ++k) {
+    v[2 * k] = d[2 * k] * (xc[2 * k] - run.circles[k].c0);
+    v[2 * k + 1] = d[2 * k + 1] * (xc[2 * k + 1] - run.circles[k].c1);
+  }
+  BT::addAt(idx, v, alpha, g);
 }
 
 template <class S, class MV, class OP>
 FacePcpgResult<S> SmalbeSolMgr<S, MV, OP>::faceCg(const FaceProjector<S, MV, OP>& face, S tol,
                                                   int maxIterations, FaceRun& run) {
-  FacePcpg<S, MV, OP> pcpg(run.A, run.M, face, tol, maxIterations);
+  FacePcpg<S, MV, OP> pcpg(run.faceA, run.M, face, tol, maxIterations);
   const FacePcpgResult<S> res = pcpg.solve(*run.x, *run.g);
   counters_.hessianMultiplications += res.iterations;
   face_.iterations += res.iterations;
@@ -151,12 +235,28 @@ bool SmalbeSolMgr<S, MV, OP>::looseVerdictMoves(const FaceProjector<S, MV, OP>& 
   const FacePcpgResult<S> lr = faceCg(face, run.looseTol, run.maxIterations, run);
   steps += lr.iterations;
   auto xp = MVT::CloneCopy(*run.x);
-  BT::setAt(active, r, *xp);
-  BT::project(*xp, *qp_.lower, qp_.upper.get());
-  std::vector<long long> next = activeSetStep(*xp, active, face.activeMultipliers(*run.g));
+  BT::setAt(face.active(), r, *xp);
+  feasibleSet(qp_).project(*xp);  // the boxes, and the circles retracted
+  // The verdict on the rows by the problem's own gradient (without the circles' curvature).
+  auto g = MVT::CloneCopy(*run.g);
+  if (!run.circles.empty()) addCurvatureGradient(run, *run.x, S(-1), *g);
+  std::vector<long long> next = activeSetStep(*xp, face, face.activeMultipliers(*g));
   const bool seen = std::find(run.visited.begin(), run.visited.end(), next) != run.visited.end();
   // An unconverged loose solve gives no verdict; the tight one judges the face.
-  if (!lr.converged || next == active || seen) return false;
+  if (!lr.converged || seen) return false;
+  if (next == active) {
+    // A face with circles that holds is solved loosely once more from its retracted result:
+    // its circles' normals and curvature are then within the loose tolerance of the answer, so
+    // the tight solve that follows is the last Newton step instead of the one before it.
+    const bool again = !face.circles().empty() &&
+                       std::find(run.relinearized.begin(), run.relinearized.end(), active) ==
+                           run.relinearized.end();
+    if (!again) return false;
+    run.relinearized.push_back(active);
+    ++face_.circleSteps;
+    MVT::Assign(*xp, *run.x);
+    return true;
+  }
   if (out_.wants(Belos::IterationDetails) && run.root) {
     auto line = SolverOutput::line();
     line << "SMALBE face " << face_.solves << ": " << active.size() << " active rows, "
@@ -187,11 +287,13 @@ typename SmalbeSolMgr<S, MV, OP>::FaceOutcome SmalbeSolMgr<S, MV, OP>::finalTest
   std::vector<magnitude_type> n(1);
   // The active components exactly at their bounds (P_F leaves rounding errors there, which
   // would make them free, with their multiplier counted as a free gradient).
-  BT::setAt(active, r, x);
-  // The result as SMALBE's: feasible (projected onto the box), the gradient recomputed, the
-  // equality multiplier mu = -Q (g - E_A^T sigma) that leaves g + mu = P_F g + E_A^T sigma
-  // (zero on the free rows up to the tolerance, sigma on the active ones), then the final test.
-  BT::project(x, *qp_.lower, upper);
+  BT::setAt(face.active(), r, x);
+  // The result as SMALBE's: feasible (projected onto the box, the circles retracted), the
+  // gradient recomputed, the equality multiplier mu = -Q (g - E_A^T sigma) that leaves g + mu =
+  // P_F g + E_A^T sigma (zero on the free rows up to the tolerance, sigma on the active ones),
+  // then the final test.
+  const SeparableSet<S, MV> set = feasibleSet(qp_);
+  set.project(x);
   OPT::Apply(*run.A, x, g);
   MVT::MvAddMv(S(1), g, S(-1), *qp_.b, g);
   ++counters_.hessianMultiplications;
@@ -199,15 +301,23 @@ typename SmalbeSolMgr<S, MV, OP>::FaceOutcome SmalbeSolMgr<S, MV, OP>::finalTest
   ++qApplies_;
   MVT::MvNorm(t, n);
   out.qx = n[0];
-  out.sigma = face.activeMultipliers(g);
+  // With circles, the rows at the retracted x (their normals moved with it).
+  std::unique_ptr<FaceProjector<S, MV, OP>> retracted;
+  if (!run.circles.empty()) {
+    retracted = faceOf(active, x, run);
+    qApplies_ += retracted->projectorApplications();
+  }
+  const FaceProjector<S, MV, OP>& rows =
+      retracted != nullptr && retracted->valid() ? *retracted : face;
+  out.sigma = rows.activeMultipliers(g);
   MVT::Assign(g, t);
-  BT::addAt(active, out.sigma, S(-1), t);
+  rows.addRows(out.sigma, S(-1), t);
   OPT::Apply(*Q_, t, mu);
   ++qApplies_;
   MVT::MvScale(mu, S(-1));
   MVT::MvAddMv(S(1), g, S(1), mu, t);  // the Lagrangian's gradient
-  BT::freeGradient(x, *qp_.lower, upper, t, *run.phi);
-  BT::choppedGradient(x, *qp_.lower, upper, t, *run.chopped);
+  set.freeGradient(x, t, *run.phi);
+  set.choppedGradient(x, t, *run.chopped);
   MVT::MvAddMv(S(1), *run.phi, S(1), *run.chopped, *run.phi);
   MVT::MvNorm(*run.phi, n);
   out.gp = n[0];
@@ -237,19 +347,29 @@ void SmalbeSolMgr<S, MV, OP>::reportFaceSolve(const FaceRun& run, std::size_t ac
 // the step, a few rows joining per face).
 template <class S, class MV, class OP>
 std::vector<long long> SmalbeSolMgr<S, MV, OP>::activeSetStep(const MV& xp,
-                                                              const std::vector<long long>& face,
+                                                              const FaceProjector<S, MV, OP>& rows,
                                                               const std::vector<S>& sigma) const {
   using BT = BoundTraits<S, MV>;
   const MV* upper = qp_.upper.get();
-  const std::vector<long long> now = BT::activeIndices(xp, *qp_.lower, upper);
+  const std::vector<long long>& face = rows.active();
+  const std::vector<long long> now = feasibleSet(qp_).activeIndices(xp);
   const std::vector<S> xn = BT::gatherAt(xp, now), ln = BT::gatherAt(*qp_.lower, now);
   std::vector<S> un(now.size(), std::numeric_limits<S>::infinity());
   if (upper != nullptr) un = BT::gatherAt(*upper, now);
+  // A circle whose multiplier sigma = n . g is positive pulls x into its disc: released (both
+  // components). The components of a disc of radius 0 are never released.
+  std::vector<long long> released;
+  const auto& circles = rows.circles();
+  for (std::size_t k = 0; k < circles.size(); ++k)
+    if (sigma[face.size() + k] > S(0))
+      released.push_back(circles[k].index), released.push_back(circles[k].index + 1);
   std::vector<long long> next;
   for (std::size_t i = 0; i < now.size(); ++i) {
+    if (std::binary_search(released.begin(), released.end(), now[i])) continue;
     const auto it = std::lower_bound(face.begin(), face.end(), now[i]);
     bool release = false;
-    if (it != face.end() && *it == now[i] && ln[i] < un[i]) {
+    const bool bounded = std::isfinite(ln[i]) || std::isfinite(un[i]);
+    if (bounded && it != face.end() && *it == now[i] && ln[i] < un[i]) {
       const S si = sigma[static_cast<std::size_t>(it - face.begin())];
       release = xn[i] <= ln[i] ? si < S(0) : si > S(0);
     }
@@ -260,7 +380,8 @@ std::vector<long long> SmalbeSolMgr<S, MV, OP>::activeSetStep(const MV& xp,
 
 template <class S, class MV, class OP>
 typename SmalbeSolMgr<S, MV, OP>::FaceVerdict SmalbeSolMgr<S, MV, OP>::trialFace(
-    const std::vector<long long>& active, magnitude_type tol, MV& x) {
+    const std::vector<long long>& active, const std::vector<long long>& judged, magnitude_type tol,
+    MV& x) {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using OPT = Belos::OperatorTraits<S, MV, OP>;
   using BT = BoundTraits<S, MV>;
@@ -270,7 +391,13 @@ typename SmalbeSolMgr<S, MV, OP>::FaceVerdict SmalbeSolMgr<S, MV, OP>::trialFace
   qApplies_ += face.projectorApplications();
   if (!face.valid()) return v;
   v.valid = true;
-  face.projectAffine(BT::gatherAt(*qp_.lower, active), x);
+  // The rows at their lower bounds; the components of a disc of radius 0 (no bounds) at the
+  // centre, where the projection has put them.
+  std::vector<S> values = BT::gatherAt(*qp_.lower, active);
+  const std::vector<S> xa = BT::gatherAt(x, active);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i])) values[i] = xa[i];
+  face.projectAffine(values, x);
   const auto A = TimedOperator<S, MV, OP>::wrap(qp_.A, solverTimer("tfeti: Hessian apply"));
   auto g = MVT::Clone(x, 1);
   OPT::Apply(*A, x, *g);
@@ -282,11 +409,19 @@ typename SmalbeSolMgr<S, MV, OP>::FaceVerdict SmalbeSolMgr<S, MV, OP>::trialFace
   const FacePcpgResult<S> res = pcpg.solve(x, *g);
   counters_.hessianMultiplications += res.iterations;
   face_.iterations += res.iterations;
-  BT::setAt(active, BT::gatherAt(*qp_.lower, active), x);
-  v.leftBox = BT::countOutside(x, *qp_.lower, qp_.upper.get());
-  // A lower bound is held by a multiplier pushing x up: sigma >= 0 (g = sigma on the row).
-  for (const S s : face.activeMultipliers(*g))
-    if (s < S(0)) ++v.wrongSign;
+  BT::setAt(active, values, x);
+  // The level rows outside their (lower) bounds; friction rows are not judged.
+  {
+    const std::vector<S> xj = BT::gatherAt(x, judged), lj = BT::gatherAt(*qp_.lower, judged);
+    for (std::size_t i = 0; i < judged.size(); ++i)
+      if (xj[i] < lj[i]) ++v.leftBox;
+  }
+  // A lower bound is held by a multiplier pushing x up: sigma >= 0 (g = sigma on the row). Only
+  // the level rows are judged (not the points of discs of radius 0).
+  const std::vector<S> sigma = face.activeMultipliers(*g);
+  for (std::size_t i = 0; i < active.size(); ++i)
+    if (sigma[i] < S(0) && std::binary_search(judged.begin(), judged.end(), active[i]))
+      ++v.wrongSign;
   if (out_.wants(Belos::IterationDetails) && BT::commRank(x) == 0) {
     auto line = SolverOutput::line();
     line << "SMALBE level face: " << active.size() << " active rows, " << res.iterations
@@ -306,11 +441,17 @@ std::vector<long long> SmalbeSolMgr<S, MV, OP>::levelFace(magnitude_type tol, MV
   std::vector<S> tau = level;
   std::sort(tau.begin(), tau.end());
   tau.erase(std::unique(tau.begin(), tau.end()), tau.end());
+  // Every face holds the points of discs of radius 0 (3D friction's open nodes) where they are.
+  const std::vector<long long> points =
+      qp_.discs.is_null() ? std::vector<long long>() : feasibleSet(qp_).pointComponents(x);
   const auto faceAbove = [&](std::size_t k) {
     std::vector<long long> a;
     for (std::size_t i = 0; i < rows.size(); ++i)
       if (level[i] > tau[k]) a.push_back(rows[i]);
-    return a;  // sorted: rows is
+    if (points.empty()) return a;  // sorted: rows is
+    std::vector<long long> both;
+    std::merge(a.begin(), a.end(), points.begin(), points.end(), std::back_inserter(both));
+    return both;
   };
   // One level (the two membranes: every gap zero) says nothing about the face.
   found = tau.size() > 1;
@@ -321,7 +462,7 @@ std::vector<long long> SmalbeSolMgr<S, MV, OP>::levelFace(magnitude_type tol, MV
   std::size_t lo = 0, hi = tau.size() - 1;
   while (lo < hi) {
     const std::size_t k = lo + (hi - lo) / 2;
-    const FaceVerdict v = trialFace(faceAbove(k), tol, x);
+    const FaceVerdict v = trialFace(faceAbove(k), rows, tol, x);
     if (!v.valid || (v.wrongSign > 0 && v.leftBox == 0)) {
       lo = k + 1;  // too few free rows (or not enough to carry Q's rows)
     } else if (v.leftBox > 0 && v.wrongSign == 0) {

@@ -69,6 +69,7 @@
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_RCP.hpp>
 
+#include <memory>
 #include <vector>
 
 #include "tfeti_QpProblem.hpp"
@@ -94,6 +95,9 @@ struct FaceCounters {
   long long activeSetChanges = 0;  // outer iterations and face corrections whose active set
                                    // differs from the one before
   long long levelSolves = 0;       // the loose face solves of "Initial face" = levels
+  long long circleSteps = 0;       // face solves that repeated a face with circles from its
+                                   // retracted result (Newton steps on the circles; not counted
+                                   // against "Maximum face solves")
 };
 
 template <class S, class MV, class OP>
@@ -135,6 +139,10 @@ class SmalbeSolMgr {
   // gaps); a non-finite level: not a candidate. The initial face is one of the nested sets
   // {i : level_i > tau}.
   void setFaceLevels(Teuchos::RCP<const MV> levels) { levels_ = std::move(levels); }
+  // "Initial face" = start: the point whose active set (after the projection onto the feasible
+  // set) is the first face, and where its face solve starts; null: the initial iterate x. For
+  // FETI a warm start before its projection onto ker G, which moves it off the bounds it held.
+  void setFaceStart(Teuchos::RCP<const MV> start) { faceStart_ = std::move(start); }
   // Progress lines of SMALBE and its inner MPRGP (Verbosity >= 1, rank 0) go here, e.g. a
   // Teuchos::FancyOStream; null: std::cout. Its format state is never changed.
   void setOutputStream(Teuchos::RCP<std::ostream> os) { out_.setStream(std::move(os)); }
@@ -179,8 +187,10 @@ class SmalbeSolMgr {
   void setUpOuterIterations(SolveState& s);  // the multiplier, the inner problem, the rules
   void setUpFaceGramian(SolveState& s);
   void startFromLevelFace(SolveState& s);  // "Initial face" = levels
-  void testInitialIterate(SolveState& s);  // the final test at the starting point
-  void outerIteration(SolveState& s);      // an inner solve, the multiplier update, the face phase
+  void testInitialIterate(SolveState& s);
+  // "Initial face" = start: a face solve on the initial iterate's active set.
+  void startFromInitialFace(SolveState& s);  // the final test at the starting point
+  void outerIteration(SolveState& s);  // an inner solve, the multiplier update, the face phase
   // L(x, mu) from the inner gradient, and the rounding level of that value.
   S lagrangianAt(const MV& innerGradient, magnitude_type& noise) const;
   void reportOuterIteration(const SolveState& s, int innerSteps, S lagrangian, S required,
@@ -202,9 +212,14 @@ class SmalbeSolMgr {
   struct FaceOutcome;  // SMALBE's final test on a face solve's result
   FaceRun startFaceRun(magnitude_type gTol, magnitude_type eTol, magnitude_type scale,
                        const MV* start);
-  // x onto the face (the active rows at their bounds, returned) and its gradient.
-  std::vector<S> enterFace(const FaceProjector<S, MV, OP>& face,
-                           const std::vector<long long>& active, FaceRun& run);
+  // The face of the active components at x: a disc on its circle a circle row (run.circles).
+  std::unique_ptr<FaceProjector<S, MV, OP>> faceOf(const std::vector<long long>& active,
+                                                   const MV& x, FaceRun& run) const;
+  // x onto the face (the active rows at their values, returned) and its gradient; with circles
+  // the face's Hessian and gradient gain their curvature (run.faceA, run.curvature).
+  std::vector<S> enterFace(const FaceProjector<S, MV, OP>& face, FaceRun& run);
+  // g += alpha diag(run.curvature) (x - c) on the circles' components.
+  void addCurvatureGradient(const FaceRun& run, const MV& x, S alpha, MV& g) const;
   FacePcpgResult<S> faceCg(const FaceProjector<S, MV, OP>& face, S tol, int maxIterations,
                            FaceRun& run);
   // The loose face solve; true when its verdict moved `active` (and x) to a new face.
@@ -216,7 +231,7 @@ class SmalbeSolMgr {
   void reportFaceSolve(const FaceRun& run, std::size_t activeRows, int steps, bool cgConverged,
                        const FaceOutcome& out, bool passed, std::size_t nextRows);
   // The primal-dual active-set step from the projected iterate xp on `face`.
-  std::vector<long long> activeSetStep(const MV& xp, const std::vector<long long>& face,
+  std::vector<long long> activeSetStep(const MV& xp, const FaceProjector<S, MV, OP>& rows,
                                        const std::vector<S>& sigma) const;
   // "Initial face" = levels: bisection over the level sets for the face on which neither a free
   // component leaves the box nor an active one has a multiplier of the wrong sign, each face
@@ -229,8 +244,11 @@ class SmalbeSolMgr {
     long long leftBox = 0;    // free components outside the box after the face solve
     long long wrongSign = 0;  // active components whose multiplier has the wrong sign
   };
-  FaceVerdict trialFace(const std::vector<long long>& active, magnitude_type tol, MV& x);
+  // judged: the rows whose multiplier sign counts (the level rows).
+  FaceVerdict trialFace(const std::vector<long long>& active, const std::vector<long long>& judged,
+                        magnitude_type tol, MV& x);
   Teuchos::RCP<const MV> levels_;
+  Teuchos::RCP<const MV> faceStart_;
   Teuchos::RCP<FaceGramian<S, MV, OP>> gramian_;  // during a solve with "Face solve" = pcpg
   // "Face relative tolerance"'s default (docs/qp_solvers.md, "Face solve"): the face CG's
   // ||P_F g|| is the residual of the rows that hold with equality (for FETI, B u - c over the
@@ -246,6 +264,10 @@ class SmalbeSolMgr {
   // (docs/qp_solvers.md, "Loose verdicts": two cylinders at 0.5M unknowns, 226 multiplications
   // with tight faces, 167 / 139 / 134 / 122 / 116 at 1, 10, 100, 300, 1000 tol, 1e-3: 478).
   static constexpr double kFaceVerdictFactor = 300;
+  // Newton steps on the circles of one face phase (faces solved again with the same active
+  // set): each gains one to two digits (measured on the Cattaneo sphere), so ten that do not
+  // pass SMALBE's final test mean the face is wrong; SMALBE then goes on from its own iterate.
+  static constexpr int kMaxCircleSteps = 10;
 };
 
 }  // namespace tfeti

@@ -75,9 +75,11 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "iterations; levels: before the first outer iteration, a bisection over the level "
             "sets {i : level_i > tau} of the levels the caller gives (FETI: the contact rows' "
             "gaps, open rows held at their bounds) for the face whose loose solve neither leaves "
-            "the box nor has multipliers of the wrong sign, then a face solve from it",
+            "the box nor has multipliers of the wrong sign, then a face solve from it; start: "
+            "before the first outer iteration, a face solve on the active set of the initial "
+            "iterate (a warm start's, or 3D friction's, whose discs have no levels)",
             Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-                Teuchos::tuple<std::string>("none", "levels"), "Initial face")));
+                Teuchos::tuple<std::string>("none", "levels", "start"), "Initial face")));
     pl->set("Maximum face solves", 10,
             "limit on face solves (active-set corrections included) in one SMALBE solve",
             strict::count());
@@ -210,8 +212,9 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
   setTolerances(s);
   setUpOuterIterations(s);
   setUpFaceGramian(s);
-  if (s.faceMode && params_.get<std::string>("Initial face") == "levels" && !levels_.is_null())
-    startFromLevelFace(s);
+  const std::string initialFace = params_.get<std::string>("Initial face");
+  if (s.faceMode && initialFace == "levels" && !levels_.is_null()) startFromLevelFace(s);
+  if (s.faceMode && initialFace == "start") startFromInitialFace(s);
   for (; s.k < s.maxOuter && !s.converged; ++s.k) outerIteration(s);
   finishSolve(s);
   return s.converged ? Belos::Converged : Belos::Unconverged;
@@ -280,19 +283,16 @@ template <class S, class MV, class OP>
 void SmalbeSolMgr<S, MV, OP>::setUpFaceGramian(SolveState& s) {
   using BT = BoundTraits<S, MV>;
   s.faceMode = params_.get<std::string>("Face solve") == "pcpg";
-  TEUCHOS_TEST_FOR_EXCEPTION(
-      s.faceMode && !qp_.discs.is_null() && feasibleSet(qp_).hasDiscs(), std::invalid_argument,
-      "SMALBE: parameter \"Face solve\" = pcpg fixes the active components on a face of boxes; "
-      "the problem has disc constraints (3D friction), for which \"Face solve\" must be none");
   // The faces' columns of Q, shared by all faces of this solve (every bound component a
-  // candidate).
+  // candidate, both components of every disc included: a circle row combines their columns).
   gramian_ = Teuchos::null;
   if (s.faceMode) {
     std::vector<long long> bounded = BT::finiteIndices(*qp_.lower);
-    if (!qp_.upper.is_null()) {
-      const std::vector<long long> up = BT::finiteIndices(*qp_.upper);
+    for (const MV* v : {qp_.upper.get(), qp_.discs.get()}) {
+      if (v == nullptr) continue;
+      const std::vector<long long> more = BT::finiteIndices(*v);
       std::vector<long long> both;
-      std::set_union(bounded.begin(), bounded.end(), up.begin(), up.end(),
+      std::set_union(bounded.begin(), bounded.end(), more.begin(), more.end(),
                      std::back_inserter(both));
       bounded = std::move(both);
     }
@@ -308,7 +308,7 @@ void SmalbeSolMgr<S, MV, OP>::startFromLevelFace(SolveState& s) {
   // The active set from the levels (for contact: the gap, whose sublevel sets are the contact
   // zones of smooth convex bodies) instead of from MPRGP's expansion steps, which on fine
   // meshes open a few rows at a time.
-  BT::project(*qp_.x, *qp_.lower, qp_.upper.get());
+  feasibleSet(qp_).project(*qp_.x);
   // An initial iterate that already passes the final test (no load: x = 0 with the gap
   // multiplier, FetiSolver) is the answer, as SMALBE's first inner solve would return it; the
   // loose face solves of the search would only replace it by rounding.
@@ -320,6 +320,22 @@ void SmalbeSolMgr<S, MV, OP>::startFromLevelFace(SolveState& s) {
     if (found)
       s.converged = faceSolve(std::move(active), s.gTol, s.eTol, s.scale, s.gp, s.qxNorm, x.get());
   }
+}
+
+template <class S, class MV, class OP>
+void SmalbeSolMgr<S, MV, OP>::startFromInitialFace(SolveState& s) {
+  // The active set of the initial iterate as the first face: for a warm start (the Newton
+  // loop's previous QP) it is close to the answer, and with discs (3D friction) the inner MPGP
+  // solves would otherwise find it through CG steps along the circles, each followed by a
+  // projection and a fresh gradient (docs/qp_solvers.md, "The face solve with discs").
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  const SeparableSet<S, MV> set = feasibleSet(qp_);
+  set.project(*qp_.x);
+  testInitialIterate(s);
+  if (s.converged) return;
+  auto y = MVT::CloneCopy(faceStart_.is_null() ? *qp_.x : *faceStart_);
+  set.project(*y);
+  s.converged = faceSolve(set.activeIndices(*y), s.gTol, s.eTol, s.scale, s.gp, s.qxNorm, y.get());
 }
 
 template <class S, class MV, class OP>
@@ -486,6 +502,8 @@ std::string SmalbeSolMgr<S, MV, OP>::summaryMessage(const SolveState& s) const {
         << " face CG steps, " << face_.activeSetChanges << " active-set changes";
   if (face_.levelSolves > 0)
     msg << ", " << face_.levelSolves << " level-search face solves (their CG steps included)";
+  if (face_.circleSteps > 0)
+    msg << ", " << face_.circleSteps << " of them Newton steps on the circles";
   if (s.innerFailed)
     msg << "; some inner MPRGP solves hit their \"Maximum iterations\" before reaching the "
            "inner precision";
