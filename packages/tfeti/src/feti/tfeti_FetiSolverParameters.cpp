@@ -118,8 +118,10 @@ void setSmalbeDefaults(Teuchos::ParameterList& smalbe) {
   {
     auto& entry = smalbe.getEntry("Initial face");
     entry.setValue<std::string>("levels", false,
-                                "FETI default: levels, the contact rows' gaps (the component's: "
-                                "none)",
+                                "FETI default: levels, the contact rows' gaps, for a cold start; "
+                                "a warm start (the Newton loop's previous QP) starts from the "
+                                "previous solution's active set (start), except with 2D "
+                                "friction's boxes; none: neither (the component's default)",
                                 entry.validator());
   }
   // At rho = 10 ||P F P|| the outer iterations grow with the subdomains per side (25 at 64 x 64
