@@ -75,36 +75,47 @@ TEUCHOS_UNIT_TEST(Mortar, DualBasisIsBiorthogonal) {
   TEST_ASSERT(contact::dualBasisCoefficients(2, one.weights, N).empty());
 }
 
-// Tri6 and Quad8 multipliers: the modified quadratic functions sum to one, span the quadratic
-// space (they reproduce the facet's own functions: checked through a quadratic field), and each
-// integrates to the positive share the dual basis needs.
+// Tri6 and Quad8 multipliers: the modified quadratic functions sum to one, take at the facet's
+// nodes the values that define them (a corner's: 1 at its corner, alpha at the midsides of its
+// two edges, told apart geometrically, 0 elsewhere; a midside's: 1 - 2 alpha at its node), and
+// each integrates to the positive share the dual basis needs.
 TEUCHOS_UNIT_TEST(Mortar, ModifiedQuadraticMultipliers) {
+  const double tri[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
+  const double quad[8][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, -1}, {1, 0}, {0, 1}, {-1, 0}};
   for (ElementType t : {ElementType::Tri6, ElementType::Quad8}) {
     const auto lm = contact::multiplierSpace(t);
     TEST_EQUALITY(lm.count, contact::numNodes(t));
+    TEST_FLOATING_EQUALITY(lm.alpha, 0.2, 1e-15);
+    const int corners = t == ElementType::Tri6 ? 3 : 4;
+    auto node = [&](int a) { return t == ElementType::Tri6 ? tri[a] : quad[a]; };
+    for (int b = 0; b < lm.count; ++b) {
+      double v[9];
+      contact::multiplierShapeFunctions(lm, node(b), v);
+      for (int a = 0; a < lm.count; ++a) {
+        double want = a == b ? (a < corners ? 1.0 : 1.0 - 2.0 * lm.alpha) : 0.0;
+        if (a < corners && b >= corners) {
+          // Midside b lies on an edge of corner a when it is the midpoint of a and a corner.
+          for (int c = 0; c < corners; ++c)
+            if (c != a && std::abs(0.5 * (node(a)[0] + node(c)[0]) - node(b)[0]) < 1e-15 &&
+                std::abs(0.5 * (node(a)[1] + node(c)[1]) - node(b)[1]) < 1e-15)
+              want = lm.alpha;
+        }
+        TEST_COMPARE(std::abs(v[a] - want), <, 1e-14);
+      }
+    }
     const auto q = contact::referenceFacetQuadrature(t);
     std::vector<double> share(lm.count, 0.0);
-    double total = 0.0, v[9], N[9];
+    double total = 0.0, v[9];
     for (std::size_t k = 0; k < q.weights.size(); ++k) {
       contact::multiplierShapeFunctions(lm, q.points[k].data(), v);
       double sum = 0.0;
       for (int a = 0; a < lm.count; ++a) sum += v[a], share[a] += q.weights[k] * v[a];
       TEST_FLOATING_EQUALITY(sum, 1.0, 1e-14);
       total += q.weights[k];
-      // The inverse of the modification maps them back onto the facet's own functions.
-      contact::facetShapeFunctions(t, q.points[k].data(), N, nullptr);
-      const int corners = t == ElementType::Tri6 ? 3 : 4;
-      for (int i = 0; i < corners; ++i) {
-        const double mi = v[corners + i] / (1.0 - 2.0 * lm.alpha);
-        const double mp = v[corners + (i + corners - 1) % corners] / (1.0 - 2.0 * lm.alpha);
-        TEST_COMPARE(std::abs(v[i] - lm.alpha * (mi + mp) - N[i]), <, 1e-14);
-        TEST_COMPARE(std::abs(mi - N[corners + i]), <, 1e-14);
-      }
     }
     const double corner = t == ElementType::Tri6 ? 2.0 / 15.0 : 1.0 / 20.0;
     for (int a = 0; a < lm.count; ++a)
-      TEST_FLOATING_EQUALITY(share[a] / total, a < (t == ElementType::Tri6 ? 3 : 4) ? corner : 0.2,
-                             1e-13);
+      TEST_FLOATING_EQUALITY(share[a] / total, a < corners ? corner : 0.2, 1e-13);
   }
 }
 

@@ -81,7 +81,7 @@ class MeshMortarMaster : public ContactMaster {
     for (int j : slaveNodes) {
       const auto it = c.byNode.find(j);
       const auto fw = full.find(j);
-      if (fw == full.end()) continue;  // not a multiplier node (a quadratic facet's midside)
+      if (fw == full.end()) continue;  // not on the slave surface
       if (it == c.byNode.end() || !(it->second.weight > kMortarMinShare * fw->second)) {
         ++result.beyondRadius;
         continue;

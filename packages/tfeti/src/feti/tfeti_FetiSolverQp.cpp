@@ -143,15 +143,9 @@ Teuchos::RCP<Vector> FetiSolver::initialIncrement(bool warm) const {
   // From 0, or (warm start) from P (lambda_previous - lambda~): in the kernel of G, projected
   // onto the bounds by MPRGP. The rows of a nonlinear iteration keep their canonical order as
   // long as each slave node keeps its segment; any start is valid, a close one is cheap.
-  const auto map = tearing_.multiplierMap;
-  auto mu = Teuchos::rcp(new Vector(map));
-  if (warm) {
-    auto m = mu->getDataNonConst();
-    auto p = previousLambda_->getData();
-    auto l0 = lambda0_->getData();
-    for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) m[i] = p[i] - l0[i];
-    coarse_->project(*mu, *mu);
-  }
+  if (!warm) return Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  auto mu = warmIncrement();
+  coarse_->project(*mu, *mu);
   return mu;
 }
 

@@ -134,7 +134,7 @@ std::unique_ptr<FaceProjector<S, MV, OP>> SmalbeSolMgr<S, MV, OP>::faceOf(
   // A disc on its circle is a circle row (its normal held, its tangent free); the components of
   // a disc of radius 0 (a point) stay unit rows, held where they are.
   run.circles.clear();
-  if (qp_.discs.is_null() || !feasibleSet(qp_).hasDiscs())
+  if (qp_.discs.is_null())
     return std::make_unique<FaceProjector<S, MV, OP>>(Q_, active, x, gramian_.get());
   run.circles = feasibleSet(qp_).circles(x, active);
   std::vector<long long> unit;
@@ -174,30 +174,37 @@ std::vector<S> SmalbeSolMgr<S, MV, OP>::enterFace(const FaceProjector<S, MV, OP>
   OPT::Apply(*run.A, *run.x, *run.g);
   MVT::MvAddMv(S(1), *run.g, S(-1), *qp_.b, *run.g);
   ++counters_.hessianMultiplications;
+  setCircleCurvature(face, run);
+  return r;
+}
+
+template <class S, class MV, class OP>
+void SmalbeSolMgr<S, MV, OP>::setCircleCurvature(const FaceProjector<S, MV, OP>& face,
+                                                 FaceRun& run) const {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using BT = BoundTraits<S, MV>;
   run.faceA = run.A;
   run.curvature = Teuchos::null;
-  if (!run.circles.empty()) {
-    // The face's Hessian gains the circles' curvature nu / r (nu = -sigma, the multiplier that
-    // holds x on the circle, from the gradient at the entry point): the Hessian of the
-    // Lagrangian f + sum nu / (2 r) (|x_k - c_k|^2 - r^2), whose gradient g + (nu / r) (x - c)
-    // is g's tangential part on the circles. Its minimizer on the face, retracted onto the
-    // circles, is a Newton step for the problem with the circles themselves.
-    const std::vector<S> sigma = face.activeMultipliers(*run.g);
-    std::vector<long long> idx;
-    std::vector<S> d;
-    for (std::size_t k = 0; k < run.circles.size(); ++k) {
-      const auto& c = run.circles[k];
-      const S nu = std::max(-sigma[active.size() + k], S(0));
-      idx.push_back(c.index), idx.push_back(c.index + 1);
-      d.push_back(nu / c.radius), d.push_back(nu / c.radius);
-    }
-    run.curvature = MVT::Clone(*run.x, 1);
-    MVT::MvInit(*run.curvature, S(0));
-    BT::setAt(idx, d, *run.curvature);
-    run.faceA = OperatorSum<S, MV, OP>::shift(run.A, run.curvature);
-    addCurvatureGradient(run, *run.x, S(1), *run.g);
+  if (run.circles.empty()) return;
+  // The face's Hessian gains the circles' curvature nu / r (nu = -sigma, the multiplier that
+  // holds x on the circle, from the gradient at the entry point): the Hessian of the Lagrangian
+  // f + sum nu / (2 r) (|x_k - c_k|^2 - r^2), whose gradient g + (nu / r) (x - c) is g's
+  // tangential part on the circles. Its minimizer on the face, retracted onto the circles, is a
+  // Newton step for the problem with the circles themselves.
+  const std::vector<S> sigma = face.activeMultipliers(*run.g);
+  std::vector<long long> idx;
+  std::vector<S> d;
+  for (std::size_t k = 0; k < run.circles.size(); ++k) {
+    const auto& c = run.circles[k];
+    const S nu = std::max(-sigma[face.active().size() + k], S(0));
+    idx.push_back(c.index), idx.push_back(c.index + 1);
+    d.push_back(nu / c.radius), d.push_back(nu / c.radius);
   }
-  return r;
+  run.curvature = MVT::Clone(*run.x, 1);
+  MVT::MvInit(*run.curvature, S(0));
+  BT::setAt(idx, d, *run.curvature);
+  run.faceA = OperatorSum<S, MV, OP>::shift(run.A, run.curvature);
+  addCurvatureGradient(run, *run.x, S(1), *run.g);
 }
 
 template <class S, class MV, class OP>
@@ -278,7 +285,6 @@ typename SmalbeSolMgr<S, MV, OP>::FaceOutcome SmalbeSolMgr<S, MV, OP>::finalTest
   using MVT = Belos::MultiVecTraits<S, MV>;
   using OPT = Belos::OperatorTraits<S, MV, OP>;
   using BT = BoundTraits<S, MV>;
-  const MV* upper = qp_.upper.get();
   MV& x = *run.x;
   MV& g = *run.g;
   MV& t = *run.t;

@@ -218,6 +218,8 @@ class SmalbeSolMgr {
   // x onto the face (the active rows at their values, returned) and its gradient; with circles
   // the face's Hessian and gradient gain their curvature (run.faceA, run.curvature).
   std::vector<S> enterFace(const FaceProjector<S, MV, OP>& face, FaceRun& run);
+  // The circles' curvature in the face's Hessian (run.faceA) and gradient.
+  void setCircleCurvature(const FaceProjector<S, MV, OP>& face, FaceRun& run) const;
   // g += alpha diag(run.curvature) (x - c) on the circles' components.
   void addCurvatureGradient(const FaceRun& run, const MV& x, S alpha, MV& g) const;
   FacePcpgResult<S> faceCg(const FaceProjector<S, MV, OP>& face, S tol, int maxIterations,

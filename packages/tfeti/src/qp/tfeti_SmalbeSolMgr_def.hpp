@@ -304,7 +304,6 @@ void SmalbeSolMgr<S, MV, OP>::setUpFaceGramian(SolveState& s) {
 template <class S, class MV, class OP>
 void SmalbeSolMgr<S, MV, OP>::startFromLevelFace(SolveState& s) {
   using MVT = Belos::MultiVecTraits<S, MV>;
-  using BT = BoundTraits<S, MV>;
   // The active set from the levels (for contact: the gap, whose sublevel sets are the contact
   // zones of smooth convex bodies) instead of from MPRGP's expansion steps, which on fine
   // meshes open a few rows at a time.
