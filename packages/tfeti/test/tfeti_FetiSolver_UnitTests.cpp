@@ -494,6 +494,71 @@ TEUCHOS_UNIT_TEST(FetiSolver, SlidingDiscRowsStayOutOfTheRigidBodyFit) {
   }
 }
 
+// The warm start across a contact update that changes the rows (tfeti_RowCarryOver.hpp): a
+// cantilever box under its weight on a rigid floor z = 0, first with rows at x = 3 and 4 of its
+// bottom, then (update()) with rows at x = 2 too. Keyed, the second solve starts from the first
+// one's multipliers (the new rows at 0) and needs fewer multiplications than the same rows solved
+// cold, for the same solution; unkeyed, the rows' number changed and it starts cold.
+TEUCHOS_UNIT_TEST(FetiSolver, WarmStartFollowsKeyedRowsAcrossAnUpdate) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(2, 1, 1, 2, 2, 2, false);
+  tfeti_test::Material3d mat;
+  mat.dofsPerNode = 3;
+  const auto floorRows = [&](double xMin, bool keyed) {
+    std::vector<tfeti::InequalityRow> rows;
+    if (comm->getRank() != 0) return rows;
+    const tfeti::SubdomainMesh m = box.subdomain(1);
+    for (int n = 0; n < m.numNodes(); ++n)
+      if (m.coords[3 * n + 2] == 0.0 && m.coords[3 * n] >= xMin) {
+        tfeti::InequalityRow r;
+        r.entries = {{1, 3 * n + 2, -1.0}};  // -u_z <= 0
+        r.key = keyed ? n : -1;
+        rows.push_back(r);
+      }
+    return rows;
+  };
+  Options o;
+  Teuchos::ParameterList params = solverParameters(o);
+  params.set("Dual solver", "SMALBE");
+  params.sublist("SMALBE").set("Relative tolerance", 1e-10);
+  const auto solution = [&](const tfeti::FetiSolver& s) {
+    std::vector<double> u;
+    for (std::size_t i = 0; i < s.data().size(); ++i)
+      u.insert(u.end(), s.solution(i).begin(), s.solution(i).end());
+    return u;
+  };
+  tfeti::FetiSolver cold(comm, box.numSubdomains(), localBoxSubdomains(box, mat), params,
+                         floorRows(2.0, true));
+  const tfeti::DualResult rc = cold.solve();
+  const std::vector<double> uc = solution(cold);
+  for (const bool keyed : {true, false}) {
+    tfeti::FetiSolver s(comm, box.numSubdomains(), localBoxSubdomains(box, mat), params,
+                        floorRows(3.0, keyed));
+    TEST_ASSERT(s.solve().converged);
+    std::vector<std::vector<double>> loads;
+    for (const auto& sub : s.subdomains()) loads.push_back(sub->load());
+    s.update(loads, floorRows(2.0, keyed));
+    const tfeti::DualResult r = s.solve();
+    const std::vector<double> u = solution(s);
+    double diff = 0.0, scale = 0.0;
+    for (std::size_t k = 0; k < u.size(); ++k) {
+      diff = std::max(diff, std::abs(u[k] - uc[k]));
+      scale = std::max(scale, std::abs(uc[k]));
+    }
+    diff = tfeti_test::globalMax(*comm, diff) / tfeti_test::globalMax(*comm, scale);
+    out << (keyed ? "keyed" : "unkeyed") << ": " << r.qp.hessianMultiplications
+        << " multiplications after the update, " << rc.qp.hessianMultiplications
+        << " cold; solution difference " << diff << "\n";
+    TEST_ASSERT(r.converged);
+    TEST_COMPARE(diff, <, 1e-8);
+    if (keyed) {
+      TEST_COMPARE(r.qp.hessianMultiplications, <, rc.qp.hessianMultiplications);
+    } else {
+      TEST_EQUALITY(r.qp.hessianMultiplications, rc.qp.hessianMultiplications);
+    }
+  }
+}
+
 // "Keep subdomain matrices" = false frees every K once its preconditioner is set up: the same
 // iterations and the same solution, bit for bit, as with K kept (nothing after the set-up reads
 // K), for every preconditioner; K is then empty, and an update() that would set a preconditioner

@@ -231,6 +231,7 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
     const std::vector<ContactRow> tangents = frictionTangents(p, k);
     for (std::size_t j = 0; j < tangents.size(); ++j) {
       tfeti::InequalityRow row = toInequalityRow(tangents[j], dofOf);
+      row.key = tangentialKey(row, j);
       row.gap = back.empty() ? 0.0 : applyRow(tangents[j], dim, back);
       row.lowerBound = -bound;
       row.upperBound = bound;

@@ -507,9 +507,13 @@ void setUpContact(const ElasticContactSpec& spec, const tfeti::Comm& comm,
     auto dofOf = [&](int node, int component) {
       return std::make_pair(p.copyOf[node].first, dim * p.copyOf[node].second + component);
     };
-    for (const auto& row : p.contact.rows)
-      for (const ContactRow& t : tangentialRows(row, dim))
-        p.inequalities.push_back(toInequalityRow(t, dofOf));
+    for (const auto& row : p.contact.rows) {
+      const std::vector<ContactRow> tangents = tangentialRows(row, dim);
+      for (std::size_t j = 0; j < tangents.size(); ++j) {
+        p.inequalities.push_back(toInequalityRow(tangents[j], dofOf));
+        p.inequalities.back().key = tangentialKey(p.inequalities.back(), j);
+      }
+    }
   }
 }
 

@@ -19,6 +19,8 @@ tfeti::InequalityRow toInequalityRow(const ContactRow& row,
                                      const std::function<std::pair<int, int>(int, int)>& dofOf) {
   tfeti::InequalityRow out;
   out.gap = row.gap;
+  // The slave node's normal row; its tangential rows add 1 and 2 (tangentialKey).
+  out.key = row.slaveNode >= 0 ? kRowsPerSlaveNode * static_cast<long long>(row.slaveNode) : -1;
   for (const NodeEntry& e : row.entries) {
     // The dual operator's cost grows with B's nonzeros; the zeros only served a fixed pattern.
     if (e.coef == 0.0) continue;
@@ -26,6 +28,10 @@ tfeti::InequalityRow toInequalityRow(const ContactRow& row,
     out.entries.push_back({subdomain, dof, e.coef});
   }
   return out;
+}
+
+long long tangentialKey(const tfeti::InequalityRow& normal, std::size_t j) {
+  return normal.key < 0 ? -1 : normal.key + 1 + static_cast<long long>(j);
 }
 
 }  // namespace contact

@@ -107,9 +107,14 @@ void validateSearchOptions(const ContactSearchOptions& options, const char* who)
 
 // The row in the dual solver's form; dofOf(node, component) returns the (subdomain, local dof)
 // that carries it (for a torn node any of its copies: gluing makes them equal). Zero
-// coefficients are dropped.
+// coefficients are dropped. Its key (tfeti::InequalityRow::key, the row's identity across
+// contact updates, which carries the Newton loop's warm start over new rows) is
+// kRowsPerSlaveNode * slaveNode: a slave node has rows in one pair only.
 tfeti::InequalityRow toInequalityRow(const ContactRow& row,
                                      const std::function<std::pair<int, int>(int, int)>& dofOf);
+inline constexpr long long kRowsPerSlaveNode = 4;  // the normal row and up to two tangential
+// The key of the j-th (0, 1) tangential row beside the normal row `normal` (-1 without a key).
+long long tangentialKey(const tfeti::InequalityRow& normal, std::size_t j);
 
 // A master surface: what a contact pair's set-up holds to evaluate the rows on any
 // configuration (the reference one, or reference + displacement in a nonlinear loop).

@@ -40,6 +40,7 @@
 #include "tfeti_MemoryUsage.hpp"
 #include "tfeti_Pcpg.hpp"
 #include "tfeti_QpProblem.hpp"
+#include "tfeti_RowCarryOver.hpp"
 #include "tfeti_SubdomainMesh.hpp"
 
 namespace tfeti {
@@ -285,6 +286,9 @@ class FetiSolver {
   Teuchos::RCP<Vector> dualQpLinearTerm() const;
   void setDualQpBounds(BoundConstrainedQp<Scalar, MultiVector, Operator>& qp) const;
   bool warmStartAgreed() const;  // collective: every rank can start from the last solve
+  // After update()/updateStiffness() built new rows: the warm start's vectors moved onto them
+  // (tfeti_RowCarryOver.hpp), each row continuing its previous row by key.
+  void carryWarmStartOver(const RowIdentities& before);
   Teuchos::RCP<Vector> initialIncrement(bool warm) const;
   // The warm start before its projection onto ker G (previous lambda - lambda~).
   Teuchos::RCP<Vector> warmIncrement() const;

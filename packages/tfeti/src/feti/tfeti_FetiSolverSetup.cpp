@@ -324,7 +324,9 @@ void FetiSolver::update(const std::vector<std::vector<double>>& loads,
   previousLambda_ = lambda_;
   previousEqualityMultiplier_ = equalityMultiplier_;
   previousNorm_ = normEstimate_;
+  const RowIdentities before = rowIdentities(tearing_);
   buildConstraints(inequalities, false);
+  carryWarmStartOver(before);
   buildDualRhs();
   u_vec_ = Teuchos::null;
   lambda_ = Teuchos::null;
@@ -363,11 +365,24 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
     refactorizeSubdomains();
   else
     buildSubdomains(coords);
+  const RowIdentities before = rowIdentities(tearing_);
   buildConstraints(inequalities, true);
+  carryWarmStartOver(before);
   buildDualRhs();
   u_vec_ = Teuchos::null;
   lambda_ = Teuchos::null;
   u_.clear();
+}
+
+void FetiSolver::carryWarmStartOver(const RowIdentities& before) {
+  const RowIdentities after = rowIdentities(tearing_);
+  const std::vector<GO> continued = continuedRows(before, after);
+  const auto carry = [&](const Teuchos::RCP<const Vector>& v) -> Teuchos::RCP<Vector> {
+    return v.is_null() ? Teuchos::null : carryOver(*v, before, after, continued);
+  };
+  previousLambda_ = carry(previousLambda_);
+  previousEqualityMultiplier_ = carry(previousEqualityMultiplier_);
+  normVector_ = carry(normVector_);
 }
 
 void FetiSolver::requireNoRowOnEliminatedDofs() const {

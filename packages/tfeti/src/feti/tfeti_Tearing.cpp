@@ -39,8 +39,8 @@ struct Row {
 namespace {
 
 // Every rank's rows of one kind (values(row): a tuple of references to the row's numbers:
-// InequalityRow: gap and the multiplier's bounds; EqualityRow: rhs), in a canonical order (by
-// their entries, then the values) so that the numbering does not depend on which rank
+// InequalityRow: gap, the multiplier's bounds, disc and key; EqualityRow: rhs), in a canonical
+// order (by their entries, then the values) so that the numbering does not depend on which rank
 // contributed a row.
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -306,7 +306,7 @@ void addCallerRows(const Comm& comm, const std::vector<EqualityRow>& equalities,
       [](const EqualityRow&) { return false; });
   set.ineq = gatherRows(
       comm, inequalities,
-      [](auto& r) { return std::tie(r.gap, r.lowerBound, r.upperBound, r.disc); },
+      [](auto& r) { return std::tie(r.gap, r.lowerBound, r.upperBound, r.disc, r.key); },
       [](const InequalityRow& r) { return r.disc == 2; });
   checkDiscRows(set.ineq);
   for (const auto& row : set.user) checkRow(row.entries, row.rhs, "equality", "=", allSizes);

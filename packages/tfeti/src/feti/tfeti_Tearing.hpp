@@ -83,6 +83,11 @@ struct InequalityRow {
   // ordered by its first row), puts both in one scaling group and so gives both to the group's
   // owner, next to each other in the multiplier map. 0: a row of its own.
   int disc = 0;
+  // The caller's identity of the row across updates of the rows (FetiSolver::update): a row with
+  // the key of a previous row continues it, so the previous solution's multiplier is the warm
+  // start of the new one (contact: the slave node and which of its rows). -1: none; the warm
+  // start then needs the same rows in the same order. Keys must be unique among the rows.
+  long long key = -1;
   bool isNonPenetration() const {
     return lowerBound == 0.0 && upperBound == std::numeric_limits<double>::infinity();
   }
