@@ -451,8 +451,8 @@ typename SmalbeSolMgr<S, MV, OP>::FaceVerdict SmalbeSolMgr<S, MV, OP>::trialFace
   face_.iterations += steps;
   if (out_.wants(Belos::IterationDetails) && BT::commRank(x) == 0) {
     auto line = SolverOutput::line();
-    line << "SMALBE level face: " << active.size() << " active rows, " << steps
-         << " CG steps, " << v.leftBox << " free rows outside the box, " << v.wrongSign
+    line << "SMALBE level face: " << active.size() << " active rows, " << steps << " CG steps, "
+         << v.leftBox << " free rows outside the box, " << v.wrongSign
          << " active rows with a multiplier of the wrong sign\n";
     out_.write(line);
   }
