@@ -7,6 +7,8 @@
 #include <Tpetra_Core.hpp>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "tfeti_RowCarryOver.hpp"
@@ -78,7 +80,7 @@ TEUCHOS_UNIT_TEST(RowCarryOver, KeyedRowsFollowTheirKeys) {
   const auto from = tfeti::rowIdentities(before), to = tfeti::rowIdentities(after);
   const std::vector<GO> continued = tfeti::continuedRows(from, to);
   TEST_EQUALITY(continued.size(), static_cast<std::size_t>(after.numRows));
-  const auto v = tfeti::carryOver(marked(before), from, to, continued);
+  const auto v = tfeti::RowCarryOver(from, to).carry(marked(before));
   TEST_ASSERT(!v.is_null());
   auto d = v->getData();
   int carried = 0;
@@ -101,7 +103,7 @@ TEUCHOS_UNIT_TEST(RowCarryOver, SharedKeysMatchNothing) {
   const tfeti::Tearing before = tearWith({1, 2, 3}, true, {7, 8, 9});
   const tfeti::Tearing after = tearWith({1, 2, 3}, true, {7, 7, 9});  // rows 1 and 2 share 7
   const auto from = tfeti::rowIdentities(before), to = tfeti::rowIdentities(after);
-  const auto v = tfeti::carryOver(marked(before), from, to, tfeti::continuedRows(from, to));
+  const auto v = tfeti::RowCarryOver(from, to).carry(marked(before));
   auto d = v->getData();
   for (LO l = 0; l < static_cast<LO>(after.multiplierMap->getNodeNumElements()); ++l) {
     const GO g = after.multiplierMap->getGlobalElement(l);
@@ -122,7 +124,7 @@ TEUCHOS_UNIT_TEST(RowCarryOver, UnkeyedRowsKeepTheirPositionOrNothing) {
   to = tfeti::rowIdentities(more);
   continued = tfeti::continuedRows(from, to);
   TEST_ASSERT(continued.empty());
-  TEST_ASSERT(tfeti::carryOver(marked(before), from, to, continued).is_null());
+  TEST_ASSERT(tfeti::RowCarryOver(from, to).carry(marked(before)).is_null());
   // Keyed on one side only: by position when the numbers agree.
   const tfeti::Tearing keyed = tearWith({1, 2, 3}, true);
   to = tfeti::rowIdentities(keyed);
@@ -142,4 +144,17 @@ TEUCHOS_UNIT_TEST(RowCarryOver, BoxesKeepTheRuleBeforeKeys) {
   const tfeti::Tearing fewer = tearWith({0, 1, 2}, true, {}, true);
   to = tfeti::rowIdentities(fewer);
   TEST_ASSERT(tfeti::continuedRows(from, to).empty());
+}
+
+TEUCHOS_UNIT_TEST(RowCarryOver, KeysOutOfRangeAreAnError) {
+  for (const long long key : {-2LL, 1LL << 53}) {
+    std::string message;
+    try {
+      tearWith({1, 2}, true, {key, 5});
+    } catch (const std::invalid_argument& e) {
+      message = e.what();
+    }
+    out << message << "\n";
+    TEST_ASSERT(message.find("its key " + std::to_string(key)) != std::string::npos);
+  }
 }

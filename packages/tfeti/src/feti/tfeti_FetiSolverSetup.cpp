@@ -375,10 +375,9 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
 }
 
 void FetiSolver::carryWarmStartOver(const RowIdentities& before) {
-  const RowIdentities after = rowIdentities(tearing_);
-  const std::vector<GO> continued = continuedRows(before, after);
+  const RowCarryOver carryOver(before, rowIdentities(tearing_));
   const auto carry = [&](const Teuchos::RCP<const Vector>& v) -> Teuchos::RCP<Vector> {
-    return v.is_null() ? Teuchos::null : carryOver(*v, before, after, continued);
+    return v.is_null() ? Teuchos::null : carryOver.carry(*v);
   };
   previousLambda_ = carry(previousLambda_);
   previousEqualityMultiplier_ = carry(previousEqualityMultiplier_);

@@ -1,7 +1,5 @@
 #include "tfeti_RowCarryOver.hpp"
 
-#include <Tpetra_Import.hpp>
-
 #include <cmath>
 #include <unordered_map>
 
@@ -65,30 +63,33 @@ std::vector<GO> continuedRows(const RowIdentities& from, const RowIdentities& to
   return old;
 }
 
-Teuchos::RCP<Vector> carryOver(const Vector& v, const RowIdentities& from, const RowIdentities& to,
-                               const std::vector<GO>& continued) {
-  if (continued.empty()) return Teuchos::null;
+RowCarryOver::RowCarryOver(const RowIdentities& from, const RowIdentities& to) : to_(to.map) {
+  const std::vector<GO> continued = continuedRows(from, to);
+  if (continued.empty()) return;  // the same on every rank
   std::vector<GO> wanted;
-  std::vector<LO> at;
   const LO n = static_cast<LO>(to.map->getNodeNumElements());
   for (LO l = 0; l < n; ++l) {
     const GO o = continued[static_cast<std::size_t>(to.map->getGlobalElement(l))];
     if (o < 0) continue;
     wanted.push_back(o);
-    at.push_back(l);
+    at_.push_back(l);
   }
   const Teuchos::ArrayView<const GO> view =
       wanted.empty() ? Teuchos::ArrayView<const GO>()
                      : Teuchos::ArrayView<const GO>(wanted.data(), wanted.size());
-  const auto target = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                           view, 0, to.map->getComm()));
-  Tpetra::Import<LO, GO, Node> importer(from.map, target);
-  Vector gathered(target);
-  gathered.doImport(v, importer, Tpetra::INSERT);
-  auto out = Teuchos::rcp(new Vector(to.map));
+  target_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(), view, 0,
+                                 to.map->getComm()));
+  importer_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(from.map, target_));
+}
+
+Teuchos::RCP<Vector> RowCarryOver::carry(const Vector& v) const {
+  if (importer_.is_null()) return Teuchos::null;
+  Vector gathered(target_);
+  gathered.doImport(v, *importer_, Tpetra::INSERT);
+  auto out = Teuchos::rcp(new Vector(to_));
   auto src = gathered.getData();
   auto dst = out->getDataNonConst();
-  for (std::size_t k = 0; k < at.size(); ++k) dst[at[k]] = src[k];
+  for (std::size_t k = 0; k < at_.size(); ++k) dst[at_[k]] = src[k];
   return out;
 }
 

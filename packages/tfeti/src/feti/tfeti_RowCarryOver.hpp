@@ -16,8 +16,9 @@
 // runs (26 iterations instead of 12, and a stick node's tangential multiplier 1 % off the
 // single-pair run's), as the warm-started faces had cycled there (docs/nonlinear_contact.md).
 // Rows that continue none start at 0. The values move by one Tpetra Import from the old
-// multiplier map to the old ids of the new rows each rank owns.
+// multiplier map to the old ids of the new rows each rank owns (RowCarryOver).
 #include <Teuchos_RCP.hpp>
+#include <Tpetra_Import.hpp>
 
 #include <vector>
 
@@ -42,9 +43,19 @@ RowIdentities rowIdentities(const Tearing& t);
 // are not keyed). Row ids are those of `to`, all of them (every rank computes the same).
 std::vector<GO> continuedRows(const RowIdentities& from, const RowIdentities& to);
 
-// v (on from.map) on to.map: each row takes the value of the row it continues, 0 otherwise.
-// Null when continuedRows is empty. Collective.
-Teuchos::RCP<Vector> carryOver(const Vector& v, const RowIdentities& from, const RowIdentities& to,
-                               const std::vector<GO>& continued);
+// Dual vectors of `from` moved onto the rows of `to`: each row takes the value of the row it
+// continues, 0 otherwise. The Import is built once (collective) and serves every vector.
+class RowCarryOver {
+ public:
+  RowCarryOver(const RowIdentities& from, const RowIdentities& to);
+  // v on from's map, on to's map; null when no row can be matched (continuedRows is empty).
+  // Collective.
+  Teuchos::RCP<Vector> carry(const Vector& v) const;
+
+ private:
+  Teuchos::RCP<const Map> to_, target_;  // target_: the old ids of the continued owned rows
+  Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> importer_;
+  std::vector<LO> at_;  // where each of target_'s values goes on to_
+};
 
 }  // namespace tfeti

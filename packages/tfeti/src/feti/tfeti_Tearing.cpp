@@ -43,6 +43,7 @@ namespace {
 // order (by their entries, then the values) so that the numbering does not depend on which rank
 // contributed a row.
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr long long kKeyLimit = 1LL << 53;  // InequalityRow::key travels as a double
 
 // A row for which glued(row) is true stays right after the row before it in its rank's list
 // (the two rows of a disc, InequalityRow::disc): the pair is ordered by its first row.
@@ -319,6 +320,11 @@ void addCallerRows(const Comm& comm, const std::vector<EqualityRow>& equalities,
                                   ": its multiplier's bounds [" + std::to_string(row.lowerBound) +
                                   ", " + std::to_string(row.upperBound) +
                                   "] are empty or not finite on the closed side");
+    // Gathered as doubles: exact below 2^53.
+    if (row.key < -1 || row.key >= kKeyLimit)
+      throw std::invalid_argument("inequality row " + describeRow(row.entries, "<=", row.gap) +
+                                  ": its key " + std::to_string(row.key) +
+                                  " is neither -1 (none) nor in [0, 2^53)");
   }
 }
 

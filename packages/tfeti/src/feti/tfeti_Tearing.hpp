@@ -86,7 +86,8 @@ struct InequalityRow {
   // The caller's identity of the row across updates of the rows (FetiSolver::update): a row with
   // the key of a previous row continues it, so the previous solution's multiplier is the warm
   // start of the new one (contact: the slave node and which of its rows). -1: none; the warm
-  // start then needs the same rows in the same order. Keys must be unique among the rows.
+  // start then needs the same rows in the same order. A key two rows share matches neither;
+  // keys below -1 or from 2^53 on are an error (buildTearing).
   long long key = -1;
   bool isNonPenetration() const {
     return lowerBound == 0.0 && upperBound == std::numeric_limits<double>::infinity();

@@ -7,10 +7,13 @@
 // from x in the face's affine set (so every iterate stays in it: p is in range(P_F)). M is
 // SMALBE's preconditioner (for FETI P M P + Q / rho, which P_F turns into P_F M P_F), or none.
 // Stops when ||P_F g|| <= tolerance (the free rows' gradient: P_F g is zero on the active
-// rows), or fails after "maximum iterations" or on a direction of non-positive curvature.
+// rows) or, with a reduction, at that share of its start, or fails after "maximum iterations" or on
+// a direction of non-positive curvature.
 #include <BelosMultiVecTraits.hpp>
 #include <BelosOperatorTraits.hpp>
 #include <Teuchos_RCP.hpp>
+
+#include <algorithm>
 
 #include "tfeti_FaceProjector.hpp"
 
@@ -29,9 +32,16 @@ class FacePcpg {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using OPT = Belos::OperatorTraits<S, MV, OP>;
 
+  // reduction > 0: stop already at ||P_F g|| <= reduction * (its value at the start), when that
+  // is looser than the tolerance.
   FacePcpg(Teuchos::RCP<const OP> A, Teuchos::RCP<const OP> M, const FaceProjector<S, MV, OP>& face,
-           S tolerance, int maxIterations)
-      : A_(std::move(A)), M_(std::move(M)), face_(face), tol_(tolerance), maxIter_(maxIterations) {}
+           S tolerance, int maxIterations, S reduction = S(0))
+      : A_(std::move(A)),
+        M_(std::move(M)),
+        face_(face),
+        tol_(tolerance),
+        maxIter_(maxIterations),
+        reduction_(reduction) {}
 
   // x: in the face's affine set on entry, the face's minimizer on exit; g: A x - b on entry,
   // updated recursively.
@@ -41,11 +51,12 @@ class FacePcpg {
     std::vector<S> dot(1), nrm(1);
     face_.apply(g, *w);
     MVT::MvNorm(*w, nrm);
+    const S tol = std::max(tol_, reduction_ * S(nrm[0]));
     precondition(*w, *z);
     MVT::Assign(*z, *p);
     MVT::MvDot(*w, *z, dot);
     S wz = dot[0];
-    while (!(nrm[0] <= tol_) && r.iterations < maxIter_) {
+    while (!(nrm[0] <= tol) && r.iterations < maxIter_) {
       OPT::Apply(*A_, *p, *q);
       ++r.iterations;
       MVT::MvDot(*p, *q, dot);
@@ -55,7 +66,7 @@ class FacePcpg {
       MVT::MvAddMv(S(1), g, -alpha, *q, g);
       face_.apply(g, *w);
       MVT::MvNorm(*w, nrm);
-      if (nrm[0] <= tol_) break;
+      if (nrm[0] <= tol) break;
       precondition(*w, *z);
       MVT::MvDot(*w, *z, dot);
       const S wzNew = dot[0];
@@ -63,7 +74,7 @@ class FacePcpg {
       wz = wzNew;
     }
     r.projectedGradientNorm = nrm[0];
-    r.converged = nrm[0] <= tol_;
+    r.converged = nrm[0] <= tol;
     return r;
   }
 
@@ -72,6 +83,7 @@ class FacePcpg {
   const FaceProjector<S, MV, OP>& face_;
   S tol_;
   int maxIter_;
+  S reduction_;
 
   void precondition(const MV& w, MV& z) const {
     if (M_.is_null()) {

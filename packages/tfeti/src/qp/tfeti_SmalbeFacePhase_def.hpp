@@ -411,42 +411,23 @@ typename SmalbeSolMgr<S, MV, OP>::FaceVerdict SmalbeSolMgr<S, MV, OP>::trialFace
   ++counters_.hessianMultiplications;
   const Teuchos::RCP<const OP> M =
       params_.sublist("MPRGP").get<bool>("Preconditioning in face") ? P_ : Teuchos::null;
-  // Solved to kLevelReduction of its own start's projected gradient, or to tol if that is looser
-  // (kLevelReduction below).
-  magnitude_type start = 0;
-  {
-    auto w = MVT::Clone(x, 1);
-    face.apply(*g, *w);
-    std::vector<magnitude_type> n(1);
-    MVT::MvNorm(*w, n);
-    start = n[0];
-  }
-  const S trialTol = S(std::max(tol, magnitude_type(kLevelReduction) * start));
+  // Solved loosely, to kLevelReduction of its own start's projected gradient (or to tol if that
+  // is looser; tfeti_SmalbeSolMgr_decl.hpp), then, if the verdict says nothing, to tol.
   const int maxIterations = params_.get<int>("Face maximum iterations");
-  // The level rows outside their (lower) bounds (friction rows are not judged), and the active
-  // level rows whose multiplier has the wrong sign: a lower bound is held by a multiplier
-  // pushing x up, sigma >= 0 (g = sigma on the row; not the points of discs of radius 0).
-  const auto judge = [&] {
-    v.leftBox = v.wrongSign = 0;
-    const std::vector<S> xj = BT::gatherAt(x, judged), lj = BT::gatherAt(*qp_.lower, judged);
-    for (std::size_t i = 0; i < judged.size(); ++i)
-      if (xj[i] < lj[i]) ++v.leftBox;
-    const std::vector<S> sigma = face.activeMultipliers(*g);
-    for (std::size_t i = 0; i < active.size(); ++i)
-      if (sigma[i] < S(0) && std::binary_search(judged.begin(), judged.end(), active[i]))
-        ++v.wrongSign;
-  };
-  const auto solveTo = [&](S t) {
-    const FacePcpgResult<S> res = FacePcpg<S, MV, OP>(A, M, face, t, maxIterations).solve(x, *g);
+  const auto solveTo = [&](S reduction) {
+    const FacePcpgResult<S> res =
+        FacePcpg<S, MV, OP>(A, M, face, S(tol), maxIterations, reduction).solve(x, *g);
     BT::setAt(active, values, x);
-    judge();
-    return res.iterations;
+    judgeTrialFace(face, judged, x, *g, v);
+    return res;
   };
-  int steps = solveTo(trialTol);
+  const FacePcpgResult<S> loose = solveTo(S(kLevelReduction));
+  int steps = loose.iterations;
   // The bisection goes on from a verdict of one kind only. A loose solve that judges nothing
   // (near its start the signs have not shown yet: every row seems where it belongs) or both (rows
   // out of the box and wrong signs at once, still moving) is taken on to tol.
-  if ((v.leftBox == 0) == (v.wrongSign == 0) && trialTol > S(tol)) steps += solveTo(S(tol));
+  if ((v.leftBox == 0) == (v.wrongSign == 0) && !(loose.projectedGradientNorm <= S(tol)))
+    steps += solveTo(S(0)).iterations;
   counters_.hessianMultiplications += steps;
   face_.iterations += steps;
   if (out_.wants(Belos::IterationDetails) && BT::commRank(x) == 0) {
@@ -457,6 +438,25 @@ typename SmalbeSolMgr<S, MV, OP>::FaceVerdict SmalbeSolMgr<S, MV, OP>::trialFace
     out_.write(line);
   }
   return v;
+}
+
+// The level rows outside their (lower) bounds (friction rows are not judged), and the active level
+// rows whose multiplier has the wrong sign: a lower bound is held by a multiplier pushing x up,
+// sigma >= 0 (g = sigma on the row; not the points of discs of radius 0).
+template <class S, class MV, class OP>
+void SmalbeSolMgr<S, MV, OP>::judgeTrialFace(const FaceProjector<S, MV, OP>& face,
+                                             const std::vector<long long>& judged, const MV& x,
+                                             const MV& g, FaceVerdict& v) const {
+  using BT = BoundTraits<S, MV>;
+  v.leftBox = v.wrongSign = 0;
+  const std::vector<S> xj = BT::gatherAt(x, judged), lj = BT::gatherAt(*qp_.lower, judged);
+  for (std::size_t i = 0; i < judged.size(); ++i)
+    if (xj[i] < lj[i]) ++v.leftBox;
+  const std::vector<long long>& active = face.active();
+  const std::vector<S> sigma = face.activeMultipliers(g);
+  for (std::size_t i = 0; i < active.size(); ++i)
+    if (sigma[i] < S(0) && std::binary_search(judged.begin(), judged.end(), active[i]))
+      ++v.wrongSign;
 }
 
 template <class S, class MV, class OP>

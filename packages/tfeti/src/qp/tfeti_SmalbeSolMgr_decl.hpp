@@ -249,6 +249,10 @@ class SmalbeSolMgr {
   // judged: the rows whose multiplier sign counts (the level rows).
   FaceVerdict trialFace(const std::vector<long long>& active, const std::vector<long long>& judged,
                         magnitude_type tol, MV& x);
+  // The verdict of a trial face at x, g (its rows' multipliers): the judged rows outside their
+  // lower bounds and the judged active rows whose multiplier has the wrong sign.
+  void judgeTrialFace(const FaceProjector<S, MV, OP>& face, const std::vector<long long>& judged,
+                      const MV& x, const MV& g, FaceVerdict& v) const;
   Teuchos::RCP<const MV> levels_;
   Teuchos::RCP<const MV> faceStart_;
   Teuchos::RCP<FaceGramian<S, MV, OP>> gramian_;  // during a solve with "Face solve" = pcpg
