@@ -494,6 +494,65 @@ TEUCHOS_UNIT_TEST(FetiSolver, SlidingDiscRowsStayOutOfTheRigidBodyFit) {
   }
 }
 
+// Coulomb's bounds move between Newton iterations (g = mu lambda_N of the last solve): the
+// cantilever above, its end held by keyed disc pairs of radius g, solved, then update()d to the
+// radius 1.25 g. The pairs that slid start on their new circles in the same direction
+// (FetiSolver::warmIncrement), so the warm solve keeps its face and needs fewer multiplications
+// than the same rows solved cold, for the same solution.
+TEUCHOS_UNIT_TEST(FetiSolver, SlidingDiscsStartOnTheirNewCircles) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(2, 1, 1, 2, 2, 2, false);
+  tfeti_test::Material3d mat;
+  mat.dofsPerNode = 3;
+  const auto endRows = [&](double g) {
+    std::vector<tfeti::InequalityRow> rows;
+    if (comm->getRank() != 0) return rows;
+    const tfeti::SubdomainMesh m = box.subdomain(1);
+    for (int n = 0; n < m.numNodes(); ++n)
+      if (m.coords[3 * n] == 4.0)
+        for (int c = 1; c <= 2; ++c) {
+          tfeti::InequalityRow r;
+          r.entries = {{1, 3 * n + c, 1.0}};
+          r.lowerBound = -g;
+          r.upperBound = g;
+          r.disc = c;
+          r.key = 4 * n + c;
+          rows.push_back(r);
+        }
+    return rows;
+  };
+  Options o;
+  Teuchos::ParameterList params = solverParameters(o);
+  params.set("Dual solver", "SMALBE");
+  params.sublist("SMALBE").set("Relative tolerance", 1e-10);
+  params.sublist("SMALBE").set("Equality tolerance", 1e-10);
+  const double g = 0.02;
+  tfeti::FetiSolver cold(comm, box.numSubdomains(), localBoxSubdomains(box, mat), params,
+                         endRows(1.25 * g));
+  const tfeti::DualResult rc = cold.solve();
+  tfeti::FetiSolver warm(comm, box.numSubdomains(), localBoxSubdomains(box, mat), params,
+                         endRows(g));
+  TEST_ASSERT(warm.solve().converged);
+  std::vector<std::vector<double>> loads;
+  for (const auto& sub : warm.subdomains()) loads.push_back(sub->load());
+  warm.update(loads, endRows(1.25 * g));
+  const tfeti::DualResult rw = warm.solve();
+  TEST_ASSERT(rc.converged && rw.converged);
+  const std::vector<double> lc = cold.inequalityMultipliers(), lw = warm.inequalityMultipliers();
+  TEST_EQUALITY(lc.size(), lw.size());
+  double diff = 0.0;
+  int sliding = 0;
+  for (std::size_t i = 0; i < lc.size(); ++i) diff = std::max(diff, std::abs(lc[i] - lw[i]));
+  for (std::size_t i = 0; i + 1 < lc.size(); i += 2)
+    if (std::hypot(lc[i], lc[i + 1]) >= 1.25 * g * (1.0 - 1e-8)) ++sliding;
+  out << sliding << " of " << lc.size() / 2 << " pairs sliding; " << rw.qp.hessianMultiplications
+      << " multiplications warm, " << rc.qp.hessianMultiplications
+      << " cold; max |lambda_warm - lambda_cold| / g = " << diff / g << "\n";
+  TEST_COMPARE(sliding, >, 0);
+  TEST_COMPARE(diff, <, 1e-6 * g);
+  TEST_COMPARE(rw.qp.hessianMultiplications, <, rc.qp.hessianMultiplications);
+}
+
 // The warm start across a contact update that changes the rows (tfeti_RowCarryOver.hpp): a
 // cantilever box under its weight on a rigid floor z = 0, first with rows at x = 3 and 4 of its
 // bottom, then (update()) with rows at x = 2 too. Keyed, the second solve starts from the first

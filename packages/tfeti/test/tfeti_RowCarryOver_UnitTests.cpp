@@ -146,6 +146,20 @@ TEUCHOS_UNIT_TEST(RowCarryOver, BoxesKeepTheRuleBeforeKeys) {
   TEST_ASSERT(tfeti::continuedRows(from, to).empty());
 }
 
+TEUCHOS_UNIT_TEST(RowCarryOver, BoxesBesideDiscsAreKeyed) {
+  // 3D friction: a disc pair and a box (a direction held on both sides) follow their keys; the
+  // same box rows without a disc are 2D friction's.
+  tfeti::Tearing t;
+  tfeti::InequalityRow box, first, second;
+  box.lowerBound = -1.0, box.upperBound = 1.0, box.key = 1;
+  first.disc = 1, first.upperBound = 1.0, first.key = 5;
+  second.disc = 2, second.upperBound = 1.0, second.key = 6;
+  t.inequalityRows = {box, first, second};
+  TEST_ASSERT(!tfeti::rowIdentities(t).boxes);
+  t.inequalityRows = {box};
+  TEST_ASSERT(tfeti::rowIdentities(t).boxes);
+}
+
 TEUCHOS_UNIT_TEST(RowCarryOver, KeysOutOfRangeAreAnError) {
   for (const long long key : {-2LL, 1LL << 53}) {
     std::string message;

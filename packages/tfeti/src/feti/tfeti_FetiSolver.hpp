@@ -288,7 +288,11 @@ class FetiSolver {
   bool warmStartAgreed() const;  // collective: every rank can start from the last solve
   // After update()/updateStiffness() built new rows: the warm start's vectors moved onto them
   // (tfeti_RowCarryOver.hpp), each row continuing its previous row by key.
-  void carryWarmStartOver(const RowIdentities& before);
+  // radiiBefore: discRadii() of the rows before.
+  void carryWarmStartOver(const RowIdentities& before,
+                          const Teuchos::RCP<const Vector>& radiiBefore);
+  // The radius g of each disc (3D friction) at both its components, -1 on every other row.
+  Teuchos::RCP<Vector> discRadii() const;
   Teuchos::RCP<Vector> initialIncrement(bool warm) const;
   // The warm start before its projection onto ker G (previous lambda - lambda~).
   Teuchos::RCP<Vector> warmIncrement() const;
@@ -312,6 +316,7 @@ class FetiSolver {
   // Warm start (update()): the last solve's multipliers, SMALBE's equality multiplier and the
   // estimate of ||P F P||.
   Teuchos::RCP<const Vector> previousLambda_, previousEqualityMultiplier_;
+  Teuchos::RCP<const Vector> previousDiscRadii_;  // the discs previousLambda_ was solved in
   Teuchos::RCP<Vector> equalityMultiplier_;
   double normEstimate_ = 0.0, previousNorm_ = 0.0;
   Teuchos::RCP<Vector> normVector_;  // the last power iterate ("Warm power iterations")

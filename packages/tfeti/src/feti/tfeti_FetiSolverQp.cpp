@@ -6,6 +6,7 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "tfeti_FetiSolver.hpp"
@@ -15,6 +16,11 @@
 #include "tfeti_SmalbeSolMgr_decl.hpp"
 
 namespace tfeti {
+
+namespace {
+// A previous disc solution within this share of its radius from the circle was on it.
+constexpr double kOnCircle = 1e-8;
+}  // namespace
 
 // The dual QP in mu and the operators its solvers share.
 struct FetiSolver::DualQp {
@@ -135,7 +141,25 @@ Teuchos::RCP<Vector> FetiSolver::warmIncrement() const {
   auto m = mu->getDataNonConst();
   auto p = previousLambda_->getData();
   auto l0 = lambda0_->getData();
-  for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) m[i] = p[i] - l0[i];
+  const std::size_t n = map->getNodeNumElements();
+  for (std::size_t i = 0; i < n; ++i) m[i] = p[i] - l0[i];
+  // A disc whose previous solution was on its circle (a slipping node) starts on its new circle
+  // in the same direction: Coulomb's bound mu lambda_N moves between Newton iterations, and the
+  // node keeps slipping. Without it every disc whose radius grew starts inside, off the face,
+  // and the face solves add them back a few at a time (each a loose solve).
+  if (previousDiscRadii_.is_null() || previousDiscRadii_->getLocalLength() != n) return mu;
+  auto ro = previousDiscRadii_->getData();
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const GO row = map->getGlobalElement(static_cast<LO>(i));
+    if (!tearing_.isInequality(row)) continue;
+    const InequalityRow& q = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
+    if (q.disc != 1 || !(ro[i] > 0.0) || !(q.upperBound > 0.0)) continue;
+    const double norm = std::hypot(p[i], p[i + 1]);
+    if (norm < ro[i] * (1.0 - kOnCircle)) continue;
+    const double s = q.upperBound / norm;
+    m[i] = s * p[i] - l0[i];
+    m[i + 1] = s * p[i + 1] - l0[i + 1];
+  }
   return mu;
 }
 

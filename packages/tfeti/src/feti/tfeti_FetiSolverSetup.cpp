@@ -325,8 +325,9 @@ void FetiSolver::update(const std::vector<std::vector<double>>& loads,
   previousEqualityMultiplier_ = equalityMultiplier_;
   previousNorm_ = normEstimate_;
   const RowIdentities before = rowIdentities(tearing_);
+  const auto radii = discRadii();
   buildConstraints(inequalities, false);
-  carryWarmStartOver(before);
+  carryWarmStartOver(before, radii);
   buildDualRhs();
   u_vec_ = Teuchos::null;
   lambda_ = Teuchos::null;
@@ -366,15 +367,32 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
   else
     buildSubdomains(coords);
   const RowIdentities before = rowIdentities(tearing_);
+  const auto radii = discRadii();
   buildConstraints(inequalities, true);
-  carryWarmStartOver(before);
+  carryWarmStartOver(before, radii);
   buildDualRhs();
   u_vec_ = Teuchos::null;
   lambda_ = Teuchos::null;
   u_.clear();
 }
 
-void FetiSolver::carryWarmStartOver(const RowIdentities& before) {
+Teuchos::RCP<Vector> FetiSolver::discRadii() const {
+  const auto map = tearing_.multiplierMap;
+  auto radii = Teuchos::rcp(new Vector(map));
+  auto r = radii->getDataNonConst();
+  for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) {
+    const GO row = map->getGlobalElement(static_cast<LO>(i));
+    r[i] = -1.0;
+    if (!tearing_.isInequality(row)) continue;
+    const InequalityRow& q = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
+    if (q.disc == 1) r[i] = q.upperBound;
+    if (q.disc == 2) r[i] = r[i - 1];  // the first component, just before it on this rank
+  }
+  return radii;
+}
+
+void FetiSolver::carryWarmStartOver(const RowIdentities& before,
+                                    const Teuchos::RCP<const Vector>& radiiBefore) {
   const RowCarryOver carryOver(before, rowIdentities(tearing_));
   const auto carry = [&](const Teuchos::RCP<const Vector>& v) -> Teuchos::RCP<Vector> {
     return v.is_null() ? Teuchos::null : carryOver.carry(*v);
@@ -382,6 +400,7 @@ void FetiSolver::carryWarmStartOver(const RowIdentities& before) {
   previousLambda_ = carry(previousLambda_);
   previousEqualityMultiplier_ = carry(previousEqualityMultiplier_);
   normVector_ = carry(normVector_);
+  previousDiscRadii_ = carry(radiiBefore);
 }
 
 void FetiSolver::requireNoRowOnEliminatedDofs() const {

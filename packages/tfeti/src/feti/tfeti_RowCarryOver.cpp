@@ -12,11 +12,15 @@ RowIdentities rowIdentities(const Tearing& t) {
   r.firstInequalityRow = t.firstInequalityRow;
   r.numRows = t.numRows;
   r.keys.reserve(t.inequalityRows.size());
+  bool boxes = false, discs = false;
   for (const auto& row : t.inequalityRows) {
     r.keys.push_back(row.key);
-    r.boxes = r.boxes ||
-              (row.disc == 0 && std::isfinite(row.lowerBound) && std::isfinite(row.upperBound));
+    boxes =
+        boxes || (row.disc == 0 && std::isfinite(row.lowerBound) && std::isfinite(row.upperBound));
+    discs = discs || row.disc != 0;
   }
+  // 3D friction's boxes (a direction held on both sides, beside discs) are keyed like discs.
+  r.boxes = boxes && !discs;
   return r;
 }
 

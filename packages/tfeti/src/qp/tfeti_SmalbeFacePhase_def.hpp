@@ -35,11 +35,13 @@ struct SmalbeSolMgr<S, MV, OP>::FaceRun {
   Teuchos::RCP<MV> t, mu, phi, chopped;
   magnitude_type gTol = 0, eTol = 0, scale = 0;
   S tightTol = 0, looseTol = 0;
+  S circleTol = 0;  // a face with circles is linearized once more at this tolerance
   int maxIterations = 0;
   // Faces whose loose verdict already moved the active set: a verdict that leads back to one of
   // them (rows near a bound judged by a loose solution) is settled by the tight solve instead.
   std::vector<std::vector<long long>> visited;
-  // Faces with circles whose loose solve was already repeated from its retracted result.
+  // Faces with circles whose loose solve was already repeated from its retracted result, once
+  // per repeat.
   std::vector<std::vector<long long>> relinearized;
 };
 
@@ -124,6 +126,7 @@ typename SmalbeSolMgr<S, MV, OP>::FaceRun SmalbeSolMgr<S, MV, OP>::startFaceRun(
   run.tightTol = S(params_.get<double>("Face relative tolerance")) * gTol;
   run.looseTol =
       std::max(run.tightTol, std::min(S(kFaceVerdictFactor) * gTol, S(kLevelTolerance) * scale));
+  run.circleTol = std::max(run.tightTol, std::min(run.looseTol, S(kCircleRelinearization) * gTol));
   run.maxIterations = params_.get<int>("Face maximum iterations");
   return run;
 }
@@ -239,7 +242,11 @@ bool SmalbeSolMgr<S, MV, OP>::looseVerdictMoves(const FaceProjector<S, MV, OP>& 
                                                 std::vector<long long>& active) {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using BT = BoundTraits<S, MV>;
-  const FacePcpgResult<S> lr = faceCg(face, run.looseTol, run.maxIterations, run);
+  // A face with circles solved again from its retracted result goes to circleTol: the tight
+  // solve's linearization point.
+  const auto repeats = std::count(run.relinearized.begin(), run.relinearized.end(), active);
+  const S tol = repeats > 0 ? run.circleTol : run.looseTol;
+  const FacePcpgResult<S> lr = faceCg(face, tol, run.maxIterations, run);
   steps += lr.iterations;
   auto xp = MVT::CloneCopy(*run.x);
   BT::setAt(face.active(), r, *xp);
@@ -252,12 +259,13 @@ bool SmalbeSolMgr<S, MV, OP>::looseVerdictMoves(const FaceProjector<S, MV, OP>& 
   // An unconverged loose solve gives no verdict; the tight one judges the face.
   if (!lr.converged || seen) return false;
   if (next == active) {
-    // A face with circles that holds is solved loosely once more from its retracted result:
-    // its circles' normals and curvature are then within the loose tolerance of the answer, so
-    // the tight solve that follows is the last Newton step instead of the one before it.
-    const bool again = !face.circles().empty() &&
-                       std::find(run.relinearized.begin(), run.relinearized.end(), active) ==
-                           run.relinearized.end();
+    // A face with circles that holds is solved once more from its retracted result, loosely,
+    // then again to circleTol: the tight solve that follows is then the last Newton step on the
+    // circles instead of the one before it (their linearization's error is quadratic in the
+    // distance to the answer: from the loose tolerance it left the tight solve's result just
+    // above SMALBE's tolerance, and a second tight solve followed).
+    const bool again =
+        !face.circles().empty() && (repeats == 0 || (repeats == 1 && run.circleTol < run.looseTol));
     if (!again) return false;
     run.relinearized.push_back(active);
     ++face_.circleSteps;

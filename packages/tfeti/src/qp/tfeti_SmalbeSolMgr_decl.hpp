@@ -282,6 +282,9 @@ class SmalbeSolMgr {
   // set): each gains one to two digits (measured on the Cattaneo sphere), so ten that do not
   // pass SMALBE's final test mean the face is wrong; SMALBE then goes on from its own iterate.
   static constexpr int kMaxCircleSteps = 10;
+  // The tolerance (times SMALBE's) of a face with circles' last linearization before its tight
+  // solve (docs/qp_solvers.md, "Newton steps on the circles").
+  static constexpr double kCircleRelinearization = 10;
 };
 
 }  // namespace tfeti
