@@ -291,7 +291,9 @@ class FetiSolver {
   // radiiBefore: discRadii() of the rows before.
   void carryWarmStartOver(const RowIdentities& before,
                           const Teuchos::RCP<const Vector>& radiiBefore);
-  // The radius g of each disc (3D friction) at both its components, -1 on every other row.
+  // 3D friction's bounds: the radius g of each disc at both its components and the bound g of
+  // each friction box (frictionBox) beside discs; -1 on every other row, and everywhere without
+  // discs.
   Teuchos::RCP<Vector> discRadii() const;
   Teuchos::RCP<Vector> initialIncrement(bool warm) const;
   // The warm start before its projection onto ker G (previous lambda - lambda~).
@@ -329,6 +331,9 @@ class FetiSolver {
   std::vector<std::vector<double>> incrementOrigin_;
   void shiftOwnRowsByOrigin();  // c -= B u on the solver's own rows (setIncrementOrigin)
 };
+
+// A tangential friction row's box [-g, g] (both bounds finite and opposite), not a disc.
+bool frictionBox(const InequalityRow& r);
 
 Formulation parseFormulation(const std::string& name);
 PreconditionerType parsePreconditioner(const std::string& name);

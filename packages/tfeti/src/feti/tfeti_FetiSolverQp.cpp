@@ -22,6 +22,10 @@ namespace {
 constexpr double kOnCircle = 1e-8;
 }  // namespace
 
+bool frictionBox(const InequalityRow& r) {
+  return r.disc == 0 && std::isfinite(r.upperBound) && r.lowerBound == -r.upperBound;
+}
+
 // The dual QP in mu and the operators its solvers share.
 struct FetiSolver::DualQp {
   BoundConstrainedQp<Scalar, MultiVector, Operator> qp;
@@ -144,16 +148,23 @@ Teuchos::RCP<Vector> FetiSolver::warmIncrement() const {
   const std::size_t n = map->getNodeNumElements();
   for (std::size_t i = 0; i < n; ++i) m[i] = p[i] - l0[i];
   // A disc whose previous solution was on its circle (a slipping node) starts on its new circle
-  // in the same direction: Coulomb's bound mu lambda_N moves between Newton iterations, and the
-  // node keeps slipping. Without it every disc whose radius grew starts inside, off the face,
+  // in the same direction, and a friction box beside discs (a direction held on both sides) at
+  // its new bound: Coulomb's bound mu lambda_N moves between Newton iterations, and the node
+  // keeps slipping. Without it every disc or box whose bound grew starts inside, off the face,
   // and the face solves add them back a few at a time (each a loose solve).
   if (previousDiscRadii_.is_null() || previousDiscRadii_->getLocalLength() != n) return mu;
   auto ro = previousDiscRadii_->getData();
-  for (std::size_t i = 0; i + 1 < n; ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     const GO row = map->getGlobalElement(static_cast<LO>(i));
-    if (!tearing_.isInequality(row)) continue;
+    if (!tearing_.isInequality(row) || !(ro[i] > 0.0)) continue;
     const InequalityRow& q = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
-    if (q.disc != 1 || !(ro[i] > 0.0) || !(q.upperBound > 0.0)) continue;
+    if (!(q.upperBound > 0.0)) continue;
+    if (q.disc == 0 && frictionBox(q)) {
+      if (std::abs(p[i]) >= ro[i] * (1.0 - kOnCircle))
+        m[i] = std::copysign(q.upperBound, p[i]) - l0[i];
+      continue;
+    }
+    if (q.disc != 1 || i + 1 >= n) continue;
     const double norm = std::hypot(p[i], p[i + 1]);
     if (norm < ro[i] * (1.0 - kOnCircle)) continue;
     const double s = q.upperBound / norm;
