@@ -353,6 +353,34 @@ TEUCHOS_UNIT_TEST(NodeToSegment, CornersConvexAndConcave) {
   }
 }
 
+TEUCHOS_UNIT_TEST(NodeToSegment, NodeOnAVertexTakesTheAveragedNormalFromEitherSide) {
+  // A slightly concave master (a flat top deformed by the load): a node on its vertex, up to
+  // rounding on either side, projects into both segments' interiors, and the nearer segment
+  // depends on the rounding. Both sides give the corner's averaged normal and the same entries
+  // (kVertexSnap); away from the vertex each segment keeps its own normal.
+  Setup s;
+  for (const auto& [x, y] : std::vector<std::array<double, 2>>{{1, 0.02}, {0, 0}, {-1, 0.01}})
+    s.add(x, y);
+  s.master.segments = {0, 1, 1, 2};  // vertex: node 1
+  const int left = s.add(-1e-13, 1e-15), right = s.add(1e-13, 1e-15);
+  const int inRight = s.add(0.5, 0.01), inLeft = s.add(-0.5, 0.005);
+  const NodeToSegmentResult r =
+      computeNodeToSegment(s.coords, {left, right, inRight, inLeft}, s.master, radius(0.3));
+  TEST_EQUALITY(r.rows.size(), 4u);
+  if (r.rows.size() != 4) return;
+  const auto& a = r.rows[2].normal;
+  const auto& b = r.rows[3].normal;
+  TEST_COMPARE(std::abs(a[0] - b[0]), >, 1e-3);  // the two segments' own normals differ
+  const double sx = a[0] + b[0], sy = a[1] + b[1], len = std::hypot(sx, sy);
+  for (int k : {0, 1}) {
+    TEST_EQUALITY(static_cast<int>(r.rows[k].kind), static_cast<int>(ProjectionKind::Corner));
+    TEST_FLOATING_EQUALITY(r.rows[k].normal[0], sx / len, 1e-12);
+    TEST_FLOATING_EQUALITY(r.rows[k].normal[1], sy / len, 1e-12);
+    for (const auto& e : r.rows[k].entries)
+      if (e.node != 1 && e.node != left && e.node != right) TEST_EQUALITY(e.coef, 0.0);
+  }
+}
+
 TEUCHOS_UNIT_TEST(NodeToSegment, SearchRadius) {
   for (int nps : {2, 3}) {
     Setup s = circleMaster(32, nps, 1.0);

@@ -2,7 +2,7 @@
 // 3 ranks: automatic rows keep their values, keyed inequality rows follow their key wherever the
 // new canonical order puts them (and whichever rank owns them), new rows and rows whose key two
 // rows share start at 0, unkeyed rows fall back to their position when their number is
-// unchanged and to nothing otherwise; boxes (2D friction) keep that rule even with keys.
+// unchanged and to nothing otherwise; friction's boxes follow their keys like the others.
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
@@ -132,32 +132,29 @@ TEUCHOS_UNIT_TEST(RowCarryOver, UnkeyedRowsKeepTheirPositionOrNothing) {
   TEST_EQUALITY(continued.size(), static_cast<std::size_t>(keyed.numRows));
 }
 
-TEUCHOS_UNIT_TEST(RowCarryOver, BoxesKeepTheRuleBeforeKeys) {
+TEUCHOS_UNIT_TEST(RowCarryOver, BoxesFollowTheirKeys) {
+  // Friction's boxes (2D tangential rows) are matched like every keyed row: by key, not by
+  // position (which would put k = 9 where k = 0 was), whether or not their number changed.
   const tfeti::Tearing before = tearWith({0, 1, 2, 3, 5, 6}, true, {}, true);
   const tfeti::Tearing after = tearWith({9, 6, 5, 3, 1, 0}, true, {}, true);
-  auto from = tfeti::rowIdentities(before), to = tfeti::rowIdentities(after);
-  TEST_ASSERT(from.boxes && to.boxes);
-  // Six rows each: by position (the keys would put k = 9 at 0).
-  std::vector<GO> continued = tfeti::continuedRows(from, to);
-  TEST_EQUALITY(continued.size(), static_cast<std::size_t>(after.numRows));
-  for (GO g = 0; g < after.numRows; ++g) TEST_EQUALITY(continued[g], g);
-  const tfeti::Tearing fewer = tearWith({0, 1, 2}, true, {}, true);
-  to = tfeti::rowIdentities(fewer);
-  TEST_ASSERT(tfeti::continuedRows(from, to).empty());
-}
-
-TEUCHOS_UNIT_TEST(RowCarryOver, BoxesBesideDiscsAreKeyed) {
-  // 3D friction: a disc pair and a box (a direction held on both sides) follow their keys; the
-  // same box rows without a disc are 2D friction's.
-  tfeti::Tearing t;
-  tfeti::InequalityRow box, first, second;
-  box.lowerBound = -1.0, box.upperBound = 1.0, box.key = 1;
-  first.disc = 1, first.upperBound = 1.0, first.key = 5;
-  second.disc = 2, second.upperBound = 1.0, second.key = 6;
-  t.inequalityRows = {box, first, second};
-  TEST_ASSERT(!tfeti::rowIdentities(t).boxes);
-  t.inequalityRows = {box};
-  TEST_ASSERT(tfeti::rowIdentities(t).boxes);
+  const tfeti::Tearing plainBefore = tearWith({0, 1, 2, 3, 5, 6}, true);
+  const tfeti::Tearing plainAfter = tearWith({9, 6, 5, 3, 1, 0}, true);
+  const std::vector<GO> boxes =
+      tfeti::continuedRows(tfeti::rowIdentities(before), tfeti::rowIdentities(after));
+  const std::vector<GO> plain =
+      tfeti::continuedRows(tfeti::rowIdentities(plainBefore), tfeti::rowIdentities(plainAfter));
+  TEST_EQUALITY(boxes.size(), static_cast<std::size_t>(after.numRows));
+  TEST_ASSERT(boxes == plain);
+  const tfeti::Vector moved =
+      *tfeti::RowCarryOver(tfeti::rowIdentities(before), tfeti::rowIdentities(after))
+           .carry(marked(before));
+  auto m = moved.getData();
+  for (LO l = 0; l < static_cast<LO>(after.multiplierMap->getNodeNumElements()); ++l) {
+    const GO g = after.multiplierMap->getGlobalElement(l);
+    if (g < after.firstInequalityRow) continue;
+    const int k = kOf(after, g);
+    TEST_EQUALITY(m[l], k == 9 ? 0.0 : 1000.0 + k);
+  }
 }
 
 TEUCHOS_UNIT_TEST(RowCarryOver, KeysOutOfRangeAreAnError) {

@@ -52,6 +52,9 @@ enum class EndPolicy {
 // e.g. along the plane, making the row nearly a combination of the symmetry rows so that its
 // multiplier drifts. The gap changes by at most this fraction of the size at the switch.
 inline constexpr double kCornerSnap = 1e-4;
+// A node whose projection is within this distance (in the segment's parameter in [-1, 1]) of a
+// vertex where two master segments meet is on the vertex (node-to-segment, 2D).
+inline constexpr double kVertexSnap = 1e-6;
 
 struct ContactSearchOptions {
   // A slave node whose closest point on the master is farther than this gets no row, so every

@@ -311,6 +311,16 @@ NodeToSegmentResult computeNodeToSegment(const std::vector<double>& coords,
       continue;
     }
     const SegmentGeometry& g = geom[best];
+    // A node on a vertex (to rounding) projects into both segments that meet there, and which
+    // one is nearer is decided by rounding: its row would take either segment's normal, and a
+    // node that sticks there keeps whichever it got (the 2D Cattaneo cylinders: the centre node
+    // took one normal on 2 ranks and the other on 1 and 3). On the vertex it is a corner, with
+    // the averaged normal from either side.
+    if (!bestP.clamped && std::abs(bestP.xi) != 1.0 && 1.0 - std::abs(bestP.xi) < kVertexSnap &&
+        (bestP.xi > 0.0 ? next[best] : prev[best]) >= 0) {
+      bestP.xi = bestP.xi > 0.0 ? 1.0 : -1.0;
+      bestP.point = g.at(bestP.xi);
+    }
     const Vec d = xs - bestP.point;
     Vec n = outwardNormal(g.tangent(bestP.xi));
     ProjectionKind kind = ProjectionKind::Interior;

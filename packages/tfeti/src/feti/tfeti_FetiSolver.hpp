@@ -291,9 +291,9 @@ class FetiSolver {
   // radiiBefore: discRadii() of the rows before.
   void carryWarmStartOver(const RowIdentities& before,
                           const Teuchos::RCP<const Vector>& radiiBefore);
-  // 3D friction's bounds: the radius g of each disc at both its components and the bound g of
-  // each friction box (frictionBox) beside discs; -1 on every other row, and everywhere without
-  // discs.
+  // Friction's bounds: the radius g of each disc (3D) at both its components and the bound g of
+  // each friction box (frictionBox: 2D, or a direction held on both sides in 3D); -1 on every
+  // other row.
   Teuchos::RCP<Vector> discRadii() const;
   Teuchos::RCP<Vector> initialIncrement(bool warm) const;
   // The warm start before its projection onto ker G (previous lambda - lambda~).

@@ -148,7 +148,7 @@ Teuchos::RCP<Vector> FetiSolver::warmIncrement() const {
   const std::size_t n = map->getNodeNumElements();
   for (std::size_t i = 0; i < n; ++i) m[i] = p[i] - l0[i];
   // A disc whose previous solution was on its circle (a slipping node) starts on its new circle
-  // in the same direction, and a friction box beside discs (a direction held on both sides) at
+  // in the same direction, and a friction box (2D, or a direction held on both sides in 3D) at
   // its new bound: Coulomb's bound mu lambda_N moves between Newton iterations, and the node
   // keeps slipping. Without it every disc or box whose bound grew starts inside, off the face,
   // and the face solves add them back a few at a time (each a loose solve).
@@ -237,11 +237,11 @@ Belos::ReturnType FetiSolver::solveSmalbe(DualQp& dual, QpCounters& counters) {
   // active set of the previous solution. The gaps' levels serve only a cold start; with discs
   // (3D friction) the inner MPGP solves are slow where discs slide, and for frictionless rows
   // the face is found in one or two face solves instead of SMALBE's first outer iteration
-  // (docs/qp_solvers.md, "The face solve with discs"). Not for 2D friction's boxes: there the
-  // Coulomb bounds updated in the Newton loop cycled (nl_cattaneo_alone_mu03.xml: step 2 did
-  // not settle in 50 iterations, 7 before).
-  const bool boxFriction = !dual.qp.upper.is_null() && dual.qp.discs.is_null();
-  const bool warmFace = dual.warm && !boxFriction && sp.get<std::string>("Initial face") != "none";
+  // (docs/qp_solvers.md, "The face solve with discs"). With friction the slipping rows start on
+  // their new bounds (warmIncrement): before, 2D friction's boxes whose bound grew started
+  // inside, and the Coulomb bounds updated in the Newton loop cycled (nl_cattaneo_alone_mu03.xml:
+  // step 2 did not settle in 50 iterations).
+  const bool warmFace = dual.warm && sp.get<std::string>("Initial face") != "none";
   if (warmFace) sp.set("Initial face", "start");
   SmalbeSolMgr<Scalar, MultiVector, Operator> solver(dual.qp, dual.Q, sp, dual.prec);
   solver.setOutputStream(out_);

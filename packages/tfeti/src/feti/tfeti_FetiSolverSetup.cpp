@@ -380,13 +380,10 @@ Teuchos::RCP<Vector> FetiSolver::discRadii() const {
   const auto map = tearing_.multiplierMap;
   auto radii = Teuchos::rcp(new Vector(map));
   auto r = radii->getDataNonConst();
-  // Boxes count beside discs only (3D friction); 2D friction's boxes keep their warm start.
-  bool discs = false;
-  for (const InequalityRow& q : tearing_.inequalityRows) discs = discs || q.disc != 0;
   for (std::size_t i = 0; i < map->getNodeNumElements(); ++i) {
     const GO row = map->getGlobalElement(static_cast<LO>(i));
     r[i] = -1.0;
-    if (!discs || !tearing_.isInequality(row)) continue;
+    if (!tearing_.isInequality(row)) continue;
     const InequalityRow& q = tearing_.inequalityRows[row - tearing_.firstInequalityRow];
     if (q.disc == 1 || frictionBox(q)) r[i] = q.upperBound;
     if (q.disc == 2) r[i] = r[i - 1];  // the first component, just before it on this rank

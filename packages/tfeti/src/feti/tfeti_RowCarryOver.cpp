@@ -12,15 +12,7 @@ RowIdentities rowIdentities(const Tearing& t) {
   r.firstInequalityRow = t.firstInequalityRow;
   r.numRows = t.numRows;
   r.keys.reserve(t.inequalityRows.size());
-  bool boxes = false, discs = false;
-  for (const auto& row : t.inequalityRows) {
-    r.keys.push_back(row.key);
-    boxes =
-        boxes || (row.disc == 0 && std::isfinite(row.lowerBound) && std::isfinite(row.upperBound));
-    discs = discs || row.disc != 0;
-  }
-  // 3D friction's boxes (a direction held on both sides, beside discs) are keyed like discs.
-  r.boxes = boxes && !discs;
+  for (const auto& row : t.inequalityRows) r.keys.push_back(row.key);
   return r;
 }
 
@@ -47,7 +39,7 @@ std::vector<GO> continuedRows(const RowIdentities& from, const RowIdentities& to
   const GO numIneqTo = static_cast<GO>(to.keys.size());
   const bool sameAutomatic = from.firstUserEqualityRow == to.firstUserEqualityRow;
   const bool sameUser = sameAutomatic && from.firstInequalityRow == to.firstInequalityRow;
-  const bool keyed = allKeyed(from.keys) && allKeyed(to.keys) && !from.boxes && !to.boxes;
+  const bool keyed = allKeyed(from.keys) && allKeyed(to.keys);
   const bool positional = !keyed && numIneqFrom == numIneqTo;
   if (!sameAutomatic || (!keyed && !positional)) return {};
   std::vector<GO> old(static_cast<std::size_t>(to.numRows), -1);

@@ -11,13 +11,10 @@
 //   - both are inequality rows with the same InequalityRow::key (every row of both tearings
 //     keyed; a key two rows share matches neither), or, without keys, at the same position in
 //     an unchanged number of rows (the rule before keys).
-// Boxes in a tearing without discs (2D friction's tangential rows: both bounds finite) keep the
-// rule before keys (3D friction's boxes, the directions held on both sides, are keyed): carried by
-// key, 2D Coulomb's fixed point took another path on one of the CI's two-pair runs (26 iterations
-// instead of 12, and a stick node's tangential multiplier 1 % off the single-pair run's), as the
-// warm-started faces had cycled there (docs/nonlinear_contact.md). Rows that continue none start at
-// 0. The values move by one Tpetra Import from the old multiplier map to the old ids of the new
-// rows each rank owns (RowCarryOver).
+// Friction's rows are keyed like the others: Coulomb's bounds move between two tearings, and
+// FetiSolver::warmIncrement moves the slipping ones onto their new bounds. Rows that continue
+// none start at 0. The values move by one Tpetra Import from the old multiplier map to the old
+// ids of the new rows each rank owns (RowCarryOver).
 #include <Teuchos_RCP.hpp>
 #include <Tpetra_Import.hpp>
 
@@ -34,7 +31,6 @@ struct RowIdentities {
   Teuchos::RCP<const Map> map;
   GO firstUserEqualityRow = 0, firstInequalityRow = 0, numRows = 0;
   std::vector<long long> keys;  // by inequality row
-  bool boxes = false;           // box rows and no disc (2D friction, see above)
 };
 
 RowIdentities rowIdentities(const Tearing& t);
