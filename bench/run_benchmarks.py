@@ -27,8 +27,10 @@ cattaneo:   the Cattaneo-Mindlin problem (examples/cattaneo_cylinders.xml: Coulo
             multiplications and Newton iterations per step, Coulomb fixed-point iterations,
             times, memory, c/a against Cattaneo-Mindlin
 cattaneo_sphere: the 3D Cattaneo-Mindlin sphere (examples/cattaneo_sphere.xml: Coulomb mu =
-            0.3, dual mortar rows, normal then tangential loading) at about 28k and 0.1M
-            unknowns, and the same mesh and loads frictionless
+            0.3, dual mortar rows, normal then tangential loading) at about 28k, 0.1M and
+            1M unknowns (between --contact-min-dofs and --contact-max-dofs; --contact-max-dofs
+            2e5 leaves out the 1M size, whose Coulomb run had not finished its normal step after
+            40 minutes on 2026-11-28), and the same mesh and loads frictionless
 size2d:     the largest 2D linear solves: plane-strain elasticity, H/h = 16, from 1.2M to about
             23M unknowns (up to --max-dofs): times, iterations, peak memory per rank, bytes per
             unknown and the memory after every phase; a run whose estimated memory (the bytes
@@ -588,8 +590,9 @@ CATTANEO_SIZES = ((0.31, 16), (0.1, 160))
 
 
 # examples/cattaneo_sphere.xml (3D, Tet4, a size field at the contact): 28,488 unknowns at size
-# factor 1 with 4 + 4 subdomains; about 0.1M at 0.6.
-CATTANEO_SPHERE_SIZES = ((1.0, 4, 2.85e4), (0.6, 14, 1.0e5))
+# factor 1 with 4 + 4 subdomains; about 0.1M at 0.6 (unknowns ~ sf^-2.85), about 1M at 0.28
+# (about 4,300 unknowns a subdomain, as at 0.6).
+CATTANEO_SPHERE_SIZES = ((1.0, 4, 2.85e4), (0.6, 14, 1.0e5), (0.28, 116, 1.0e6))
 
 
 def cattaneo_run(o, name, sf, subdomains, friction=True, example="cattaneo_cylinders",
@@ -635,7 +638,7 @@ def cattaneo_table(o, title, cases, example, defaults):
           "it. step 1 / 2 | fixed-point it. step 1 / 2 | setup s | solve s | peak MiB/rank | "
           "Q/(mu P) | c/a | c/a closed form |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for sf, subs, dofs in cases:
-        if dofs > o.contact_max_dofs:
+        if dofs > o.contact_max_dofs or dofs < o.contact_min_dofs:
             continue
         for friction in (True, False):
             label = "Coulomb" if friction else "none"
@@ -694,6 +697,8 @@ if __name__ == "__main__":
     p.add_argument("--direct3d-max-dofs", type=float, default=5e4,
                    help="largest 3D case solved by KLU2 (its fill grows fast in 3D: at 32^3 "
                    "cells, 107,811 unknowns, it did not finish in 9 minutes on a quiet machine)")
+    p.add_argument("--contact-min-dofs", type=float, default=0,
+                   help="smallest two-cylinder / Cattaneo case (with --contact-max-dofs: one size)")
     p.add_argument("--contact-max-dofs", type=float, default=1.5e6,
                    help="largest two-cylinder case; the 4M one takes over an hour (docs)")
     p.add_argument("--set", action="append", default=[], metavar="LIST/NAME=VALUE",
