@@ -698,7 +698,8 @@ if __name__ == "__main__":
                    help="largest 3D case solved by KLU2 (its fill grows fast in 3D: at 32^3 "
                    "cells, 107,811 unknowns, it did not finish in 9 minutes on a quiet machine)")
     p.add_argument("--contact-min-dofs", type=float, default=0,
-                   help="smallest two-cylinder / Cattaneo case (with --contact-max-dofs: one size)")
+                   help="smallest case of the cattaneo and cattaneo_sphere sets (with "
+                   "--contact-max-dofs: one size)")
     p.add_argument("--contact-max-dofs", type=float, default=1.5e6,
                    help="largest two-cylinder case; the 4M one takes over an hour (docs)")
     p.add_argument("--set", action="append", default=[], metavar="LIST/NAME=VALUE",
