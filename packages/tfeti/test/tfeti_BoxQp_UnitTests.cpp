@@ -689,13 +689,22 @@ double orderingLevel(GO i) {
   return lowerKind(i) == kLowerAtLower ? 2.0 + std::sin(1.3 * i) : 0.5 * std::cos(0.7 * i);
 }
 
+// Levels like the gaps of a smooth punch pressed into a body by a prescribed depth d: the
+// solution's free (contact) components lie below -d/2 (Hertz), the ones at their bound above it.
+// Here the lowest level is between -1 and -0.6, so half of it between -0.5 and -0.3.
+double indentationLevel(GO i) {
+  return lowerKind(i) == kLowerAtLower ? -0.25 + 0.5 * (1 + std::sin(1.3 * i))
+                                       : -1.0 + 0.2 * (1 + std::cos(0.7 * i));
+}
+
 FaceRun levelRun(const RCP<const tfeti::Comm>& comm, const std::function<double(GO)>& level,
-                 Teuchos::FancyOStream& out) {
+                 Teuchos::FancyOStream& out, const std::string& start = "half lowest") {
   FaceRun r{knownBoxProblem(comm, 96, lowerKind, true, 0.7)};
   r.Q = rcp(new SpanProjector(*vectorOf(r.p.x->getMap(), [](GO) { return 1.0; })));
   Teuchos::ParameterList params = smalbeParams(1e-10);
   params.set("Face solve", "pcpg");
   params.set("Initial face", "levels");
+  params.set("Level search start", start);
   Smalbe solver(r.p.qp(), r.Q, params);
   // The unbounded components have no level.
   solver.setFaceLevels(vectorOf(r.p.x->getMap(), [&](GO i) {
@@ -737,6 +746,40 @@ TEUCHOS_UNIT_TEST(BoxQp, LevelsThatOrderTheFaceGiveItBeforeAnyOuterIteration) {
   // inner solves; the counts on contact problems are in docs/qp_solvers.md.)
 }
 
+TEUCHOS_UNIT_TEST(BoxQp, HalfTheLowestLevelIsTheFirstTrialFace) {
+  // A prescribed indentation: the first trial face, the levels at or below half the lowest, is
+  // the solution's. (Its loose solve, 2 CG steps on this unpreconditioned 1D Laplacian, still
+  // shows 4 free rows outside the box, so the search holds 4 more, sees the other side and
+  // comes back: 3 level solves.) From the middle the bisection takes 7.
+  const FaceRun r = levelRun(world(), indentationLevel, out);
+  expectKnownLowerSolution(r, out, success);
+  TEST_ASSERT(r.face.accepted);
+  TEST_EQUALITY(r.face.solves, 1);
+  const FaceRun m = levelRun(world(), indentationLevel, out, "middle");
+  expectKnownLowerSolution(m, out, success);
+  out << "level solves: half lowest " << r.face.levelSolves << ", middle " << m.face.levelSolves
+      << "\n";
+  TEST_COMPARE(r.face.levelSolves, <=, 3);
+  TEST_COMPARE(r.face.levelSolves, <, m.face.levelSolves);
+}
+
+TEUCHOS_UNIT_TEST(BoxQp, HalfTheLowestLevelWalksOutFromAWrongGuess) {
+  // Levels that order the face but whose lowest half is far from it (every free component's
+  // level below -1, the lowest -5, the bound ones above -1): the walk from the guess by
+  // doubling steps and the bisection find the face, then it is solved as before.
+  const FaceRun r = levelRun(
+      world(),
+      [](GO i) {
+        return lowerKind(i) == kLowerAtLower ? -1.0 + std::sin(1.3 * i) * std::sin(1.3 * i)
+                                             : -5.0 + 3.9 * (0.5 + 0.5 * std::cos(0.7 * i));
+      },
+      out);
+  expectKnownLowerSolution(r, out, success);
+  TEST_ASSERT(r.face.accepted);
+  TEST_COMPARE(r.face.levelSolves, >, 1);
+  TEST_EQUALITY(r.face.solves, 1);
+}
+
 TEUCHOS_UNIT_TEST(BoxQp, MisleadingLevelsStillConverge) {
   // Levels unrelated to the face: the bisection ends somewhere, the active-set steps and then
   // SMALBE's own iterations finish the solve.
@@ -761,11 +804,15 @@ TEUCHOS_UNIT_TEST(BoxQp, InitialFaceParameterIsValidated) {
   Teuchos::ParameterList params = smalbeParams(1e-8);
   params.set("Initial face", "gaps");
   TEST_THROW(Smalbe(p.qp(), Q, params), std::exception);
+  params.set("Initial face", "levels");
+  params.set("Level search start", "hertz");
+  TEST_THROW(Smalbe(p.qp(), Q, params), std::exception);
 }
 
 TEUCHOS_UNIT_TEST(BoxQp, LevelSearchGivesTheSameResultsOnEveryRankCount) {
-  for (auto level : {std::function<double(GO)>(orderingLevel),
-                     std::function<double(GO)>([](GO i) { return std::sin(1.7 * i); })})
+  for (auto level :
+       {std::function<double(GO)>(orderingLevel), std::function<double(GO)>(indentationLevel),
+        std::function<double(GO)>([](GO i) { return std::sin(1.7 * i); })})
     expectSameRuns(onEveryRankCount([&](RCP<const tfeti::Comm> sub) {
                      const FaceRun r = levelRun(sub, level, out);
                      RankRun run = rankRun(r.c, *r.p.x);

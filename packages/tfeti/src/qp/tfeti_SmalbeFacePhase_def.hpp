@@ -495,18 +495,77 @@ std::vector<long long> SmalbeSolMgr<S, MV, OP>::levelFace(magnitude_type tol, MV
   // free rows leave the box (tension on a closed contact row), too few leave active rows with
   // a multiplier of the wrong sign (penetration): bisect between the two.
   std::size_t lo = 0, hi = tau.size() - 1;
+  // "half lowest": a smooth body pressed a depth d into another (a prescribed indentation) is in
+  // contact, by Hertz, where its initial gap is below -d/2 (a^2 = R d; the gap at a is
+  // a^2/2R - d). The first trial frees those rows. A finite body's zone differs from Hertz's by
+  // tens of per cent in area (step-42's cube at 64^3: 89 rows against 69), so the next trials
+  // step by the verdict's own count, as a primal-dual active-set step would: free as many more
+  // rows as had the wrong sign, or hold as many as left the box. Two count steps to the same
+  // side in a row are followed by a bisection (or, before the other side is known, the step
+  // doubles), so a count that misleads costs no more than the bisection. Without a negative
+  // lowest level (bodies that just touch, loaded by a force) there is no guess: plain bisection.
+  const std::size_t guess = startLevel(tau);
+  const bool walk = guess != kNoLevelGuess;
+  // freeRows[k]: the rows at or below tau[k] (for the count steps).
+  std::vector<long long> freeRows;
+  if (walk) {
+    std::vector<S> sorted = level;
+    std::sort(sorted.begin(), sorted.end());
+    for (const S t : tau)
+      freeRows.push_back(std::upper_bound(sorted.begin(), sorted.end(), t) - sorted.begin());
+  }
+  bool belowKnown = false, aboveKnown = false;
+  int lastSide = 0, sameSide = 0;  // +1: too few free rows, -1: too many
+  long long lastStep = 0;
+  std::size_t k = walk ? guess : lo + (hi - lo) / 2;
   while (lo < hi) {
-    const std::size_t k = lo + (hi - lo) / 2;
     const FaceVerdict v = trialFace(faceAbove(k), rows, tol, x);
-    if (!v.valid || (v.wrongSign > 0 && v.leftBox == 0)) {
-      lo = k + 1;  // too few free rows (or not enough to carry Q's rows)
-    } else if (v.leftBox > 0 && v.wrongSign == 0) {
-      hi = k;  // too many
+    // Too few free rows (or not enough to carry Q's rows), too many, or neither (the face) or
+    // both (the primal-dual steps go on from it).
+    const bool tooFew = !v.valid || (v.wrongSign > 0 && v.leftBox == 0);
+    const bool tooMany = v.valid && v.leftBox > 0 && v.wrongSign == 0;
+    if (!tooFew && !tooMany) return faceAbove(k);
+    const int side = tooFew ? 1 : -1;
+    sameSide = side == lastSide ? sameSide + 1 : 1;
+    lastSide = side;
+    if (tooFew) {
+      lo = k + 1;
+      belowKnown = true;
     } else {
-      return faceAbove(k);  // neither (the face) or both (the primal-dual steps go on from it)
+      hi = k;
+      aboveKnown = true;
+    }
+    if (lo >= hi) break;
+    const bool bracketed = belowKnown && aboveKnown;
+    if (!walk || (bracketed && sameSide > 2)) {
+      k = lo + (hi - lo) / 2;
+      sameSide = 0;
+      continue;
+    }
+    // The count step; an invalid face (dependent on Q's rows) has no count: one row.
+    long long step = std::max<long long>(1, tooFew ? v.wrongSign : v.leftBox);
+    if (!bracketed && sameSide > 1) step = std::max(step, 2 * lastStep);
+    lastStep = step;
+    const long long want = freeRows[k] + side * step;
+    if (tooFew) {
+      for (k = lo; k < hi && freeRows[k] < want;) ++k;
+    } else {
+      for (k = hi - 1; k > lo && freeRows[k] > want;) --k;
     }
   }
   return faceAbove(lo);
+}
+
+template <class S, class MV, class OP>
+std::size_t SmalbeSolMgr<S, MV, OP>::startLevel(const std::vector<S>& tau) const {
+  if (params_.get<std::string>("Level search start") != "half lowest" || tau.empty() ||
+      !(tau.front() < S(0)))
+    return kNoLevelGuess;
+  const S half = tau.front() / S(2);
+  const std::size_t k =
+      static_cast<std::size_t>(std::upper_bound(tau.begin(), tau.end(), half) - tau.begin()) - 1;
+  // One free level alone is the deepest point: no zone to speak of (a touch by rounding).
+  return k >= 1 && k + 1 < tau.size() ? k : kNoLevelGuess;
 }
 
 }  // namespace tfeti

@@ -241,6 +241,10 @@ class SmalbeSolMgr {
   // between too many and too few active components); found is false when the levels do not
   // discriminate (fewer than two distinct values): no initial face then.
   std::vector<long long> levelFace(magnitude_type tol, MV& x, bool& found);
+  // "Level search start" = half lowest: the index of the largest of the sorted distinct levels
+  // tau at or below half the lowest, where that is informative; kNoLevelGuess otherwise.
+  std::size_t startLevel(const std::vector<S>& tau) const;
+  static constexpr std::size_t kNoLevelGuess = static_cast<std::size_t>(-1);
   struct FaceVerdict {
     bool valid = false;       // the face's projector exists (active rows independent of Q's)
     long long leftBox = 0;    // free components outside the box after the face solve

@@ -80,6 +80,14 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "iterate (a warm start's, or 3D friction's, whose discs have no levels)",
             Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
                 Teuchos::tuple<std::string>("none", "levels", "start"), "Initial face")));
+    pl->set("Level search start", "half lowest",
+            "with Initial face = levels: middle: the bisection starts at the middle of the "
+            "distinct levels; half lowest: when the lowest level is negative (a prescribed "
+            "indentation), the first trial frees the levels at or below half of it, Hertz's "
+            "contact zone of a smooth body pressed that deep, and the search walks outwards "
+            "from there by doubling steps before it bisects (middle otherwise)",
+            Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+                Teuchos::tuple<std::string>("middle", "half lowest"), "Level search start")));
     pl->set("Maximum face solves", 10,
             "limit on face solves (active-set corrections included) in one SMALBE solve",
             strict::count());
