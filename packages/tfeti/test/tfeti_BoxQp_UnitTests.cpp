@@ -765,8 +765,9 @@ TEUCHOS_UNIT_TEST(BoxQp, HalfTheLowestLevelIsTheFirstTrialFace) {
 
 TEUCHOS_UNIT_TEST(BoxQp, HalfTheLowestLevelWalksOutFromAWrongGuess) {
   // Levels that order the face but whose lowest half is far from it (every free component's
-  // level below -1, the lowest -5, the bound ones above -1): the walk from the guess by
-  // doubling steps and the bisection find the face, then it is solved as before.
+  // level below -1, the lowest -5, the bound ones above -1): the count steps from the guess
+  // (doubled while the other side is unknown) and the bisection find the face, then it is solved
+  // as before.
   const FaceRun r = levelRun(
       world(),
       [](GO i) {

@@ -235,7 +235,8 @@ class SmalbeSolMgr {
   // The primal-dual active-set step from the projected iterate xp on `face`.
   std::vector<long long> activeSetStep(const MV& xp, const FaceProjector<S, MV, OP>& rows,
                                        const std::vector<S>& sigma) const;
-  // "Initial face" = levels: bisection over the level sets for the face on which neither a free
+  // "Initial face" = levels: a search over the level sets (bisection, or with "Level search
+  // start" = half lowest count steps from Hertz's zone) for the face on which neither a free
   // component leaves the box nor an active one has a multiplier of the wrong sign, each face
   // solved to the loose tolerance tol from x (updated). Returns the face found (or the last one
   // between too many and too few active components); found is false when the levels do not

@@ -84,8 +84,9 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "with Initial face = levels: middle: the bisection starts at the middle of the "
             "distinct levels; half lowest: when the lowest level is negative (a prescribed "
             "indentation), the first trial frees the levels at or below half of it, Hertz's "
-            "contact zone of a smooth body pressed that deep, and the search walks outwards "
-            "from there by doubling steps before it bisects (middle otherwise)",
+            "contact zone of a smooth body pressed that deep, and the next trials move by the "
+            "verdict's own count (rows of the wrong sign freed, rows out of the box held), "
+            "falling back to bisection when two such steps land on one side (middle otherwise)",
             Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
                 Teuchos::tuple<std::string>("middle", "half lowest"), "Level search start")));
     pl->set("Maximum face solves", 10,
