@@ -21,6 +21,10 @@ cylinders_tied: the two-cylinder problem at about 100k, 500k, 1M and 4M unknowns
 hertz_sphere: the elastic Hertz sphere (examples/hertz_sphere_elastic.xml, Hex8) refined to about
             0.1M and 1M unknowns (up to --max-dofs): Hessian multiplications, setup and solve
             times, memory, errors against Hertz
+hertz_sphere_plastic: the elasto-plastic Hertz sphere (examples/hertz_sphere_plastic_hex.xml:
+            Hex8, J2, small strain, one load step) at about 0.1M, 0.5M and 1M unknowns (up to
+            --max-dofs): Newton iterations, Hessian multiplications, times, memory, p_max and
+            contact radius against elastic Hertz, plastic strain
 cattaneo:   the Cattaneo-Mindlin problem (examples/cattaneo_cylinders.xml: Coulomb mu = 0.3,
             normal then tangential loading) at about 0.1M and 1M unknowns (up to
             --contact-max-dofs), and the same mesh and loads frictionless: Hessian
@@ -365,15 +369,7 @@ def cylinders_run(o, name, sf, order, subdomains, tied=False):
         xml = set_parameter(xml, key, value)
     d = os.path.join(o.out, name)
     os.makedirs(d, exist_ok=True)
-    path = os.path.join(d, "input.xml")
-    with open(path, "w") as f:
-        f.write(xml)
-    res = mpirun([o.build + "/bin/tfeti_contact", "--input=" + path, "--output=" + d], o.ranks)
-    try:
-        with open(d + "/summary.json") as f:
-            return json.load(f)
-    except OSError:
-        return None
+    return run_input(o, xml, d)
 
 
 def set_parameter(xml, key, value):
@@ -536,8 +532,57 @@ def baseline3d(o, n, solver):
 
 # The Hertz sphere's refinements: the .geo's zone divisions n (across) and m (deep), the k layers
 # around it, and subdomains per body. Zone elements stay cubes (t = m s / n) over the same zone
-# s = 1.5 a; torn unknowns are about 8.2 per hexahedron of n^2 (m + k) + 2 k n m per body.
+# s = 1.5 a; the torn unknowns are about 4.2 per unit of n^2 (m + k) + 2 k n m per body (measured:
+# 101,046 at 18, 8, 15; 531k at 32, 14, 27; 1,040,184 at 40, 17, 33).
 HERTZ_SIZES = [(18, 8, 15, 16), (40, 17, 33, 128)]
+HERTZ_PLASTIC_SIZES = [(18, 8, 15, 16), (32, 14, 27, 64), (40, 17, 33, 128)]
+
+
+def run_input(o, xml, d):
+    """tfeti_contact on the input text xml, written to D/input.xml, with its output in D; the
+    summary, or None if the run wrote none."""
+    path = os.path.join(d, "input.xml")
+    with open(path, "w") as f:
+        f.write(xml)
+    mpirun([o.build + "/bin/tfeti_contact", "--input=" + path, "--output=" + d], o.ranks)
+    try:
+        with open(d + "/summary.json") as f:
+            return json.load(f)
+    except OSError:
+        return None
+
+
+def hertz_unknowns(n, m, k):
+    return 4.2 * 2 * (n * n * (m + k) + 2 * k * n * m)
+
+
+def hertz_run(o, example, n, m, k, parts):
+    """examples/EXAMPLE.xml on the Hertz sphere's mesh refined to n, m, k with parts subdomains
+    per body, without VTU output; the summary, or None if the run failed."""
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
+    name = f"{example}_{n}_{m}_{k}_{parts}"
+    d = os.path.join(o.out, name)
+    os.makedirs(d, exist_ok=True)
+    s_zone = 0.0225
+    with open(os.path.join(d, "mesh.geo"), "w") as f:
+        f.write(f"n = {n};\nm = {m};\nk = {k};\ns = {s_zone};\nt = {m * s_zone / n};\n"
+                f'Include "{os.path.join(root, "hertz_sphere_elastic.geo")}";\n')
+    with open(os.path.join(root, example + ".xml")) as f:
+        xml = f.read()
+    xml = xml.replace('value="hertz_sphere_elastic.geo"',
+                      'value="%s"' % os.path.join(d, "mesh.geo"))
+    xml = xml.replace('value="{4, 4}"', f'value="{{{parts}, {parts}}}"')
+    xml = xml.replace('<ParameterList name="FETI">', '<ParameterList name="Output">\n'
+                      '    <Parameter name="VTU" type="bool" value="false"/>\n'
+                      '  </ParameterList>\n  <ParameterList name="FETI">')
+    return run_input(o, xml, d)
+
+
+def hertz_cases(o, sizes, example):
+    """(n, m, k, summary or None) for each size up to --max-dofs."""
+    for n, m, k, parts in sizes:
+        if hertz_unknowns(n, m, k) <= o.max_dofs:
+            yield n, m, k, hertz_run(o, example, n, m, k, parts)
 
 
 def hertz_sphere(o):
@@ -545,33 +590,8 @@ def hertz_sphere(o):
     print("| mesh n, m, k | unknowns | subdomains | contact rows | outer it. / Hessian mult. | "
           "setup s | solve s | ms/Hessian mult. | peak MiB/rank | p_max error | radius error | "
           "max von Mises error |\n|---|---|---|---|---|---|---|---|---|---|---|---|")
-    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
-    for n, m, k, parts in HERTZ_SIZES:
-        if 8.2 * 2 * (n * n * (m + k) + 2 * k * n * m) > o.max_dofs:
-            continue
-        name = f"hertz_sphere_{n}_{m}_{k}_{parts}"
-        d = os.path.join(o.out, name)
-        os.makedirs(d, exist_ok=True)
-        s_zone = 0.0225
-        with open(os.path.join(d, "mesh.geo"), "w") as f:
-            f.write(f"n = {n};\nm = {m};\nk = {k};\ns = {s_zone};\nt = {m * s_zone / n};\n"
-                    f'Include "{os.path.join(root, "hertz_sphere_elastic.geo")}";\n')
-        with open(os.path.join(root, "hertz_sphere_elastic.xml")) as f:
-            xml = f.read()
-        xml = xml.replace('value="hertz_sphere_elastic.geo"',
-                          'value="%s"' % os.path.join(d, "mesh.geo"))
-        xml = xml.replace('value="{4, 4}"', f'value="{{{parts}, {parts}}}"')
-        xml = xml.replace('<ParameterList name="FETI">', '<ParameterList name="Output">\n'
-                          '    <Parameter name="VTU" type="bool" value="false"/>\n'
-                          '  </ParameterList>\n  <ParameterList name="FETI">')
-        path = os.path.join(d, "input.xml")
-        with open(path, "w") as f:
-            f.write(xml)
-        mpirun([o.build + "/bin/tfeti_contact", "--input=" + path, "--output=" + d], o.ranks)
-        try:
-            with open(d + "/summary.json") as f:
-                r = json.load(f)
-        except OSError:
+    for n, m, k, r in hertz_cases(o, HERTZ_SIZES, "hertz_sphere_elastic"):
+        if r is None:
             print(f"| {n}, {m}, {k} | failed | | | | | | | | | | |", flush=True)
             continue
         t, q, c = r["timings"], r["qp"], r["contact"]
@@ -582,6 +602,29 @@ def hertz_sphere(o):
               f"{r['peak_rss_mb']:.0f} | {100 * c['relative_error']['p_max']:.2f} % | "
               f"{100 * c['relative_error']['contact_radius']:.2f} % | {100 * vm:.1f} % |",
               flush=True)
+
+
+def hertz_sphere_plastic(o):
+    print("\n## Elasto-plastic Hertz sphere (examples/hertz_sphere_plastic_hex.xml: Hex8, J2, small "
+          "strain, one load step, SMALBE)\n")
+    print("| mesh n, m, k | unknowns | subdomains | Newton it. | Hessian mult. | mult. per Newton it. "
+          "| setup s | solve s | wall s | peak MiB/rank | p_max / Hertz | radius / Hertz | max von "
+          "Mises MPa | max plastic strain | force / applied |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for n, m, k, r in hertz_cases(o, HERTZ_PLASTIC_SIZES, "hertz_sphere_plastic_hex"):
+        if r is None or not r.get("converged"):
+            print(f"| {n}, {m}, {k} | {'not converged' if r else 'failed'} | | | | | | | | | | | "
+                  "| | |", flush=True)
+            continue
+        t, nl, c = r["timings"], r["nonlinear"], r["contact"]
+        it, mult = nl["total_iterations"], nl["total_hessian_multiplications"]
+        print(f"| {n}, {m}, {k} | {r['primal_dim']:,} | {r['subdomains']} | {it} | {mult} | "
+              f"{mult / max(it, 1):.0f} | {t['setup_s']:.1f} | {t['solve_s']:.1f} | "
+              f"{r['wall_time']:.1f} | {r['peak_rss_mb']:.0f} | "
+              f"{c['p_max'] / c['hertz']['p_max']:.3f} | "
+              f"{c['contact_radius'] / c['hertz']['contact_radius']:.3f} | "
+              f"{r['max_von_mises'] / 1e6:.1f} | {r['max_plastic_strain']:.2e} | "
+              f"{c['force'] / c['applied_force']:.6f} |", flush=True)
 
 
 # Unknowns of examples/cattaneo_cylinders.geo against its mesh size factor (19,161 nodes at 0.5,
@@ -618,15 +661,7 @@ def cattaneo_run(o, name, sf, subdomains, friction=True, example="cattaneo_cylin
         xml = set_parameter(xml, key, value)
     d = os.path.join(o.out, name)
     os.makedirs(d, exist_ok=True)
-    path = os.path.join(d, "input.xml")
-    with open(path, "w") as f:
-        f.write(xml)
-    mpirun([o.build + "/bin/tfeti_contact", "--input=" + path, "--output=" + d], o.ranks)
-    try:
-        with open(d + "/summary.json") as f:
-            return json.load(f)
-    except OSError:
-        return None
+    return run_input(o, xml, d)
 
 
 def cattaneo_table(o, title, cases, example, defaults):
@@ -711,5 +746,6 @@ if __name__ == "__main__":
         {"sweep": sweep, "reference": reference, "solvers": solvers, "membranes": membranes,
          "cylinders_convergence": cylinders_convergence, "cylinders": cylinders,
          "sweep3d": sweep3d, "cylinders_tied": cylinders_tied, "size2d": size2d,
-         "hertz_sphere": hertz_sphere, "cattaneo": cattaneo,
+         "hertz_sphere": hertz_sphere, "hertz_sphere_plastic": hertz_sphere_plastic,
+         "cattaneo": cattaneo,
          "cattaneo_sphere": cattaneo_sphere}[name](o)

@@ -256,8 +256,12 @@ bool SmalbeSolMgr<S, MV, OP>::looseVerdictMoves(const FaceProjector<S, MV, OP>& 
   if (!run.circles.empty()) addCurvatureGradient(run, *run.x, S(-1), *g);
   std::vector<long long> next = activeSetStep(*xp, face, face.activeMultipliers(*g));
   const bool seen = std::find(run.visited.begin(), run.visited.end(), next) != run.visited.end();
-  // An unconverged loose solve gives no verdict; the tight one judges the face.
-  if (!lr.converged || seen) return false;
+  // An unconverged loose solve gives no verdict; the tight one judges the face. Nor does one that
+  // took no step (its entry point already met the loose tolerance, as in an inexact Newton QP
+  // whose tolerance is loose) and would move the face: that verdict judges the warm start, not
+  // the face, and such verdicts wandered between faces (the elasto-plastic Hertz sphere at 0.54M:
+  // ten faces of 1954-1986 rows without a CG step, then SMALBE's outer iterations).
+  if (!lr.converged || seen || (lr.iterations == 0 && next != active)) return false;
   if (next == active) {
     // A face with circles that holds is solved once more from its retracted result, loosely,
     // then again to circleTol: the tight solve that follows is then the last Newton step on the
