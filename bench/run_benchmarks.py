@@ -533,7 +533,7 @@ def baseline3d(o, n, solver):
 # The Hertz sphere's refinements: the .geo's zone divisions n (across) and m (deep), the k layers
 # around it, and subdomains per body. Zone elements stay cubes (t = m s / n) over the same zone
 # s = 1.5 a; the torn unknowns are about 4.2 per unit of n^2 (m + k) + 2 k n m per body (measured:
-# 101,046 at 18, 8, 15; 531k at 32, 14, 27; 1,040,184 at 40, 17, 33).
+# 101,046 at 18, 8, 15; 544,806 at 32, 14, 27; 1,040,184 at 40, 17, 33).
 HERTZ_SIZES = [(18, 8, 15, 16), (40, 17, 33, 128)]
 HERTZ_PLASTIC_SIZES = [(18, 8, 15, 16), (32, 14, 27, 64), (40, 17, 33, 128)]
 
