@@ -21,6 +21,9 @@ cylinders_tied: the two-cylinder problem at about 100k, 500k, 1M and 4M unknowns
 hertz_sphere: the elastic Hertz sphere (examples/hertz_sphere_elastic.xml, Hex8) refined to about
             0.1M and 1M unknowns (up to --max-dofs): Hessian multiplications, setup and solve
             times, memory, errors against Hertz
+hertz_sphere_parts: the elastic Hertz sphere at about 0.1M and 1M unknowns (up to --max-dofs) cut
+            into 2 .. 128 METIS subdomains per body: Hessian multiplications, setup and solve
+            times, memory against the subdomain count
 hertz_sphere_plastic: the elasto-plastic Hertz sphere (examples/hertz_sphere_plastic_hex.xml:
             Hex8, J2, small strain, one load step) at about 0.1M, 0.5M and 1M unknowns (up to
             --max-dofs): Newton iterations, Hessian multiplications, times, memory, p_max and
@@ -535,6 +538,8 @@ def baseline3d(o, n, solver):
 # s = 1.5 a; the torn unknowns are about 4.2 per unit of n^2 (m + k) + 2 k n m per body (measured:
 # 101,046 at 18, 8, 15; 544,806 at 32, 14, 27; 1,040,184 at 40, 17, 33).
 HERTZ_SIZES = [(18, 8, 15, 16), (40, 17, 33, 128)]
+# The subdomain-count sweep: (n, m, k) and the subdomains per body.
+HERTZ_PARTS = [((18, 8, 15), (2, 4, 8, 16)), ((40, 17, 33), (8, 16, 32, 128))]
 HERTZ_PLASTIC_SIZES = [(18, 8, 15, 16), (32, 14, 27, 64), (40, 17, 33, 128)]
 
 
@@ -602,6 +607,27 @@ def hertz_sphere(o):
               f"{r['peak_rss_mb']:.0f} | {100 * c['relative_error']['p_max']:.2f} % | "
               f"{100 * c['relative_error']['contact_radius']:.2f} % | {100 * vm:.1f} % |",
               flush=True)
+
+
+def hertz_sphere_parts(o):
+    print("\n## Hertz sphere against the subdomain count (Hex8, SMALBE, relative tolerance 1e-7)\n")
+    print("| mesh n, m, k | subdomains | torn unknowns | dual | Hessian mult. | setup s | solve s | "
+          "ms/Hessian mult. | peak MiB/rank | factor GB | p_max error |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|")
+    for (n, m, k), parts in HERTZ_PARTS:
+        if hertz_unknowns(n, m, k) > o.max_dofs:
+            continue
+        for p in parts:
+            r = hertz_run(o, "hertz_sphere_elastic", n, m, k, p)
+            if r is None:
+                print(f"| {n}, {m}, {k} | {p} + {p} | failed | | | | | | | | |", flush=True)
+                continue
+            t, q, c = r["timings"], r["qp"], r["contact"]
+            mult = q["hessian_multiplications"]
+            print(f"| {n}, {m}, {k} | {p} + {p} | {r['primal_dim']:,} | {r['dual_dim']:,} | {mult} | "
+                  f"{t['setup_s']:.1f} | {t['solve_s']:.1f} | {1e3 * t['solve_s'] / max(mult, 1):.0f} | "
+                  f"{r['peak_rss_mb']:.0f} | {r['factor_bytes'] / 1e9:.2f} | "
+                  f"{100 * c['relative_error']['p_max']:.2f} % |", flush=True)
 
 
 def hertz_sphere_plastic(o):
@@ -746,6 +772,7 @@ if __name__ == "__main__":
         {"sweep": sweep, "reference": reference, "solvers": solvers, "membranes": membranes,
          "cylinders_convergence": cylinders_convergence, "cylinders": cylinders,
          "sweep3d": sweep3d, "cylinders_tied": cylinders_tied, "size2d": size2d,
-         "hertz_sphere": hertz_sphere, "hertz_sphere_plastic": hertz_sphere_plastic,
+         "hertz_sphere": hertz_sphere, "hertz_sphere_parts": hertz_sphere_parts,
+         "hertz_sphere_plastic": hertz_sphere_plastic,
          "cattaneo": cattaneo,
          "cattaneo_sphere": cattaneo_sphere}[name](o)
