@@ -127,6 +127,31 @@ TEUCHOS_UNIT_TEST(StructureTangent, PlaneStrainStructuresMatchFiniteDifferences)
     }
 }
 
+// The tangent is assembled in chunks of elements (kTangentChunk = 1024 in
+// plasticity_TotalLagrangian.cpp) from the upper triangles of the element matrices: on a mesh of
+// more elements than one chunk it is still the derivative of the internal force, with the
+// initial-stress part, and exactly symmetric.
+TEUCHOS_UNIT_TEST(StructureTangent, TangentOfMoreElementsThanOneChunk) {
+  const ElementMesh m =
+      plasticity_test::cubeMesh(ElementType::Hex8, 11, plasticity_test::randomVertices3(0.2)).mesh;
+  TEST_COMPARE(m.numElements(), >, 1024);
+  PointCounts c;
+  const double err = fdTangentError(m, Kinematics::TotalLagrangian, c);
+  out << m.numElements() << " elements, " << c.plastic << " of " << c.total
+      << " Gauss points loading plastically; FD tangent error " << err << "\n";
+  TEST_COMPARE(err, <, 1e-6);
+  TEST_COMPARE(c.plastic, >, 0);
+  plasticity::J2PlasticMaterial j2(kE, kNu, kYield, kH, m.numElements(),
+                                   plasticity::numGaussPoints(m.type));
+  const tfeti::CsrMatrix K =
+      plasticity::tangentStiffness(m, j2, bendingField(m, 0.007), Kinematics::TotalLagrangian);
+  double asymmetry = 0.0;
+  for (int i = 0; i < K.rows; ++i)
+    for (int k = K.rowPtr[i]; k < K.rowPtr[i + 1]; ++k)
+      asymmetry = std::max(asymmetry, std::abs(K.values[k] - K.values[K.find(K.colInd[k], i)]));
+  TEST_EQUALITY_CONST(asymmetry, 0.0);
+}
+
 // The 3D rigid modes at positions x (3 per node): 3 translations, then 3 rotations.
 std::vector<std::vector<double>> rigidModes3(const std::vector<double>& x) {
   const std::size_t n = x.size() / 3;

@@ -333,14 +333,10 @@ KOKKOS_INLINE_FUNCTION void gaussPoint(ElementType t, int q, double xi[], double
   }
 }
 
-// Shape functions and their physical derivatives dNdx[a][j] at xi for the element nodes x (dim
-// coordinates per node, dim = spatialDimension(t)); returns the Jacobian determinant.
-KOKKOS_INLINE_FUNCTION double physicalGradients(ElementType t, const double* x, const double xi[],
-                                                double N[], double dNdx[][kMaxDim]) {
-  const ElementInfo info = elementInfo(t);
-  const int npe = info.nodes, dim = info.dim;
-  double dN[kMaxElementNodes][kMaxDim];
-  shapeFunctions(t, xi, N, dN);
+// The physical derivatives dNdx[a][j] of shape functions whose reference derivatives are dN, for
+// the element nodes x (npe nodes, dim coordinates each); returns the Jacobian determinant.
+KOKKOS_INLINE_FUNCTION double mappedGradients(int npe, int dim, const double* x,
+                                              const double dN[][kMaxDim], double dNdx[][kMaxDim]) {
   double J[kMaxDim][kMaxDim] = {};  // J[i][j] = d x_i / d xi_j
   for (int a = 0; a < npe; ++a)
     for (int i = 0; i < dim; ++i)
@@ -372,6 +368,16 @@ KOKKOS_INLINE_FUNCTION double physicalGradients(ElementType t, const double* x, 
       dNdx[a][j] = s;
     }
   return det;
+}
+
+// Shape functions and their physical derivatives dNdx[a][j] at xi for the element nodes x (dim
+// coordinates per node, dim = spatialDimension(t)); returns the Jacobian determinant.
+KOKKOS_INLINE_FUNCTION double physicalGradients(ElementType t, const double* x, const double xi[],
+                                                double N[], double dNdx[][kMaxDim]) {
+  const ElementInfo info = elementInfo(t);
+  double dN[kMaxElementNodes][kMaxDim];
+  shapeFunctions(t, xi, N, dN);
+  return mappedGradients(info.nodes, info.dim, x, dN, dNdx);
 }
 
 }  // namespace plasticity

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "plasticity_ReferenceValues.hpp"
 #include "plasticity_TotalLagrangian.hpp"
 
 namespace plasticity {
@@ -64,35 +65,24 @@ HostView2 gather(const ElementMesh& mesh, const std::vector<double>& nodal,
   return v;
 }
 
-// Smallest Jacobian determinant over the Gauss points and the nodes: checking the nodes too
-// catches a map that folds over near a corner or a misplaced mid-node while staying positive
-// at every Gauss point.
-KOKKOS_INLINE_FUNCTION double minJacobian(ElementType t, const double* x) {
-  double N[kMaxElementNodes], dNdx[kMaxElementNodes][kMaxDim];
-  double detMin = 1e300;
-  for (int q = 0; q < numGaussPoints(t); ++q) {
-    double xi[kMaxDim], w;
-    gaussPoint(t, q, xi, w);
-    const double det = physicalGradients(t, x, xi, N, dNdx);
-    detMin = det < detMin ? det : detMin;
-  }
-  for (int a = 0; a < nodesPerElement(t); ++a) {
-    double xi[kMaxDim];
-    referenceNode(t, a, xi);
-    const double det = physicalGradients(t, x, xi, N, dNdx);
-    detMin = det < detMin ? det : detMin;
-  }
-  return detMin;
-}
-
-// Throws for the first element whose Jacobian is not positive everywhere.
+// Throws for the first element whose Jacobian is not positive everywhere: the smallest
+// determinant over the Gauss points and the nodes (checking the nodes too catches a map that
+// folds over near a corner or a misplaced mid-node while staying positive at every Gauss point).
 void checkJacobians(const ElementMesh& mesh, const HostView2& xe) {
-  const int ne = mesh.numElements();
-  const ElementType type = mesh.type;
+  const int ne = mesh.numElements(), npe = nodesPerElement(mesh.type), dim = mesh.dim();
+  const detail::ReferenceValues ref = detail::referenceValues(mesh.type, true);
+  const int points = static_cast<int>(ref.w.extent(0));
   Kokkos::View<double*, Kokkos::HostSpace> minDet("minDet", ne);
   Kokkos::parallel_for(
-      "plasticity::element_jacobians", Kokkos::RangePolicy<ExecSpace>(0, ne),
-      KOKKOS_LAMBDA(int e) { minDet(e) = minJacobian(type, &xe(e, 0)); });
+      "plasticity::element_jacobians", Kokkos::RangePolicy<ExecSpace>(0, ne), KOKKOS_LAMBDA(int e) {
+        double dNdx[kMaxElementNodes][kMaxDim];
+        double detMin = 1e300;
+        for (int p = 0; p < points; ++p) {
+          const double det = mappedGradients(npe, dim, &xe(e, 0), ref.derivatives(p), dNdx);
+          detMin = det < detMin ? det : detMin;
+        }
+        minDet(e) = detMin;
+      });
   for (int e = 0; e < ne; ++e)
     if (!(minDet(e) > 0.0))
       throw std::invalid_argument(elementLabel(mesh, e) +
@@ -125,9 +115,9 @@ HostView2 elementDisplacements(const ElementMesh& mesh, const std::vector<double
   return gather(mesh, u, "ue");
 }
 
-// Pattern: node-to-node adjacency through elements, expanded to dim dofs per node; then each
-// element adds its block (atomics keep this correct should the execution space be threaded).
-tfeti::CsrMatrix scatterStiffness(const ElementMesh& mesh, const HostView3& Ke) {
+// Node-to-node adjacency through elements, expanded to dim dofs per node: the rows of a node's
+// dofs share one column list, each neighbour's dofs consecutive in it.
+tfeti::CsrMatrix stiffnessPattern(const ElementMesh& mesh) {
   const int ne = mesh.numElements(), nn = mesh.numNodes(), npe = nodesPerElement(mesh.type);
   const int dim = mesh.dim();
   const int* conn = mesh.connectivity.data();
@@ -149,23 +139,34 @@ tfeti::CsrMatrix scatterStiffness(const ElementMesh& mesh, const HostView3& Ke) 
     }
   }
   K.values.assign(K.colInd.size(), 0.0);
+  return K;
+}
 
+// Each element adds its block (atomics keep this correct should the execution space be
+// threaded). One search per node pair: the pattern puts a neighbour's dim columns side by side,
+// at the same offset in each of the node's dim rows.
+void addElementMatrices(const ElementMesh& mesh, const HostView3& Ke, int first, int last,
+                        tfeti::CsrMatrix& K) {
+  const int npe = nodesPerElement(mesh.type), dim = mesh.dim();
+  const int* conn = mesh.connectivity.data();
   Kokkos::View<double*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> vals(
       K.values.data(), K.values.size());
   const tfeti::CsrMatrix& Kc = K;
-  Kokkos::parallel_for("plasticity::element_scatter", Kokkos::RangePolicy<ExecSpace>(0, ne),
-                       [&](int e) {
-                         for (int a = 0; a < npe; ++a)
-                           for (int c = 0; c < dim; ++c) {
-                             const int row = dim * conn[e * npe + a] + c;
-                             for (int b = 0; b < npe; ++b)
-                               for (int d = 0; d < dim; ++d) {
-                                 const long k = Kc.find(row, dim * conn[e * npe + b] + d);
-                                 Kokkos::atomic_add(&vals(k), Ke(e, dim * a + c, dim * b + d));
-                               }
-                           }
-                       });
-  return K;
+  Kokkos::parallel_for(
+      "plasticity::element_scatter", Kokkos::RangePolicy<ExecSpace>(first, last), [&](int e) {
+        const int* en = conn + static_cast<std::size_t>(e) * npe;
+        for (int a = 0; a < npe; ++a) {
+          const int row0 = dim * en[a];
+          for (int b = 0; b < npe; ++b) {
+            const long at = Kc.find(row0, dim * en[b]) - Kc.rowPtr[row0];
+            for (int c = 0; c < dim; ++c) {
+              const long k = Kc.rowPtr[row0 + c] + at;
+              for (int d = 0; d < dim; ++d)
+                Kokkos::atomic_add(&vals(k + d), Ke(e - first, dim * a + c, dim * b + d));
+            }
+          }
+        }
+      });
 }
 
 std::vector<double> scatterVector(const ElementMesh& mesh, const HostView2& fe) {

@@ -119,8 +119,12 @@ std::string elementLabel(const ElementMesh& mesh, int e);
 HostView2 checkedElementCoords(const ElementMesh& mesh);
 // Element displacements (ne, dim npe); throws when u does not have dim entries per node.
 HostView2 elementDisplacements(const ElementMesh& mesh, const std::vector<double>& u);
-// CSR matrix (node pairs sharing an element, dim dofs each) summing the element blocks Ke.
-tfeti::CsrMatrix scatterStiffness(const ElementMesh& mesh, const HostView3& Ke);
+// The CSR pattern of the stiffness (node pairs sharing an element, dim dofs each), values zero.
+tfeti::CsrMatrix stiffnessPattern(const ElementMesh& mesh);
+// Adds the element blocks Ke (element e at e - first) of the elements [first, last) into K, whose
+// pattern is stiffnessPattern(mesh).
+void addElementMatrices(const ElementMesh& mesh, const HostView3& Ke, int first, int last,
+                        tfeti::CsrMatrix& K);
 // Element vectors fe (ne, dim npe) summed into a nodal vector (dim per node).
 std::vector<double> scatterVector(const ElementMesh& mesh, const HostView2& fe);
 // The StressField of Gauss-point stresses sg (ne, ngp, 6: Voigt) at positions xg (ne, ngp,

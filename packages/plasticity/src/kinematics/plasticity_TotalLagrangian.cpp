@@ -2,7 +2,10 @@
 
 #include <Kokkos_Core.hpp>
 
+#include <algorithm>
 #include <string>
+
+#include "plasticity_ReferenceValues.hpp"
 
 namespace plasticity {
 namespace {
@@ -49,15 +52,15 @@ struct GaussKinematics {
 // Deformation gradient, strain and B_NL at Gauss point q of element e. The strain is the
 // Green-Lagrange one (large) or B u (small: F = I in B, the linearized strain); it has all six
 // Voigt components, zero where the dimension does not strain.
-KOKKOS_INLINE_FUNCTION void kinematics(ElementType type, bool large, const double* xe,
-                                       const double* ue, int q, GaussKinematics& g,
-                                       double E[kNumVoigt]) {
+KOKKOS_INLINE_FUNCTION void kinematics(ElementType type, const detail::ReferenceValues& ref,
+                                       bool large, const double* xe, const double* ue, int q,
+                                       GaussKinematics& g, double E[kNumVoigt]) {
   const int npe = nodesPerElement(type), dim = spatialDimension(type), nd = dim * npe;
   g.dim = dim;
   g.nv = activeComponents(dim, g.comp);
-  double xi[kMaxDim], w;
-  gaussPoint(type, q, xi, w);
-  g.wdetJ = w * physicalGradients(type, xe, xi, g.N, g.dNdX);
+  const double* N = ref.shape(q);
+  for (int a = 0; a < npe; ++a) g.N[a] = N[a];
+  g.wdetJ = ref.w(q) * mappedGradients(npe, dim, xe, ref.derivatives(q), g.dNdX);
   double H[3][3] = {};  // du_i / dX_j
   for (int a = 0; a < npe; ++a)
     for (int i = 0; i < dim; ++i)
@@ -92,38 +95,57 @@ KOKKOS_INLINE_FUNCTION void kinematics(ElementType type, bool large, const doubl
   }
 }
 
-// Throws for the first element with det F <= 0 at some Gauss point (minDetF filled by a kernel).
-void checkDeformation(const ElementMesh& mesh, const Kokkos::View<double*, Kokkos::HostSpace>& m) {
-  for (int e = 0; e < mesh.numElements(); ++e)
-    if (!(m(e) > 0.0))
+// Throws for the first element with det F <= 0 at some Gauss point (minDetF filled by a kernel
+// for the elements from first on).
+void checkDeformation(const ElementMesh& mesh, const Kokkos::View<double*, Kokkos::HostSpace>& m,
+                      int first = 0) {
+  for (int k = 0; k < static_cast<int>(m.extent(0)); ++k)
+    if (!(m(k) > 0.0))
       throw InvertedDeformationError(
-          detail::elementLabel(mesh, e) +
-          " is inverted by the displacement (det F = " + std::to_string(m(e)) + ")");
+          detail::elementLabel(mesh, first + k) +
+          " is inverted by the displacement (det F = " + std::to_string(m(k)) + ")");
 }
 
-// Per element: the internal force vector (fe), or with Ke also the tangent. The law is not
-// called at an inverted point, so that a rejected state leaves no trial history behind there.
-void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const std::vector<double>& u,
-                   Kinematics kin, bool initialStress, HostView2& fe, HostView3* Ke) {
+// What the element kernels of one call share: the element coordinates and displacements, the
+// reference values of the Gauss rule.
+struct ElementInputs {
+  HostView2 xe, ue;
+  detail::ReferenceValues ref;
+};
+
+ElementInputs elementInputs(const ElementMesh& mesh, const std::vector<double>& u) {
+  ElementInputs in;
+  in.xe = detail::checkedElementCoords(mesh);
+  in.ue = detail::elementDisplacements(mesh, u);
+  in.ref = detail::referenceValues(mesh.type);
+  return in;
+}
+
+// Per element of [first, last): the internal force vector (fe, indexed by element), or with Ke
+// also the tangent (indexed by e - first). The law is not called at an inverted point, so that a
+// rejected state leaves no trial history behind there.
+void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const ElementInputs& in,
+                   Kinematics kin, bool initialStress, int first, int last, HostView2& fe,
+                   HostView3* Ke) {
   const bool large = kin == Kinematics::TotalLagrangian;
   const bool geometric = large && initialStress;
-  const HostView2 xe = detail::checkedElementCoords(mesh);
-  const HostView2 ue = detail::elementDisplacements(mesh, u);
-  const int ne = mesh.numElements(), nd = mesh.dim() * nodesPerElement(mesh.type);
+  const HostView2 xe = in.xe, ue = in.ue;
+  const detail::ReferenceValues ref = in.ref;
+  const int nd = mesh.dim() * nodesPerElement(mesh.type);
   const ElementType type = mesh.type;
   const MaterialLaw* lawPtr = &law;  // captured by value: the lambda copies the pointer only
-  fe = HostView2("fe", ne, nd);
   const bool withTangent = Ke != nullptr;
   HostView3 K;
-  if (withTangent) K = *Ke = HostView3("Ke", ne, nd, nd);
-  Kokkos::View<double*, Kokkos::HostSpace> minDetF("minDetF", ne);
+  if (withTangent) K = *Ke;
+  Kokkos::View<double*, Kokkos::HostSpace> minDetF("minDetF", last - first);
   Kokkos::parallel_for(
-      "plasticity::element_kernel", Kokkos::RangePolicy<ExecSpace>(0, ne), KOKKOS_LAMBDA(int e) {
+      "plasticity::element_kernel", Kokkos::RangePolicy<ExecSpace>(first, last),
+      KOKKOS_LAMBDA(int e) {
         double detMin = 1e300;
         for (int q = 0; q < numGaussPoints(type); ++q) {
           GaussKinematics g;
           double E[kNumVoigt];
-          kinematics(type, large, &xe(e, 0), &ue(e, 0), q, g, E);
+          kinematics(type, ref, large, &xe(e, 0), &ue(e, 0), q, g, E);
           detMin = g.detF < detMin ? g.detF : detMin;
           if (!(g.detF > 0.0)) continue;
           MaterialResponse r;
@@ -136,6 +158,7 @@ void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const std::v
             fe(e, i) += s * g.wdetJ;
           }
           if (!withTangent) continue;
+          const int ke = e - first;
           // Material part B^T C B over the active components.
           double CB[kNumVoigt][kMaxElementDofs];
           for (int k = 0; k < nv; ++k)
@@ -145,11 +168,13 @@ void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const std::v
                 s += r.tangent[kNumVoigt * g.comp[k] + g.comp[l]] * g.B[l][j];
               CB[k][j] = s;
             }
+          // The upper triangle only (the laws' tangents are symmetric, as the local solvers,
+          // which read one triangle, assume); mirrored once the element is done.
           for (int i = 0; i < nd; ++i)
-            for (int j = 0; j < nd; ++j) {
+            for (int j = i; j < nd; ++j) {
               double s = 0;
               for (int k = 0; k < nv; ++k) s += g.B[k][i] * CB[k][j];
-              K(e, i, j) += s * g.wdetJ;
+              K(ke, i, j) += s * g.wdetJ;
             }
           // Initial stress: the variation of B_NL with u, contracted with S; it couples only
           // like components, hence the identity in k.
@@ -166,30 +191,46 @@ void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const std::v
                 s += ga[i] * t;
               }
               s *= g.wdetJ;
-              for (int k = 0; k < dim; ++k) K(e, dim * a + k, dim * b + k) += s;
+              for (int k = 0; k < dim; ++k) K(ke, dim * a + k, dim * b + k) += s;
             }
         }
-        minDetF(e) = detMin;
+        if (withTangent)
+          for (int i = 0; i < nd; ++i)
+            for (int j = 0; j < i; ++j) K(e - first, i, j) = K(e - first, j, i);
+        minDetF(e - first) = detMin;
       });
-  checkDeformation(mesh, minDetF);
+  checkDeformation(mesh, minDetF, first);
 }
+
+// Elements per chunk of the tangent: the element matrices of one chunk at a time (Hex8: 4.7 MB),
+// not of the whole mesh (Hex8 at 64^3 cells on 2 ranks: 600 MB a rank, zeroed and written once).
+constexpr int kTangentChunk = 1024;
 
 }  // namespace
 
 std::vector<double> internalForce(const ElementMesh& mesh, const MaterialLaw& law,
                                   const std::vector<double>& u, Kinematics kinematics) {
-  HostView2 fe;
-  elementKernel(mesh, law, u, kinematics, false, fe, nullptr);
+  const ElementInputs in = elementInputs(mesh, u);
+  HostView2 fe("fe", mesh.numElements(), mesh.dim() * nodesPerElement(mesh.type));
+  elementKernel(mesh, law, in, kinematics, false, 0, mesh.numElements(), fe, nullptr);
   return detail::scatterVector(mesh, fe);
 }
 
 tfeti::CsrMatrix tangentStiffness(const ElementMesh& mesh, const MaterialLaw& law,
                                   const std::vector<double>& u, Kinematics kinematics,
                                   bool initialStress) {
-  HostView2 fe;
-  HostView3 Ke;
-  elementKernel(mesh, law, u, kinematics, initialStress, fe, &Ke);
-  return detail::scatterStiffness(mesh, Ke);
+  const ElementInputs in = elementInputs(mesh, u);
+  const int ne = mesh.numElements(), nd = mesh.dim() * nodesPerElement(mesh.type);
+  tfeti::CsrMatrix K = detail::stiffnessPattern(mesh);
+  HostView2 fe("fe", ne, nd);
+  HostView3 Ke("Ke", std::min(ne, kTangentChunk), nd, nd);
+  for (int first = 0; first < ne; first += kTangentChunk) {
+    const int last = std::min(ne, first + kTangentChunk);
+    if (first > 0) Kokkos::deep_copy(Ke, 0.0);
+    elementKernel(mesh, law, in, kinematics, initialStress, first, last, fe, &Ke);
+    detail::addElementMatrices(mesh, Ke, first, last, K);
+  }
+  return K;
 }
 
 StressField cauchyStress(const ElementMesh& mesh, const MaterialLaw& law,
@@ -205,6 +246,7 @@ StressField gaussPointStresses(const ElementMesh& mesh, const MaterialLaw& law,
   const bool large = kin == Kinematics::TotalLagrangian;
   const HostView2 xe = detail::checkedElementCoords(mesh);
   const HostView2 ue = detail::elementDisplacements(mesh, u);
+  const detail::ReferenceValues ref = detail::referenceValues(mesh.type);
   const int ne = mesh.numElements(), npe = nodesPerElement(mesh.type), dim = mesh.dim();
   const int ngp = numGaussPoints(mesh.type);
   const ElementType type = mesh.type;
@@ -218,7 +260,7 @@ StressField gaussPointStresses(const ElementMesh& mesh, const MaterialLaw& law,
         for (int q = 0; q < ngp; ++q) {
           GaussKinematics g;
           double E[kNumVoigt];
-          kinematics(type, large, &xe(e, 0), &ue(e, 0), q, g, E);
+          kinematics(type, ref, large, &xe(e, 0), &ue(e, 0), q, g, E);
           detMin = g.detF < detMin ? g.detF : detMin;
           for (int a = 0; a < npe; ++a)
             for (int i = 0; i < dim; ++i)

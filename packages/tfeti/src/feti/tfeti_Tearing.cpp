@@ -543,20 +543,30 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
 }
 
 void ScalingGroups::apply(double* x) const {
-  std::vector<double> in, out;
+  // Most groups are a single row (a dof shared by two subdomains) and the dense ones hold at most
+  // kMaxDenseScalingGroup rows: no allocation per group (this runs twice per preconditioner apply,
+  // on every group of the dual vector).
+  double in[kMaxDenseScalingGroup], out[kMaxDenseScalingGroup];
+  std::vector<double> inSparse, outSparse;
   for (std::size_t g = 0; g < rows.size(); ++g) {
     const auto& lids = rows[g];
     const int m = static_cast<int>(lids.size());
-    in.resize(m);
-    out.assign(m, 0.0);
-    for (int i = 0; i < m; ++i) in[i] = x[lids[i]];
     if (sparse[g]) {
-      sparse[g]->apply(in.data(), out.data());
-    } else {
-      const auto& Q = dense[g];
-      for (int c = 0; c < m; ++c)
-        for (int r = 0; r < m; ++r) out[r] += Q[c * m + r] * in[c];
+      inSparse.resize(m);
+      outSparse.assign(m, 0.0);
+      for (int i = 0; i < m; ++i) inSparse[i] = x[lids[i]];
+      sparse[g]->apply(inSparse.data(), outSparse.data());
+      for (int i = 0; i < m; ++i) x[lids[i]] = outSparse[i];
+      continue;
     }
+    const double* Q = dense[g].data();
+    if (m == 1) {
+      x[lids[0]] *= Q[0];
+      continue;
+    }
+    for (int i = 0; i < m; ++i) in[i] = x[lids[i]], out[i] = 0.0;
+    for (int c = 0; c < m; ++c)
+      for (int r = 0; r < m; ++r) out[r] += Q[c * m + r] * in[c];
     for (int i = 0; i < m; ++i) x[lids[i]] = out[i];
   }
 }
