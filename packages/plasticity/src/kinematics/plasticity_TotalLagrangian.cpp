@@ -121,11 +121,11 @@ ElementInputs elementInputs(const ElementMesh& mesh, const std::vector<double>& 
   return in;
 }
 
-// Per element of [first, last): the internal force vector (fe, indexed by element), or with Ke
-// also the tangent (indexed by e - first). The law is not called at an inverted point, so that a
-// rejected state leaves no trial history behind there.
+// Per element of [first, last): the internal force vector (into fe, indexed by element) or the
+// tangent (into Ke, indexed by e - first), whichever is given. The law is not called at an
+// inverted point, so that a rejected state leaves no trial history behind there.
 void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const ElementInputs& in,
-                   Kinematics kin, bool initialStress, int first, int last, HostView2& fe,
+                   Kinematics kin, bool initialStress, int first, int last, HostView2* fe,
                    HostView3* Ke) {
   const bool large = kin == Kinematics::TotalLagrangian;
   const bool geometric = large && initialStress;
@@ -134,7 +134,9 @@ void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const Elemen
   const int nd = mesh.dim() * nodesPerElement(mesh.type);
   const ElementType type = mesh.type;
   const MaterialLaw* lawPtr = &law;  // captured by value: the lambda copies the pointer only
-  const bool withTangent = Ke != nullptr;
+  const bool withForce = fe != nullptr, withTangent = Ke != nullptr;
+  HostView2 f;
+  if (withForce) f = *fe;
   HostView3 K;
   if (withTangent) K = *Ke;
   Kokkos::View<double*, Kokkos::HostSpace> minDetF("minDetF", last - first);
@@ -152,11 +154,12 @@ void elementKernel(const ElementMesh& mesh, const MaterialLaw& law, const Elemen
           lawPtr->evaluate(MaterialPointId{e, q}, E, r);
           const double* S = r.stress;
           const int nv = g.nv;
-          for (int i = 0; i < nd; ++i) {
-            double s = 0;
-            for (int k = 0; k < nv; ++k) s += g.B[k][i] * S[g.comp[k]];
-            fe(e, i) += s * g.wdetJ;
-          }
+          if (withForce)
+            for (int i = 0; i < nd; ++i) {
+              double s = 0;
+              for (int k = 0; k < nv; ++k) s += g.B[k][i] * S[g.comp[k]];
+              f(e, i) += s * g.wdetJ;
+            }
           if (!withTangent) continue;
           const int ke = e - first;
           // Material part B^T C B over the active components.
@@ -212,7 +215,7 @@ std::vector<double> internalForce(const ElementMesh& mesh, const MaterialLaw& la
                                   const std::vector<double>& u, Kinematics kinematics) {
   const ElementInputs in = elementInputs(mesh, u);
   HostView2 fe("fe", mesh.numElements(), mesh.dim() * nodesPerElement(mesh.type));
-  elementKernel(mesh, law, in, kinematics, false, 0, mesh.numElements(), fe, nullptr);
+  elementKernel(mesh, law, in, kinematics, false, 0, mesh.numElements(), &fe, nullptr);
   return detail::scatterVector(mesh, fe);
 }
 
@@ -222,12 +225,11 @@ tfeti::CsrMatrix tangentStiffness(const ElementMesh& mesh, const MaterialLaw& la
   const ElementInputs in = elementInputs(mesh, u);
   const int ne = mesh.numElements(), nd = mesh.dim() * nodesPerElement(mesh.type);
   tfeti::CsrMatrix K = detail::stiffnessPattern(mesh);
-  HostView2 fe("fe", ne, nd);
   HostView3 Ke("Ke", std::min(ne, kTangentChunk), nd, nd);
   for (int first = 0; first < ne; first += kTangentChunk) {
     const int last = std::min(ne, first + kTangentChunk);
     if (first > 0) Kokkos::deep_copy(Ke, 0.0);
-    elementKernel(mesh, law, in, kinematics, initialStress, first, last, fe, &Ke);
+    elementKernel(mesh, law, in, kinematics, initialStress, first, last, nullptr, &Ke);
     detail::addElementMatrices(mesh, Ke, first, last, K);
   }
   return K;
