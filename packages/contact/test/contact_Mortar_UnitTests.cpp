@@ -252,6 +252,37 @@ TEUCHOS_UNIT_TEST(Mortar, NonMatching3DReproducesLinearFields) {
   }
 }
 
+// The search along each slave facet's normal: the couplings are the same for any search radius
+// that holds the gap, the (slave, master) pairs examined do not grow with the radius, a master
+// farther along the normal than several facets is found, and one beyond the radius is not.
+TEUCHOS_UNIT_TEST(Mortar, SearchAlongTheNormal) {
+  for (double gap : {0.02, 0.4}) {
+    Grid slave, master;
+    addGrid(slave, 4, 1.0, 0.0, 0.0, 0.0, 0.0, true, false);  // facets of 0.25
+    master.x = slave.x;
+    addGrid(master, 28, 4.0, 0.3, 0.05, -0.02, gap, false, true);  // 0.14, beyond the slave
+    const auto tight = contact::mortarCouplings(master.x, slave.s, master.s, gap + 0.05);
+    TEST_EQUALITY(tight.byNode.size(), std::size_t(25));
+    for (double radius : {1.0, 10.0}) {
+      const auto wide = contact::mortarCouplings(master.x, slave.s, master.s, radius);
+      TEST_EQUALITY(wide.candidatePairs, tight.candidatePairs);
+      TEST_EQUALITY(wide.overlaps, tight.overlaps);
+      TEST_EQUALITY(wide.byNode.size(), tight.byNode.size());
+      for (const auto& [j, cj] : tight.byNode) {
+        const auto& w = wide.byNode.at(j);
+        TEST_EQUALITY(w.weight, cj.weight);  // bitwise: the same overlaps, in the same order
+        TEST_EQUALITY(w.master.size(), cj.master.size());
+        for (const auto& [k, m] : cj.master) TEST_EQUALITY(w.master.at(k), m);
+      }
+    }
+    // Each slave facet (0.25 wide) examines a few dozen of the master's 0.14 triangles, not the
+    // master's 1,568.
+    TEST_COMPARE(tight.candidatePairs, <, 16 * 40);
+    const auto beyond = contact::mortarCouplings(master.x, slave.s, master.s, 0.9 * gap);
+    TEST_ASSERT(beyond.byNode.empty());
+  }
+}
+
 // Matching 2D meshes: D is the identity times W_j and M couples each slave node to the master
 // node opposite it only, so the rows are node-to-segment's (up to zero entries).
 TEUCHOS_UNIT_TEST(Mortar, MatchingMeshesGiveNodeWiseRows) {

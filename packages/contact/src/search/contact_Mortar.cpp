@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <stdexcept>
+#include <vector>
 
 #include "contact_BucketGrid.hpp"
 #include "contact_ContactMaster.hpp"
@@ -120,29 +120,65 @@ bool integrateOverlap(const FacetGeometry& fs, const FacetGeometry& fm, int mast
   return true;
 }
 
-// The master facets whose (enlarged) boxes meet the slave facet's box: the grid's candidates at
-// a lattice of points spaced at most a cell apart over that box, so every cell it overlaps is
-// visited.
-std::set<int> candidateFacets(const BucketGrid& grid, const FacetGeometry& fs) {
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (int a = 0; a < fs.numNodes(); ++a)
-    for (int c = 0; c < fs.dim; ++c) {
-      const double v = (*fs.x)[static_cast<std::size_t>(fs.dim) * fs.nodes[a] + c];
-      lo[c] = std::min(lo[c], v), hi[c] = std::max(hi[c], v);
-    }
-  int n[3] = {1, 1, 1};
-  for (int c = 0; c < fs.dim; ++c)
-    n[c] = 1 + static_cast<int>(std::ceil((hi[c] - lo[c]) / grid.cellSize()));
-  std::set<int> out;
-  double p[3];
-  for (int i = 0; i <= n[0]; ++i)
-    for (int j = 0; j <= (fs.dim > 1 ? n[1] : 0); ++j)
-      for (int k = 0; k <= (fs.dim > 2 ? n[2] : 0); ++k) {
-        const int idx[3] = {i, j, k};
-        for (int c = 0; c < fs.dim; ++c) p[c] = lo[c] + (hi[c] - lo[c]) * idx[c] / n[c];
-        if (const auto* cand = grid.candidates(p)) out.insert(cand->begin(), cand->end());
+// Whether the segment from a to b meets the box lo..hi enlarged by pad on every side.
+bool segmentMeetsBox(int dim, const double* a, const double* b, const double* lo, const double* hi,
+                     double pad) {
+  double l[3], h[3], t0, t1;
+  for (int c = 0; c < dim; ++c) l[c] = lo[c] - pad, h[c] = hi[c] + pad;
+  return clipSegmentToBox(dim, a, b, l, h, t0, t1);
+}
+
+// What the search needs of one master facet, computed once per configuration: its nodes' box
+// (grown to hold its centre, which a curved quadratic facet may have outside its nodes' box),
+// its centre and its normal there.
+struct MasterFacetData {
+  std::vector<double> box;             // lo[0..dim-1], hi[0..dim-1] per facet
+  std::vector<double> centre, normal;  // 3 values per facet
+  double meanSize = 0.0, maxDiagonal = 0.0;
+};
+
+MasterFacetData masterFacetData(const MortarSurface& master, const std::vector<double>& x) {
+  const int dim = master.dim, nf = master.numFacets();
+  MasterFacetData m;
+  m.box.reserve(static_cast<std::size_t>(2 * dim) * nf);
+  m.centre.resize(3 * static_cast<std::size_t>(nf));
+  m.normal.resize(3 * static_cast<std::size_t>(nf));
+  for (int f = 0; f < nf; ++f) {
+    const FacetGeometry fm = facetOf(master, x, f);
+    const auto c = facetCentre(fm.type);
+    const auto n = fm.normal(c.data());
+    double* centre = &m.centre[3 * static_cast<std::size_t>(f)];
+    double t[6];
+    fm.evaluate(c.data(), centre, t);
+    double lo[3], hi[3], diagonal = 0.0;
+    for (int k = 0; k < dim; ++k) lo[k] = hi[k] = centre[k];
+    for (int a = 0; a < fm.numNodes(); ++a)
+      for (int k = 0; k < dim; ++k) {
+        const double v = x[static_cast<std::size_t>(dim) * fm.nodes[a] + k];
+        lo[k] = std::min(lo[k], v), hi[k] = std::max(hi[k], v);
       }
-  return out;
+    for (int k = 0; k < dim; ++k) {
+      m.normal[3 * static_cast<std::size_t>(f) + k] = n[k];
+      diagonal += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    m.box.insert(m.box.end(), lo, lo + dim);
+    m.box.insert(m.box.end(), hi, hi + dim);
+    m.maxDiagonal = std::max(m.maxDiagonal, std::sqrt(diagonal));
+    m.meanSize += facetSize(fm);
+  }
+  m.meanSize /= std::max(nf, 1);
+  return m;
+}
+
+// The farthest a slave facet's projected corners lie from its plane's origin: every point of
+// the slave polygon lies within it.
+double planeReach(const FacetGeometry& fs, const AuxiliaryPlane& plane) {
+  double r = 0.0;
+  for (int a = 0; a < numCorners(fs.type); ++a) {
+    const auto s = plane.coordinates(fs.x->data() + static_cast<std::size_t>(fs.dim) * fs.nodes[a]);
+    r = std::max(r, std::hypot(s[0], s[1]));
+  }
+  return r;
 }
 
 // Adds one slave facet's covered points to the couplings through its dual basis.
@@ -200,44 +236,66 @@ MortarCouplings mortarCouplings(const std::vector<double>& x, const MortarSurfac
   const int dim = slave.dim;
   MortarCouplings out;
   if (master.numFacets() == 0 || slave.numFacets() == 0) return out;
-  // The master facets' boxes, enlarged by the search radius, in a bucket grid.
-  std::vector<double> boxes;
-  double meanSize = 0.0;
-  for (int f = 0; f < master.numFacets(); ++f) {
-    const FacetGeometry fm = facetOf(master, x, f);
-    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-    for (int a = 0; a < fm.numNodes(); ++a)
-      for (int c = 0; c < dim; ++c) {
-        const double v = x[static_cast<std::size_t>(dim) * fm.nodes[a] + c];
-        lo[c] = std::min(lo[c], v), hi[c] = std::max(hi[c], v);
-      }
-    for (int c = 0; c < dim; ++c) boxes.push_back(lo[c] - searchRadius);
-    for (int c = 0; c < dim; ++c) boxes.push_back(hi[c] + searchRadius);
-    meanSize += facetSize(fm);
-  }
-  meanSize /= master.numFacets();
-  const BucketGrid grid(dim, boxes, std::max(meanSize, searchRadius));
-  out.gridCells = grid.occupiedCells();
-  out.cellSize = grid.cellSize();
-  const MultiplierSpace lm = multiplierSpace(slave.type);
+  // A master facet can overlap a slave facet only where it meets the slave polygon swept along
+  // the slave plane's normal, as far as the search radius plus the master facet's own extent
+  // (its centre is within the radius of the plane). That prism lies within `reach` of the
+  // segment origin +- L normal, so the grid holds the master boxes grown by the largest reach
+  // and each slave facet walks the cells along its segment: the candidates are the facets the
+  // slave faces, not every facet within the search radius in all directions.
+  const MasterFacetData m = masterFacetData(master, x);
+  std::vector<AuxiliaryPlane> planes;
+  std::vector<double> reach;
+  planes.reserve(slave.numFacets());
+  reach.reserve(slave.numFacets());
+  double maxReach = 0.0;
   for (int e = 0; e < slave.numFacets(); ++e) {
     const FacetGeometry fs = facetOf(slave, x, e);
-    const AuxiliaryPlane plane(fs);
+    planes.emplace_back(fs);
+    reach.push_back(planeReach(fs, planes.back()));
+    maxReach = std::max(maxReach, reach.back());
+  }
+  // A margin against rounding at the boxes' faces, far below any facet's size.
+  const double margin = 1e-6 * std::max(m.meanSize, maxReach);
+  std::vector<double> boxes = m.box;
+  for (std::size_t b = 0; b < boxes.size(); b += 2 * dim)
+    for (int c = 0; c < dim; ++c) {
+      boxes[b + c] -= maxReach + margin;
+      boxes[b + dim + c] += maxReach + margin;
+    }
+  const BucketGrid grid(dim, boxes, std::max(m.meanSize, maxReach));
+  out.gridCells = grid.occupiedCells();
+  out.cellSize = grid.cellSize();
+  const double L = searchRadius + m.maxDiagonal + margin;
+  const MultiplierSpace lm = multiplierSpace(slave.type);
+  std::vector<int> candidates;
+  for (int e = 0; e < slave.numFacets(); ++e) {
+    const FacetGeometry fs = facetOf(slave, x, e);
+    const AuxiliaryPlane& plane = planes[e];
+    double a[3], b[3];
+    for (int c = 0; c < dim; ++c) {
+      a[c] = plane.origin[c] - L * plane.normal[c];
+      b[c] = plane.origin[c] + L * plane.normal[c];
+    }
+    candidates.clear();
+    grid.segmentCandidates(a, b, candidates);
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     const Polygon slavePoly = projectedCorners(fs, plane);
     const double size = facetSize(fs);
-    const std::set<int> own(fs.nodes, fs.nodes + fs.numNodes());
     CoveredPoints pts;
-    for (int f : candidateFacets(grid, fs)) {
+    for (int f : candidates) {
+      const double* box = &m.box[static_cast<std::size_t>(2 * dim) * f];
+      if (!segmentMeetsBox(dim, a, b, box, box + dim, reach[e] + margin)) continue;
       const FacetGeometry fm = facetOf(master, x, f);
       bool shared = false;
-      for (int a = 0; a < fm.numNodes(); ++a) shared = shared || own.count(fm.nodes[a]) > 0;
+      for (int p = 0; p < fm.numNodes() && !shared; ++p)
+        for (int q = 0; q < fs.numNodes() && !shared; ++q) shared = fm.nodes[p] == fs.nodes[q];
       if (shared) continue;
       ++out.candidatePairs;
       // Only master facets facing the slave and within the search radius of its plane.
-      const auto c = facetCentre(fm.type);
-      const auto nm = fm.normal(c.data());
-      double centre[3], t[6], facing = 0.0;
-      fm.evaluate(c.data(), centre, t);
+      const double* centre = &m.centre[3 * static_cast<std::size_t>(f)];
+      const double* nm = &m.normal[3 * static_cast<std::size_t>(f)];
+      double facing = 0.0;
       for (int k = 0; k < dim; ++k) facing += nm[k] * plane.normal[k];
       if (facing >= 0.0 || std::abs(plane.height(centre)) > searchRadius) continue;
       if (integrateOverlap(fs, fm, f, plane, slavePoly, size, lm, pts)) ++out.overlaps;

@@ -72,7 +72,8 @@ struct MortarCouplings {
 
 // D, M and W of a slave surface against a master surface on configuration x (dim values per
 // mesh node). Master facets farther than searchRadius from a slave facet's plane, facing away
-// from it, or sharing a node with it are skipped.
+// from it, or sharing a node with it are skipped. The candidates are found along each slave
+// facet's normal, so the search costs about the same whatever the search radius.
 MortarCouplings mortarCouplings(const std::vector<double>& x, const MortarSurface& slave,
                                 const MortarSurface& master, double searchRadius);
 
