@@ -10,11 +10,6 @@
 
 namespace contact {
 
-// The part of the segment a + t (b - a), t in [0, 1], inside the box lo..hi (dim values each):
-// false when they do not meet, else t0 <= t1 bound it.
-bool clipSegmentToBox(int dim, const double* a, const double* b, const double* lo, const double* hi,
-                      double& t0, double& t1);
-
 class BucketGrid {
  public:
   // boxes: lo[0..dim-1], hi[0..dim-1] per box (2 dim values). cellSize > 0.
@@ -22,11 +17,6 @@ class BucketGrid {
 
   // Boxes of the cell containing x (dim values), increasing; null when there are none.
   const std::vector<int>* candidates(const double* x) const;
-
-  // Appends the boxes of every cell that the segment from a to b (dim values each) passes
-  // through, cell by cell along it (a voxel walk, so no cell it crosses is skipped however long
-  // it is); a box met in several cells is appended once per cell.
-  void segmentCandidates(const double* a, const double* b, std::vector<int>& out) const;
 
   long long occupiedCells() const { return static_cast<long long>(cells_.size()); }
   double cellSize() const { return h_; }

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "contact_BucketGrid.hpp"
+#include "contact_BoxTree.hpp"
 #include "contact_ContactMaster.hpp"
 #include "contact_MortarIntegration.hpp"
 #include "contact_NodeToFace.hpp"
@@ -120,14 +120,6 @@ bool integrateOverlap(const FacetGeometry& fs, const FacetGeometry& fm, int mast
   return true;
 }
 
-// Whether the segment from a to b meets the box lo..hi enlarged by pad on every side.
-bool segmentMeetsBox(int dim, const double* a, const double* b, const double* lo, const double* hi,
-                     double pad) {
-  double l[3], h[3], t0, t1;
-  for (int c = 0; c < dim; ++c) l[c] = lo[c] - pad, h[c] = hi[c] + pad;
-  return clipSegmentToBox(dim, a, b, l, h, t0, t1);
-}
-
 // What the search needs of one master facet, computed once per configuration: its nodes' box
 // (grown to hold its centre, which a curved quadratic facet may have outside its nodes' box),
 // its centre and its normal there.
@@ -238,33 +230,26 @@ MortarCouplings mortarCouplings(const std::vector<double>& x, const MortarSurfac
   if (master.numFacets() == 0 || slave.numFacets() == 0) return out;
   // A master facet can overlap a slave facet only where it meets the slave polygon swept along
   // the slave plane's normal, as far as the search radius plus the master facet's own extent
-  // (its centre is within the radius of the plane). That prism lies within `reach` of the
-  // segment origin +- L normal, so the grid holds the master boxes grown by the largest reach
-  // and each slave facet walks the cells along its segment: the candidates are the facets the
-  // slave faces, not every facet within the search radius in all directions.
+  // (its centre is within the radius of the plane). That prism lies within the polygon's reach
+  // of the segment origin +- L normal: the candidates are the master boxes which that segment
+  // meets when grown by the reach, found in a tree of the boxes. They are the facets the slave
+  // faces, not every facet within the search radius in all directions, and a graded mesh's
+  // large facets do not widen the search of its small ones.
   const MasterFacetData m = masterFacetData(master, x);
+  const BoxTree tree(dim, m.box);
+  double scale = m.meanSize;
   std::vector<AuxiliaryPlane> planes;
   std::vector<double> reach;
   planes.reserve(slave.numFacets());
   reach.reserve(slave.numFacets());
-  double maxReach = 0.0;
   for (int e = 0; e < slave.numFacets(); ++e) {
     const FacetGeometry fs = facetOf(slave, x, e);
     planes.emplace_back(fs);
     reach.push_back(planeReach(fs, planes.back()));
-    maxReach = std::max(maxReach, reach.back());
+    scale = std::max(scale, reach.back());
   }
   // A margin against rounding at the boxes' faces, far below any facet's size.
-  const double margin = 1e-6 * std::max(m.meanSize, maxReach);
-  std::vector<double> boxes = m.box;
-  for (std::size_t b = 0; b < boxes.size(); b += 2 * dim)
-    for (int c = 0; c < dim; ++c) {
-      boxes[b + c] -= maxReach + margin;
-      boxes[b + dim + c] += maxReach + margin;
-    }
-  const BucketGrid grid(dim, boxes, std::max(m.meanSize, maxReach));
-  out.gridCells = grid.occupiedCells();
-  out.cellSize = grid.cellSize();
+  const double margin = 1e-6 * scale;
   const double L = searchRadius + m.maxDiagonal + margin;
   const MultiplierSpace lm = multiplierSpace(slave.type);
   std::vector<int> candidates;
@@ -277,15 +262,11 @@ MortarCouplings mortarCouplings(const std::vector<double>& x, const MortarSurfac
       b[c] = plane.origin[c] + L * plane.normal[c];
     }
     candidates.clear();
-    grid.segmentCandidates(a, b, candidates);
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    tree.segmentQuery(a, b, reach[e] + margin, candidates);
     const Polygon slavePoly = projectedCorners(fs, plane);
     const double size = facetSize(fs);
     CoveredPoints pts;
     for (int f : candidates) {
-      const double* box = &m.box[static_cast<std::size_t>(2 * dim) * f];
-      if (!segmentMeetsBox(dim, a, b, box, box + dim, reach[e] + margin)) continue;
       const FacetGeometry fm = facetOf(master, x, f);
       bool shared = false;
       for (int p = 0; p < fm.numNodes() && !shared; ++p)

@@ -66,8 +66,6 @@ struct MortarCouplings {
   long long candidatePairs = 0;          // (slave facet, master facet) pairs projected
   long long overlaps = 0;                // of them with an overlap of positive measure
   int singularFacets = 0;                // covered slave facets with no dual basis (slivers)
-  long long gridCells = 0;
-  double cellSize = 0.0;
 };
 
 // D, M and W of a slave surface against a master surface on configuration x (dim values per

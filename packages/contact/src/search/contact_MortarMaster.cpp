@@ -76,8 +76,6 @@ class MeshMortarMaster : public ContactMaster {
     ContactRowsResult result;
     result.candidatePairs = c.candidatePairs;
     result.allPairs = static_cast<long long>(slave_.numFacets()) * master_.numFacets();
-    result.gridCells = c.gridCells;
-    result.cellSize = c.cellSize;
     for (int j : slaveNodes) {
       const auto it = c.byNode.find(j);
       const auto fw = full.find(j);
