@@ -37,7 +37,7 @@ cattaneo_sphere: the 3D Cattaneo-Mindlin sphere (examples/cattaneo_sphere.xml: C
             0.3, dual mortar rows, normal then tangential loading) at about 28k, 0.1M and
             1M unknowns (between --contact-min-dofs and --contact-max-dofs; --contact-max-dofs
             2e5 leaves out the 1M size, whose Coulomb run had not finished its normal step after
-            40 minutes on 2026-11-28), and the same mesh and loads frictionless
+            68 minutes on 2026-11-29), and the same mesh and loads frictionless
 size2d:     the largest 2D linear solves: plane-strain elasticity, H/h = 16, from 1.2M to about
             23M unknowns (up to --max-dofs): times, iterations, peak memory per rank, bytes per
             unknown and the memory after every phase; a run whose estimated memory (the bytes
@@ -659,8 +659,9 @@ CATTANEO_SIZES = ((0.31, 16), (0.1, 160))
 
 # examples/cattaneo_sphere.xml (3D, Tet4, a size field at the contact): 28,488 unknowns at size
 # factor 1 with 4 + 4 subdomains; about 0.1M at 0.6 (unknowns ~ sf^-2.85), about 1M at 0.28
-# (about 4,300 unknowns a subdomain, as at 0.6).
-CATTANEO_SPHERE_SIZES = ((1.0, 4, 2.85e4), (0.6, 14, 1.0e5), (0.28, 116, 1.0e6))
+# (944,547) on 8 + 8 subdomains: the frictionless run takes 16 minutes and 6.7 GB a rank there
+# (2026-11-29; fewer subdomains cut the multiplications, docs/benchmarks.md).
+CATTANEO_SPHERE_SIZES = ((1.0, 4, 2.85e4), (0.6, 14, 1.0e5), (0.28, 8, 1.0e6))
 
 
 def cattaneo_run(o, name, sf, subdomains, friction=True, example="cattaneo_cylinders",
