@@ -6,12 +6,13 @@
 namespace contact {
 
 namespace {
-constexpr int kLeafSize = 8;
-}
 
-bool clipSegmentToBox(int dim, const double* a, const double* b, const double* lo, const double* hi,
-                      double& t0, double& t1) {
-  t0 = 0.0, t1 = 1.0;
+constexpr int kLeafSize = 8;
+
+// Whether the segment a + t (b - a), t in [0, 1], meets the box lo..hi (dim values each).
+bool segmentMeetsBox(int dim, const double* a, const double* b, const double* lo,
+                     const double* hi) {
+  double t0 = 0.0, t1 = 1.0;
   for (int c = 0; c < dim; ++c) {
     const double d = b[c] - a[c];
     if (d == 0.0) {
@@ -25,6 +26,8 @@ bool clipSegmentToBox(int dim, const double* a, const double* b, const double* l
   }
   return true;
 }
+
+}  // namespace
 
 BoxTree::BoxTree(int dim, const std::vector<double>& boxes) : dim_(dim), boxes_(boxes) {
   if (dim != 2 && dim != 3) throw std::invalid_argument("BoxTree: dimension must be 2 or 3");
@@ -86,19 +89,21 @@ void BoxTree::segmentQuery(const double* a, const double* b, double pad,
                            std::vector<int>& out) const {
   if (nodes_.empty()) return;
   const std::size_t start = out.size();
+  // Depth-first; the median splits keep the depth below log2(n) + 1, so the stack never holds
+  // more than that many nodes.
   int stack[128];
   int top = 0;
   stack[top++] = 0;
-  double lo[3], hi[3], t0, t1;
+  double lo[3], hi[3];
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
     for (int c = 0; c < dim_; ++c) lo[c] = node.lo[c] - pad, hi[c] = node.hi[c] + pad;
-    if (!clipSegmentToBox(dim_, a, b, lo, hi, t0, t1)) continue;
+    if (!segmentMeetsBox(dim_, a, b, lo, hi)) continue;
     if (node.left < 0) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         const double* box = &boxes_[static_cast<std::size_t>(2 * dim_) * order_[k]];
         for (int c = 0; c < dim_; ++c) lo[c] = box[c] - pad, hi[c] = box[dim_ + c] + pad;
-        if (clipSegmentToBox(dim_, a, b, lo, hi, t0, t1)) out.push_back(order_[k]);
+        if (segmentMeetsBox(dim_, a, b, lo, hi)) out.push_back(order_[k]);
       }
       continue;
     }

@@ -7,18 +7,13 @@
 
 namespace contact {
 
-// The part of the segment a + t (b - a), t in [0, 1], inside the box lo..hi (dim values each):
-// false when they do not meet, else t0 <= t1 bound it.
-bool clipSegmentToBox(int dim, const double* a, const double* b, const double* lo, const double* hi,
-                      double& t0, double& t1);
-
 class BoxTree {
  public:
   // boxes: lo[0..dim-1], hi[0..dim-1] per box.
   BoxTree(int dim, const std::vector<double>& boxes);
 
   // Appends, in increasing order, the boxes that the segment from a to b (dim values each)
-  // meets once each box is grown by pad on every side (clipSegmentToBox's test).
+  // meets once each box is grown by pad on every side.
   void segmentQuery(const double* a, const double* b, double pad, std::vector<int>& out) const;
 
   int numNodes() const { return static_cast<int>(nodes_.size()); }

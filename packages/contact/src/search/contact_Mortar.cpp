@@ -237,32 +237,22 @@ MortarCouplings mortarCouplings(const std::vector<double>& x, const MortarSurfac
   // large facets do not widen the search of its small ones.
   const MasterFacetData m = masterFacetData(master, x);
   const BoxTree tree(dim, m.box);
-  double scale = m.meanSize;
-  std::vector<AuxiliaryPlane> planes;
-  std::vector<double> reach;
-  planes.reserve(slave.numFacets());
-  reach.reserve(slave.numFacets());
-  for (int e = 0; e < slave.numFacets(); ++e) {
-    const FacetGeometry fs = facetOf(slave, x, e);
-    planes.emplace_back(fs);
-    reach.push_back(planeReach(fs, planes.back()));
-    scale = std::max(scale, reach.back());
-  }
-  // A margin against rounding at the boxes' faces, far below any facet's size.
-  const double margin = 1e-6 * scale;
-  const double L = searchRadius + m.maxDiagonal + margin;
   const MultiplierSpace lm = multiplierSpace(slave.type);
   std::vector<int> candidates;
   for (int e = 0; e < slave.numFacets(); ++e) {
     const FacetGeometry fs = facetOf(slave, x, e);
-    const AuxiliaryPlane& plane = planes[e];
+    const AuxiliaryPlane plane(fs);
+    const double reach = planeReach(fs, plane);
+    // A margin against rounding at the boxes' faces, far below any facet's size.
+    const double margin = 1e-6 * std::max(m.meanSize, reach);
+    const double L = searchRadius + m.maxDiagonal + margin;
     double a[3], b[3];
     for (int c = 0; c < dim; ++c) {
       a[c] = plane.origin[c] - L * plane.normal[c];
       b[c] = plane.origin[c] + L * plane.normal[c];
     }
     candidates.clear();
-    tree.segmentQuery(a, b, reach[e] + margin, candidates);
+    tree.segmentQuery(a, b, reach + margin, candidates);
     const Polygon slavePoly = projectedCorners(fs, plane);
     const double size = facetSize(fs);
     CoveredPoints pts;
