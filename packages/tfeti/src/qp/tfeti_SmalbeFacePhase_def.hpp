@@ -31,7 +31,8 @@ struct SmalbeSolMgr<S, MV, OP>::FaceRun {
   std::vector<typename SeparableSet<S, MV>::Circle> circles;
   Teuchos::RCP<MV> curvature;
   Teuchos::RCP<const OP> faceA;
-  Teuchos::RCP<MV> x, g;  // the face iterate and its gradient A x - b
+  FaceStiffComponents<S> stiff;  // the circles' components whose curvature outweighs A
+  Teuchos::RCP<MV> x, g;         // the face iterate and its gradient A x - b
   Teuchos::RCP<MV> t, mu, phi, chopped;
   magnitude_type gTol = 0, eTol = 0, scale = 0;
   S tightTol = 0, looseTol = 0;
@@ -188,6 +189,7 @@ void SmalbeSolMgr<S, MV, OP>::setCircleCurvature(const FaceProjector<S, MV, OP>&
   using BT = BoundTraits<S, MV>;
   run.faceA = run.A;
   run.curvature = Teuchos::null;
+  run.stiff = FaceStiffComponents<S>();
   if (run.circles.empty()) return;
   // The face's Hessian gains the circles' curvature nu / r (nu = -sigma, the multiplier that
   // holds x on the circle, from the gradient at the entry point): the Hessian of the Lagrangian
@@ -202,6 +204,17 @@ void SmalbeSolMgr<S, MV, OP>::setCircleCurvature(const FaceProjector<S, MV, OP>&
     const S nu = std::max(-sigma[face.active().size() + k], S(0));
     idx.push_back(c.index), idx.push_back(c.index + 1);
     d.push_back(nu / c.radius), d.push_back(nu / c.radius);
+    // A curvature above kStiffCurvature ||A||: preconditioned by its own inverse
+    // (tfeti_FacePcpg.hpp); M, where there is one, has the scale of A^{-1}, and without one the
+    // identity stands for (A / ||A||)^{-1}.
+    const S kappa = nu / c.radius;
+    if (kappa > S(kStiffCurvature) * normA_) {
+      const S inv = (run.M.is_null() ? S(normA_) : S(1)) / kappa;
+      for (const long long i : {c.index, c.index + 1}) {
+        run.stiff.indices.push_back(i);
+        run.stiff.inverseDiagonal.push_back(inv);
+      }
+    }
   }
   run.curvature = MVT::Clone(*run.x, 1);
   MVT::MvInit(*run.curvature, S(0));
@@ -229,7 +242,7 @@ void SmalbeSolMgr<S, MV, OP>::addCurvatureGradient(const FaceRun& run, const MV&
 template <class S, class MV, class OP>
 FacePcpgResult<S> SmalbeSolMgr<S, MV, OP>::faceCg(const FaceProjector<S, MV, OP>& face, S tol,
                                                   int maxIterations, FaceRun& run) {
-  FacePcpg<S, MV, OP> pcpg(run.faceA, run.M, face, tol, maxIterations);
+  FacePcpg<S, MV, OP> pcpg(run.faceA, run.M, face, tol, maxIterations, S(0), run.stiff);
   const FacePcpgResult<S> res = pcpg.solve(*run.x, *run.g);
   counters_.hessianMultiplications += res.iterations;
   face_.iterations += res.iterations;
