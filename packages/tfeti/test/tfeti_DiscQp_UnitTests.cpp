@@ -347,10 +347,10 @@ TEUCHOS_UNIT_TEST(DiscQp, SmalbeWithEqualityAndDiscs) {
 // Sliding discs whose curvature nu / r dwarfs A (3D friction's nodes at the edge of the contact
 // zone, where the bound mu lambda_N is small and the slip is not): in the face solve each such
 // circle's tangent is an eigenvalue far above A's, a CG step apiece without a preconditioner
-// that knows the curvature. Preconditioned by its own inverse there (tfeti_FacePcpg.hpp), the
-// face's CG steps fall from 75 to 9 here (1, 2 and 3 ranks; kStiffCurvature raised out of
-// reach). The face phase starts from the known problem's solution (without the equality
-// constraint) with every disc turned along its circle.
+// that knows the curvature. With the preconditioner updated by the curvature (Woodbury's
+// identity, tfeti_FacePcpg.hpp), the face's CG steps fall from 75 to 10 here (1, 2 and 3 ranks;
+// kStiffCurvature raised out of reach for the 75). The face phase starts from the known problem's
+// solution (without the equality constraint) with every disc turned along its circle.
 TEUCHOS_UNIT_TEST(DiscQp, StiffCirclesPreconditionedByTheirCurvature) {
   auto p = knownDiscProblem(
       world(), 60, [](GO k) { return k % 3 == 0 ? kDiscOnToo : kDiscOn; },

@@ -6,21 +6,24 @@
 //   w = P_F g,  z = P_F M w,  p = z + beta p,  x -= alpha p,  g -= alpha A p,
 // from x in the face's affine set (so every iterate stays in it: p is in range(P_F)). M is
 // SMALBE's preconditioner (for FETI P M P + Q / rho, which P_F turns into P_F M P_F), or none.
-// Stiff components (3D friction's circles whose curvature nu / r in the face's Hessian outweighs
-// A, tfeti_SmalbeFacePhase_def.hpp): M knows nothing of that diagonal term, and each such
-// component is an eigenvalue of the preconditioned operator far above the others, a CG step
-// apiece and more once orthogonality is lost (docs/qp_solvers.md, "Stiff circles"). They are
-// taken out of M's input and output and scaled by the inverse of their own diagonal instead:
-//   z = P_F (E_c M E_c w + D_s^{-1} w),   E_c zero on the stiff components, one elsewhere,
-// symmetric and positive definite on the face whenever M is. E_c M E_c still approximates the
-// inverse of A with those components free, where the face holds them nearly still: a gap of
-// the rank of their count, which at hundreds of stiff circles still costs hundreds of steps.
+// Stiff circles (3D friction's circles whose curvature nu / r in the face's Hessian outweighs A,
+// tfeti_SmalbeFacePhase_def.hpp): M approximates A^{-1}, but the face's Hessian is A + E K E^T
+// (E the circles' unit tangents, K their curvatures), and each stiff tangent that M ignores is
+// an eigenvalue of the preconditioned operator far above the others, a CG step apiece and more
+// once orthogonality is lost (docs/qp_solvers.md, "Stiff circles"). The preconditioner is then
+// M's inverse updated by the curvature, by Woodbury's identity:
+//   (M^{-1} + E K E^T)^{-1} = M - (M E) C^{-1} (M E)^T,   C = K^{-1} + E^T M E   (s x s),
+// symmetric and positive definite whenever M is; z = P_F of it applied to w. M E is computed
+// once per face (M applied to the stiff circles' components, cached for the face phase); each
+// step adds a gather of 2 s values, an s x s solve and an update by the s columns of M E.
 // Stops when ||P_F g|| <= tolerance (the free rows' gradient: P_F g is zero on the active
 // rows) or, with a reduction, at that share of its start, or fails after "maximum iterations" or on
 // a direction of non-positive curvature.
 #include <BelosMultiVecTraits.hpp>
 #include <BelosOperatorTraits.hpp>
+#include <Teuchos_LAPACK.hpp>
 #include <Teuchos_RCP.hpp>
+#include <Teuchos_SerialDenseMatrix.hpp>
 
 #include <algorithm>
 #include <vector>
@@ -30,13 +33,17 @@
 
 namespace tfeti {
 
-// Components preconditioned by their own diagonal (see above): global indices, sorted, and the
-// inverse of the diagonal at each.
-template <class S>
-struct FaceStiffComponents {
-  std::vector<long long> indices;
-  std::vector<S> inverseDiagonal;
-  bool empty() const { return indices.empty(); }
+// The stiff circles of a face (see above): both components of each, its unit tangent, M E (one
+// column per circle; null when there is no M, which then stands for the identity and E is its
+// own image) and the Cholesky factor of C = K^{-1} + E^T M E (column-major, lower).
+template <class S, class MV>
+struct FaceStiffCircles {
+  std::vector<long long> components;
+  std::vector<S> t0, t1;
+  Teuchos::RCP<MV> ME;
+  std::vector<S> factor;
+  int count() const { return static_cast<int>(t0.size()); }
+  bool empty() const { return t0.empty(); }
 };
 
 template <class S>
@@ -56,7 +63,7 @@ class FacePcpg {
   // is looser than the tolerance.
   FacePcpg(Teuchos::RCP<const OP> A, Teuchos::RCP<const OP> M, const FaceProjector<S, MV, OP>& face,
            S tolerance, int maxIterations, S reduction = S(0),
-           FaceStiffComponents<S> stiff = FaceStiffComponents<S>())
+           FaceStiffCircles<S, MV> stiff = FaceStiffCircles<S, MV>())
       : A_(std::move(A)),
         M_(std::move(M)),
         face_(face),
@@ -106,7 +113,7 @@ class FacePcpg {
   S tol_;
   int maxIter_;
   S reduction_;
-  FaceStiffComponents<S> stiff_;
+  FaceStiffCircles<S, MV> stiff_;
 
   void precondition(const MV& w, MV& z) const {
     using BT = BoundTraits<S, MV>;
@@ -114,22 +121,26 @@ class FacePcpg {
       MVT::Assign(w, z);
       return;
     }
-    std::vector<S> ws;
-    const MV* in = &w;
-    Teuchos::RCP<MV> masked;
-    if (!stiff_.empty()) {
-      ws = BT::gatherAt(w, stiff_.indices);
-      masked = MVT::CloneCopy(w);
-      BT::setAt(stiff_.indices, std::vector<S>(ws.size(), S(0)), *masked);
-      in = masked.get();
-    }
     if (M_.is_null())
-      MVT::Assign(*in, z);
+      MVT::Assign(w, z);
     else
-      OPT::Apply(*M_, *in, z);
+      OPT::Apply(*M_, w, z);
     if (!stiff_.empty()) {
-      for (std::size_t i = 0; i < ws.size(); ++i) ws[i] *= stiff_.inverseDiagonal[i];
-      BT::setAt(stiff_.indices, ws, z);
+      // z -= (M E) C^{-1} (M E)^T w = (M E) C^{-1} E^T (M w).
+      const int s = stiff_.count();
+      const std::vector<S> at = BT::gatherAt(z, stiff_.components);
+      Teuchos::SerialDenseMatrix<int, S> c(s, 1);
+      for (int k = 0; k < s; ++k) c(k, 0) = stiff_.t0[k] * at[2 * k] + stiff_.t1[k] * at[2 * k + 1];
+      int info = 0;
+      Teuchos::LAPACK<int, S>().POTRS('L', s, 1, stiff_.factor.data(), s, c.values(), s, &info);
+      if (!stiff_.ME.is_null()) {
+        MVT::MvTimesMatAddMv(S(-1), *stiff_.ME, c, S(1), z);
+      } else {
+        std::vector<S> v(2 * s);
+        for (int k = 0; k < s; ++k)
+          v[2 * k] = stiff_.t0[k] * c(k, 0), v[2 * k + 1] = stiff_.t1[k] * c(k, 0);
+        BT::addAt(stiff_.components, v, S(-1), z);
+      }
     }
     face_.apply(z, z);
   }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -31,8 +32,9 @@ struct SmalbeSolMgr<S, MV, OP>::FaceRun {
   std::vector<typename SeparableSet<S, MV>::Circle> circles;
   Teuchos::RCP<MV> curvature;
   Teuchos::RCP<const OP> faceA;
-  FaceStiffComponents<S> stiff;  // the circles' components whose curvature outweighs A
-  Teuchos::RCP<MV> x, g;         // the face iterate and its gradient A x - b
+  FaceStiffCircles<S, MV> stiff;  // the circles whose curvature outweighs A (tfeti_FacePcpg.hpp)
+  std::map<long long, Teuchos::RCP<MV>> mColumns;  // M e_j for the stiff circles' components
+  Teuchos::RCP<MV> x, g;                           // the face iterate and its gradient A x - b
   Teuchos::RCP<MV> t, mu, phi, chopped;
   magnitude_type gTol = 0, eTol = 0, scale = 0;
   S tightTol = 0, looseTol = 0;
@@ -184,12 +186,12 @@ std::vector<S> SmalbeSolMgr<S, MV, OP>::enterFace(const FaceProjector<S, MV, OP>
 
 template <class S, class MV, class OP>
 void SmalbeSolMgr<S, MV, OP>::setCircleCurvature(const FaceProjector<S, MV, OP>& face,
-                                                 FaceRun& run) const {
+                                                 FaceRun& run) {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using BT = BoundTraits<S, MV>;
   run.faceA = run.A;
   run.curvature = Teuchos::null;
-  run.stiff = FaceStiffComponents<S>();
+  run.stiff = FaceStiffCircles<S, MV>();
   if (run.circles.empty()) return;
   // The face's Hessian gains the circles' curvature nu / r (nu = -sigma, the multiplier that
   // holds x on the circle, from the gradient at the entry point): the Hessian of the Lagrangian
@@ -198,29 +200,77 @@ void SmalbeSolMgr<S, MV, OP>::setCircleCurvature(const FaceProjector<S, MV, OP>&
   // Newton step for the problem with the circles themselves.
   const std::vector<S> sigma = face.activeMultipliers(*run.g);
   std::vector<long long> idx;
-  std::vector<S> d;
+  std::vector<S> d, stiffCurvature;
   for (std::size_t k = 0; k < run.circles.size(); ++k) {
     const auto& c = run.circles[k];
     const S nu = std::max(-sigma[face.active().size() + k], S(0));
     idx.push_back(c.index), idx.push_back(c.index + 1);
     d.push_back(nu / c.radius), d.push_back(nu / c.radius);
-    // A curvature above kStiffCurvature ||A||: preconditioned by its own inverse
-    // (tfeti_FacePcpg.hpp); M, where there is one, has the scale of A^{-1}, and without one the
-    // identity stands for (A / ||A||)^{-1}.
-    const S kappa = nu / c.radius;
-    if (kappa > S(kStiffCurvature) * normA_) {
-      const S inv = (run.M.is_null() ? S(normA_) : S(1)) / kappa;
-      for (const long long i : {c.index, c.index + 1}) {
-        run.stiff.indices.push_back(i);
-        run.stiff.inverseDiagonal.push_back(inv);
-      }
+    if (nu / c.radius > S(kStiffCurvature) * normA_) {
+      run.stiff.components.push_back(c.index), run.stiff.components.push_back(c.index + 1);
+      run.stiff.t0.push_back(-c.n1), run.stiff.t1.push_back(c.n0);
+      stiffCurvature.push_back(nu / c.radius);
     }
   }
+  setStiffCircles(run, stiffCurvature);
   run.curvature = MVT::Clone(*run.x, 1);
   MVT::MvInit(*run.curvature, S(0));
   BT::setAt(idx, d, *run.curvature);
   run.faceA = OperatorSum<S, MV, OP>::shift(run.A, run.curvature);
   addCurvatureGradient(run, *run.x, S(1), *run.g);
+}
+
+template <class S, class MV, class OP>
+void SmalbeSolMgr<S, MV, OP>::setStiffCircles(FaceRun& run, const std::vector<S>& curvature) {
+  using MVT = Belos::MultiVecTraits<S, MV>;
+  using OPT = Belos::OperatorTraits<S, MV, OP>;
+  using BT = BoundTraits<S, MV>;
+  FaceStiffCircles<S, MV>& st = run.stiff;
+  const int s = st.count();
+  if (s == 0) return;
+  // C = K^{-1} + E^T M E (tfeti_FacePcpg.hpp). Without M the identity stands for (A / ||A||)^{-1},
+  // so K is scaled by 1 / ||A|| and E^T E = I; with M, its columns at the circles' components
+  // (computed once a face phase) combine into M E.
+  std::vector<S> C(static_cast<std::size_t>(s) * s, S(0));
+  if (run.M.is_null()) {
+    for (int k = 0; k < s; ++k) C[k * s + k] = S(normA_) / curvature[k] + S(1);
+  } else {
+    st.ME = MVT::Clone(*run.x, s);
+    auto e = MVT::Clone(*run.x, 1);
+    std::vector<int> col(1);
+    for (int k = 0; k < s; ++k) {
+      col[0] = k;
+      auto mk = MVT::CloneViewNonConst(*st.ME, col);
+      MVT::MvInit(*mk, S(0));
+      for (int c = 0; c < 2; ++c) {
+        const long long j = st.components[2 * k + c];
+        auto it = run.mColumns.find(j);
+        if (it == run.mColumns.end()) {
+          MVT::MvInit(*e, S(0));
+          BT::setAt({j}, {S(1)}, *e);
+          auto mj = MVT::Clone(*run.x, 1);
+          OPT::Apply(*run.M, *e, *mj);
+          ++face_.stiffPreconditionerApplications;
+          it = run.mColumns.emplace(j, mj).first;
+        }
+        MVT::MvAddMv(S(1), *mk, c == 0 ? st.t0[k] : st.t1[k], *it->second, *mk);
+      }
+      const std::vector<S> at = BT::gatherAt(*mk, st.components);
+      for (int l = 0; l < s; ++l) C[k * s + l] = st.t0[l] * at[2 * l] + st.t1[l] * at[2 * l + 1];
+    }
+    for (int k = 0; k < s; ++k) {
+      for (int l = k + 1; l < s; ++l)
+        C[k * s + l] = C[l * s + k] = S(0.5) * (C[k * s + l] + C[l * s + k]);
+      C[k * s + k] += S(1) / curvature[k];
+    }
+  }
+  int info = 0;
+  Teuchos::LAPACK<int, S>().POTRF('L', s, C.data(), s, &info);
+  if (info != 0) {
+    st = FaceStiffCircles<S, MV>();  // M not positive definite on E: plain M
+    return;
+  }
+  st.factor = std::move(C);
 }
 
 template <class S, class MV, class OP>

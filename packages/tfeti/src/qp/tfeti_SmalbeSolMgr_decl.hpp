@@ -83,8 +83,8 @@ template <class S, class MV, class OP>
 class FaceProjector;
 template <class S>
 struct FacePcpgResult;
-template <class S>
-struct FaceStiffComponents;
+template <class S, class MV>
+struct FaceStiffCircles;
 }  // namespace tfeti
 
 namespace tfeti {
@@ -100,6 +100,7 @@ struct FaceCounters {
   long long circleSteps = 0;       // face solves that repeated a face with circles from its
                                    // retracted result (Newton steps on the circles; not counted
                                    // against "Maximum face solves")
+  long long stiffPreconditionerApplications = 0;  // M applied to stiff circles' components
 };
 
 template <class S, class MV, class OP>
@@ -221,7 +222,9 @@ class SmalbeSolMgr {
   // the face's Hessian and gradient gain their curvature (run.faceA, run.curvature).
   std::vector<S> enterFace(const FaceProjector<S, MV, OP>& face, FaceRun& run);
   // The circles' curvature in the face's Hessian (run.faceA) and gradient.
-  void setCircleCurvature(const FaceProjector<S, MV, OP>& face, FaceRun& run) const;
+  void setCircleCurvature(const FaceProjector<S, MV, OP>& face, FaceRun& run);
+  // The preconditioner's update by the stiff circles' curvature (run.stiff, tfeti_FacePcpg.hpp).
+  void setStiffCircles(FaceRun& run, const std::vector<S>& curvature);
   // g += alpha diag(run.curvature) (x - c) on the circles' components.
   void addCurvatureGradient(const FaceRun& run, const MV& x, S alpha, MV& g) const;
   FacePcpgResult<S> faceCg(const FaceProjector<S, MV, OP>& face, S tol, int maxIterations,
@@ -292,10 +295,11 @@ class SmalbeSolMgr {
   // The tolerance (times SMALBE's) of a face with circles' last linearization before its tight
   // solve (docs/qp_solvers.md, "Newton steps on the circles").
   static constexpr double kCircleRelinearization = 10;
-  // A circle whose curvature nu / r in the face's Hessian exceeds this times ||A|| is
-  // preconditioned by its own inverse instead of by M (tfeti_FacePcpg.hpp; docs/qp_solvers.md,
-  // "Stiff circles"). Measured on the 0.1M Cattaneo sphere (Coulomb, both steps): 1,459
-  // multiplications without, 1,185 / 908 / 932 / 933 at 1 / 0.1 / 0.01 / 0.001.
+  // A circle whose curvature nu / r in the face's Hessian exceeds this times ||A|| updates the
+  // face's preconditioner (tfeti_FacePcpg.hpp; docs/qp_solvers.md, "Stiff circles"). Measured
+  // with the first version (the stiff components scaled by 1 / (nu / r) alone) on the 0.1M
+  // Cattaneo sphere (Coulomb, both steps): 1,459 multiplications without, 1,185 / 908 / 932 /
+  // 933 at 1 / 0.1 / 0.01 / 0.001.
   static constexpr double kStiffCurvature = 0.1;
 };
 

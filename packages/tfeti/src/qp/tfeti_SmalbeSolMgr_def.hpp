@@ -512,6 +512,9 @@ std::string SmalbeSolMgr<S, MV, OP>::summaryMessage(const SolveState& s) const {
     msg << ", " << face_.levelSolves << " level-search face solves (their CG steps included)";
   if (face_.circleSteps > 0)
     msg << ", " << face_.circleSteps << " of them Newton steps on the circles";
+  if (face_.stiffPreconditionerApplications > 0)
+    msg << ", " << face_.stiffPreconditionerApplications
+        << " preconditioner applications for stiff circles";
   if (s.innerFailed)
     msg << "; some inner MPRGP solves hit their \"Maximum iterations\" before reaching the "
            "inner precision";
