@@ -618,6 +618,89 @@ TEUCHOS_UNIT_TEST(FetiSolver, WarmStartFollowsKeyedRowsAcrossAnUpdate) {
   }
 }
 
+// An inexact Newton QP (setToleranceFactor > 1) stops its face CG at "Inexact face relative
+// tolerance" times its loosened tolerance, not two digits beyond it: the box on a rigid floor
+// (a row for each node of its bottom at x >= 6, on the first subdomain that holds it), its load
+// doubled after a first solve (the warm start gives the face solve its first face), solved at a
+// factor of 1e4 with the old rule (0.01) and with 0.5. Both stay within the loosened tolerance
+// of the exact solution; the looser face CG takes fewer multiplications. An exact QP (factor 1)
+// does not read the parameter.
+TEUCHOS_UNIT_TEST(FetiSolver, InexactQpStopsTheFaceCgAtItsOwnTolerance) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(4, 2, 1, 3, 3, 3, false);
+  tfeti_test::Material3d mat;
+  mat.dofsPerNode = 3;
+  const auto floorRows = [&]() {
+    std::vector<tfeti::InequalityRow> rows;
+    if (comm->getRank() != 0) return rows;
+    std::vector<long long> seen;
+    for (int sub = 0; sub < box.numSubdomains(); ++sub) {
+      const tfeti::SubdomainMesh m = box.subdomain(sub);
+      for (int n = 0; n < m.numNodes(); ++n) {
+        const long long node = m.globalNode[n];
+        if (m.coords[3 * n + 2] != 0.0 || m.coords[3 * n] < 6.0 ||
+            std::find(seen.begin(), seen.end(), node) != seen.end())
+          continue;
+        seen.push_back(node);
+        tfeti::InequalityRow r;
+        r.entries = {{sub, 3 * n + 2, -1.0}};  // -u_z <= 0
+        rows.push_back(r);
+      }
+    }
+    return rows;
+  };
+  const auto solve = [&](double factor, double inexactFace, std::vector<double>& u) {
+    Options o;
+    Teuchos::ParameterList params = solverParameters(o);
+    params.set("Dual solver", "SMALBE");
+    params.set("Inexact face relative tolerance", inexactFace);
+    params.sublist("SMALBE").set("Relative tolerance", 1e-10);
+    params.sublist("SMALBE").set("Equality tolerance", 1e-10);
+    tfeti::FetiSolver s(comm, box.numSubdomains(), localBoxSubdomains(box, mat), params,
+                        floorRows());
+    TEST_ASSERT(s.solve().converged);
+    // The Newton loop's situation: a warm start (its face first) for a changed load.
+    std::vector<std::vector<double>> loads;
+    for (const auto& d : localBoxSubdomains(box, mat, 2.0)) loads.push_back(d.f);
+    s.update(loads, floorRows());
+    s.setToleranceFactor(factor);
+    const tfeti::DualResult r = s.solve();
+    u.clear();
+    for (std::size_t i = 0; i < s.data().size(); ++i)
+      u.insert(u.end(), s.solution(i).begin(), s.solution(i).end());
+    TEST_ASSERT(r.converged);
+    return r.qp.hessianMultiplications;
+  };
+  std::vector<double> exact, u;
+  const int exactOld = solve(1.0, 0.01, exact);
+  const int exactNew = solve(1.0, 0.5, u);
+  TEST_EQUALITY(exactOld, exactNew);
+  double scale = 0.0;
+  for (const double v : exact) scale = std::max(scale, std::abs(v));
+  scale = tfeti_test::globalMax(*comm, scale);
+  const auto error = [&](const std::vector<double>& v) {
+    double e = 0.0;
+    for (std::size_t k = 0; k < v.size(); ++k) e = std::max(e, std::abs(v[k] - exact[k]));
+    return tfeti_test::globalMax(*comm, e) / scale;
+  };
+  const int inexactOld = solve(1e4, 0.01, u);
+  const double errorOld = error(u);
+  const int inexactNew = solve(1e4, 0.5, u);
+  const double errorNew = error(u);
+  out << "exact: " << exactOld << " multiplications; factor 1e4: " << inexactOld
+      << " (face CG to 0.01 of the tolerance, error " << errorOld << "), " << inexactNew
+      << " (0.5, error " << errorNew << ")\n";
+  TEST_COMPARE(inexactNew, <, inexactOld);
+  TEST_COMPARE(errorNew, <, 1e-5);
+  TEST_COMPARE(errorOld, <, 1e-5);
+  Teuchos::ParameterList bad;
+  for (const double value : {0.0, 1.5, -0.1}) {
+    bad.set("Inexact face relative tolerance", value);
+    TEST_THROW(tfeti::FetiSolver(comm, box.numSubdomains(), localBoxSubdomains(box, mat), bad),
+               std::exception);
+  }
+}
+
 // "Keep subdomain matrices" = false frees every K once its preconditioner is set up: the same
 // iterations and the same solution, bit for bit, as with K kept (nothing after the set-up reads
 // K), for every preconditioner; K is then empty, and an update() that would set a preconditioner

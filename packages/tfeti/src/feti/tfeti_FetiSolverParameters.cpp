@@ -218,6 +218,13 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
             "unchanged, instead of SMALBE's / Penalty's \"Power iterations\" from a fixed "
             "start; 0: always from the fixed start",
             strict::count(0));
+    pl->set("Inexact face relative tolerance", 0.3,
+            "SMALBE in an inexact Newton QP (a tolerance factor above 1, setToleranceFactor): "
+            "the face CG stops at ||P_F g|| <= max(value, SMALBE's \"Face relative tolerance\") "
+            "* tol * ||b||, one digit beyond the QP's loosened tolerance instead of two; the "
+            "gluing residual it leaves is closed by the next increment, and the step's last QP "
+            "(factor 1) keeps the face relative tolerance",
+            strict::between(0.0, 1.0, true, false));
     pl->set("Warm start", true,
             "SMALBE / penalty after update(): start from the multipliers of the previous solve "
             "(projected onto G lambda = e and the bounds) when the dual dimension is unchanged");
