@@ -1,19 +1,24 @@
 // The coarse problem of (T)FETI on 1, 2 and 3 ranks, on a 3D elastic box of 3x3x3 subdomains
 // (nodes shared by up to 8 subdomains): G G^T assembled from its subdomain-pair blocks must equal
 // Tpetra's sparse product G * G^T entry by entry, and the projector P = I - G^T (G G^T)^{-1} G
-// built on its factor must satisfy G P x = 0 and P P x = P x to rounding.
+// built on its factor must satisfy G P x = 0 and P P x = P x to rounding; the columns of
+// Q = I - P at chosen multipliers, computed from G's entries and block coarse solves (SMALBE's
+// face solves), must equal Q applied to unit vectors.
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
 #include <TpetraExt_MatrixMatrix.hpp>
 #include <Tpetra_Core.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "tfeti_CoarseGramian.hpp"
 #include "tfeti_FetiSolver.hpp"
 #include "tfeti_Gather.hpp"
+#include "tfeti_ProjectedOperators.hpp"
 #include "tfeti_Test3d.hpp"
 #include "tfeti_TestHelpers.hpp"
 
@@ -113,4 +118,55 @@ TEUCHOS_UNIT_TEST(CoarseGramian, TfetiBlocksEqualSparseProduct) {
 
 TEUCHOS_UNIT_TEST(CoarseGramian, FetiWithClampedSubdomains) {
   checkGramian("FETI", 3, 2, out, success);
+}
+
+TEUCHOS_UNIT_TEST(CoarseGramian, ComplementColumnsEqualQOnUnitVectors) {
+  const tfeti::FetiSolver solver = boxSolver("TFETI", 3, 2);
+  const tfeti::CoarseSpace& coarse = solver.coarseSpace();
+  const auto map = solver.tearing().multiplierMap;
+  const auto& comm = *map->getComm();
+  // Candidates C: every 5th multiplier id; columns J: every 3rd candidate, in reverse order.
+  std::vector<long long> mine;
+  for (tfeti::GO g : map->getNodeElementList()) mine.push_back(g);
+  std::vector<long long> all = tfeti::allGather(comm, mine), C, J;
+  std::sort(all.begin(), all.end());
+  for (std::size_t k = 0; k < all.size(); k += 5) C.push_back(all[k]);
+  for (std::size_t k = 0; k < C.size(); k += 3) J.insert(J.begin(), C[k]);
+  TEST_COMPARE(J.size(), >, std::size_t(50));
+
+  tfeti::CoarseComplementColumns structured(coarse);
+  structured.setCandidates(C);
+  std::vector<double> columns;
+  structured.columns(J, columns);
+  TEST_EQUALITY(columns.size(), C.size() * J.size());
+
+  const tfeti::ComplementProjector Q(map, coarse);
+  tfeti::Vector e(map), qe(map);
+  double diff = 0.0, scale = 0.0;
+  for (std::size_t c = 0; c < J.size(); ++c) {
+    e.putScalar(0.0);
+    const tfeti::LO l = map->getLocalElement(static_cast<tfeti::GO>(J[c]));
+    if (l != Teuchos::OrdinalTraits<tfeti::LO>::invalid()) e.replaceLocalValue(l, 1.0);
+    Q.apply(e, qe);
+    std::vector<double> at(C.size(), 0.0), sum(C.size(), 0.0);
+    auto v = qe.getData();
+    for (std::size_t i = 0; i < C.size(); ++i) {
+      const tfeti::LO li = map->getLocalElement(static_cast<tfeti::GO>(C[i]));
+      if (li != Teuchos::OrdinalTraits<tfeti::LO>::invalid()) at[i] = v[li];
+    }
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(C.size()), at.data(),
+                       sum.data());
+    for (std::size_t i = 0; i < C.size(); ++i) {
+      diff = std::max(diff, std::abs(columns[c * C.size() + i] - sum[i]));
+      scale = std::max(scale, std::abs(sum[i]));
+    }
+  }
+  out << C.size() << " candidates, " << J.size() << " columns: max |structured - Q e_j| = " << diff
+      << ", max |Q e_j| = " << scale << "\n";
+  TEST_COMPARE(scale, >, 0.1);
+  TEST_COMPARE(diff, <=, 1e-13 * scale);
+
+  // A column that is not a candidate is an error, not a silent zero.
+  std::vector<long long> notCandidate{all[1]};
+  TEST_THROW(structured.columns(notCandidate, columns), std::logic_error);
 }

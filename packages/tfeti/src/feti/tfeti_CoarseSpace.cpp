@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "tfeti_CoarseGramian.hpp"
+#include "tfeti_Gather.hpp"
 
 namespace tfeti {
 
@@ -144,6 +146,42 @@ void CoarseSpace::project(const Vector& x, Vector& y) const {
   if (dimension_ == 0) return;
   leastSquaresCoefficients(x, *alpha_);
   G_->apply(*alpha_, y, Teuchos::TRANS, -1.0, 1.0);
+}
+
+std::vector<std::vector<std::pair<GO, double>>> CoarseSpace::columnsOfG(
+    const std::vector<long long>& ids) const {
+  std::unordered_map<GO, long long> position;
+  for (std::size_t p = 0; p < ids.size(); ++p) position.emplace(static_cast<GO>(ids[p]), p);
+  // Each entry of G lives in the row of one rank: gather (position, coarse id, value).
+  std::vector<long long> at;
+  std::vector<double> values;
+  const auto& colMap = *G_->getColMap();
+  for (std::size_t r = 0; r < G_->getNodeNumRows(); ++r) {
+    Teuchos::ArrayView<const LO> cols;
+    Teuchos::ArrayView<const double> v;
+    G_->getLocalRowView(static_cast<LO>(r), cols, v);
+    const GO row = G_->getRowMap()->getGlobalElement(static_cast<LO>(r));
+    for (LO j = 0; j < cols.size(); ++j) {
+      const auto it = position.find(colMap.getGlobalElement(cols[j]));
+      if (it == position.end() || v[j] == 0.0) continue;
+      at.push_back(it->second);
+      at.push_back(static_cast<long long>(row));
+      values.push_back(v[j]);
+    }
+  }
+  const auto& comm = *G_->getRowMap()->getComm();
+  const std::vector<long long> allAt = allGather(comm, at);
+  const std::vector<double> allValues = allGather(comm, values);
+  std::vector<std::vector<std::pair<GO, double>>> columns(ids.size());
+  for (std::size_t e = 0; e < allValues.size(); ++e)
+    columns[static_cast<std::size_t>(allAt[2 * e])].emplace_back(static_cast<GO>(allAt[2 * e + 1]),
+                                                                 allValues[e]);
+  for (auto& c : columns) std::sort(c.begin(), c.end());
+  return columns;
+}
+
+void CoarseSpace::coarseSolveLocal(const double* b, double* x, int nrhs) const {
+  if (dimension_ > 0 && nrhs > 0) factor_->solve(b, x, nrhs);
 }
 
 void CoarseSpace::particularSolution(const Vector& e, Vector& lambda) const {

@@ -6,6 +6,8 @@
 // number of rigid body modes) and sparse; it is gathered to every rank and factorized there
 // once, so each coarse solve is local after one Import.
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "tfeti_DualOperators.hpp"
 #include "tfeti_LocalSolver.hpp"
@@ -32,6 +34,13 @@ class CoarseSpace {
   void coarseSolve(const Vector& c, Vector& alpha) const;
   // y = P x (y may alias x)
   void project(const Vector& x, Vector& y) const;
+  // G's columns at the multiplier ids `ids`, on every rank (collective): per id its entries as
+  // (coarse id, value), sorted by coarse id.
+  std::vector<std::vector<std::pair<GO, double>>> columnsOfG(
+      const std::vector<long long>& ids) const;
+  // x = (G G^T)^{-1} b for nrhs dense coarse vectors of dimension() values each, on this rank
+  // alone (the factor is replicated).
+  void coarseSolveLocal(const double* b, double* x, int nrhs) const;
   // The minimum-norm solution of G lambda = e: lambda = G^T (G G^T)^{-1} e.
   void particularSolution(const Vector& e, Vector& lambda) const;
   // e = R^T f (coarse map) for the local subdomains' loads.

@@ -1,5 +1,9 @@
 #include "tfeti_ProjectedOperators.hpp"
 
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
 namespace tfeti {
 namespace {
 void ensureColumns(Teuchos::RCP<MultiVector>& v, const Teuchos::RCP<const Map>& map,
@@ -59,6 +63,35 @@ void ProjectedPlusComplement::apply(const MultiVector& X, MultiVector& Y,
     y->update(alpha, *apx, alpha * c_, *x, beta);
     y->update(-alpha * c_, *px, 1.0);
   }
+}
+
+void CoarseComplementColumns::setCandidates(const std::vector<long long>& candidates) {
+  c_ = candidates;
+  g_ = coarse_.columnsOfG(c_);
+}
+
+void CoarseComplementColumns::columns(const std::vector<long long>& J,
+                                      std::vector<Scalar>& out) const {
+  const std::size_t n = static_cast<std::size_t>(coarse_.dimension()), m = c_.size(), k = J.size();
+  out.assign(m * k, 0.0);
+  if (n == 0 || k == 0) return;
+  // W = (G G^T)^{-1} G E_J^T, then E_C Q E_J^T = (G E_C^T)^T W.
+  std::vector<double> rhs(n * k, 0.0), w(n * k);
+  for (std::size_t c = 0; c < k; ++c) {
+    const auto it = std::lower_bound(c_.begin(), c_.end(), J[c]);
+    if (it == c_.end() || *it != J[c])
+      throw std::logic_error("CoarseComplementColumns: " + std::to_string(J[c]) +
+                             " is not a candidate");
+    for (const auto& [r, v] : g_[static_cast<std::size_t>(it - c_.begin())])
+      rhs[c * n + static_cast<std::size_t>(r)] = v;
+  }
+  coarse_.coarseSolveLocal(rhs.data(), w.data(), static_cast<int>(k));
+  for (std::size_t c = 0; c < k; ++c)
+    for (std::size_t i = 0; i < m; ++i) {
+      double sum = 0.0;
+      for (const auto& [r, v] : g_[i]) sum += v * w[c * n + static_cast<std::size_t>(r)];
+      out[c * m + i] = sum;
+    }
 }
 
 }  // namespace tfeti

@@ -64,6 +64,7 @@ class FaceProjector {
       std::vector<std::size_t> at(idx_.size());
       for (std::size_t i = 0; i < idx_.size(); ++i) at[i] = gramian->position(idx_[i]);
       // E_C Q c_j over the candidates C: a column of the gramian, or two combined (a circle).
+      gramian->prefetch(idx_);
       std::vector<S> qc;
       for (int j = 0; j < m_; ++j) {
         if (j < static_cast<int>(active_.size())) {

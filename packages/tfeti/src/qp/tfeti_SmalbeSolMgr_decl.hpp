@@ -72,6 +72,7 @@
 #include <memory>
 #include <vector>
 
+#include "tfeti_ComplementColumns.hpp"
 #include "tfeti_QpProblem.hpp"
 #include "tfeti_SolverConventions.hpp"
 #include "tfeti_SolverOutput.hpp"
@@ -146,6 +147,12 @@ class SmalbeSolMgr {
   // set) is the first face, and where its face solve starts; null: the initial iterate x. For
   // FETI a warm start before its projection onto ker G, which moves it off the bounds it held.
   void setFaceStart(Teuchos::RCP<const MV> start) { faceStart_ = std::move(start); }
+  // The columns of Q the face solves need, from Q's structure (FETI: G's columns and coarse
+  // solves with many right-hand sides); null: one application of Q per column. Either way the
+  // same columns, to rounding.
+  void setComplementColumns(Teuchos::RCP<ComplementColumns<S>> columns) {
+    complementColumns_ = std::move(columns);
+  }
   // Progress lines of SMALBE and its inner MPRGP (Verbosity >= 1, rank 0) go here, e.g. a
   // Teuchos::FancyOStream; null: std::cout. Its format state is never changed.
   void setOutputStream(Teuchos::RCP<std::ostream> os) { out_.setStream(std::move(os)); }
@@ -266,6 +273,7 @@ class SmalbeSolMgr {
   Teuchos::RCP<const MV> levels_;
   Teuchos::RCP<const MV> faceStart_;
   Teuchos::RCP<FaceGramian<S, MV, OP>> gramian_;  // during a solve with "Face solve" = pcpg
+  Teuchos::RCP<ComplementColumns<S>> complementColumns_;
   // "Face relative tolerance"'s default (docs/qp_solvers.md, "Face solve"): the face CG's
   // ||P_F g|| is the residual of the rows that hold with equality (for FETI, B u - c over the
   // gluing rows and the contact rows in contact), which SMALBE alone ends one to two orders

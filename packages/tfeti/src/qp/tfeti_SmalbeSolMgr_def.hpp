@@ -305,7 +305,8 @@ void SmalbeSolMgr<S, MV, OP>::setUpFaceGramian(SolveState& s) {
                      std::back_inserter(both));
       bounded = std::move(both);
     }
-    gramian_ = Teuchos::rcp(new FaceGramian<S, MV, OP>(Q_, std::move(bounded), *qp_.x));
+    gramian_ = Teuchos::rcp(
+        new FaceGramian<S, MV, OP>(Q_, std::move(bounded), *qp_.x, complementColumns_));
   }
   s.settleRequired = params_.get<int>("Face settle iterations");
 }
