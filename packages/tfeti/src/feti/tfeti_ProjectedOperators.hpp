@@ -61,7 +61,7 @@ class ComplementProjector : public Operator {
 // solves: G's few entries in the columns C (gathered once per solve) and one coarse solve with
 // a block of right-hand sides, instead of one application of Q (two passes over G, a coarse
 // solve and two dual-vector updates) per column. At 64^3 step-42 (512 subdomains, 869 contact
-// rows) a QP's level search asks for about 800 columns.
+// rows) a QP's faces ask for about 800 columns: one per open row, held at its bound.
 class CoarseComplementColumns : public ComplementColumns<Scalar> {
  public:
   // coarse must outlive this.

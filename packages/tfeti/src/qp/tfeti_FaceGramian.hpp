@@ -69,26 +69,23 @@ class FaceGramian {
     if (structured_.is_null()) return;
     std::vector<long long> missing;
     for (long long j : indices)
-      if (columns_.find(j) == columns_.end() &&
-          std::find(missing.begin(), missing.end(), j) == missing.end())
-        missing.push_back(j);
+      if (columns_.find(j) == columns_.end()) missing.push_back(j);
+    std::sort(missing.begin(), missing.end());
+    missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
     std::vector<S> values;
     for (std::size_t first = 0; first < missing.size(); first += kBlock) {
+      const auto from = missing.begin() + static_cast<std::ptrdiff_t>(first);
       const std::vector<long long> block(
-          missing.begin() + static_cast<std::ptrdiff_t>(first),
-          missing.begin() + static_cast<std::ptrdiff_t>(std::min(first + kBlock, missing.size())));
+          from, from + static_cast<std::ptrdiff_t>(std::min(kBlock, missing.size() - first)));
       structured_->columns(block, values);
       for (std::size_t k = 0; k < block.size(); ++k) {
         const auto at = values.begin() + static_cast<std::ptrdiff_t>(k * c_.size());
         columns_.emplace(block[k], std::vector<S>(at, at + static_cast<std::ptrdiff_t>(c_.size())));
       }
-      structuredColumns_ += static_cast<long long>(block.size());
     }
   }
   // Applications of Q (one per column computed without a structured source).
   long long projectorApplications() const { return qApplies_; }
-  // Columns computed from the structured source.
-  long long structuredColumns() const { return structuredColumns_; }
 
  private:
   // Columns per call of the structured source: for FETI one coarse solve with 64 right-hand
@@ -97,7 +94,6 @@ class FaceGramian {
   Teuchos::RCP<const OP> Q_;
   std::vector<long long> c_;
   Teuchos::RCP<ComplementColumns<S>> structured_;
-  long long structuredColumns_ = 0;
   std::map<long long, std::vector<S>> columns_;
   Teuchos::RCP<MV> e_, qe_;
   long long qApplies_ = 0;
