@@ -778,3 +778,62 @@ TEUCHOS_UNIT_TEST(FetiSolver, FreeingTheSubdomainMatricesKeepsTheSolution) {
     TEST_INEQUALITY(message.find("Keep subdomain matrices"), std::string::npos);
   }
 }
+
+// updateStiffness() with a new K on some subdomains only (a plastic zone: the others' tangent is
+// the elastic one again) refactorizes those alone, sets up their Dirichlet preconditioners
+// anew, and solves as a solver built from the new matrices does. A second call with the same
+// matrices factorizes nothing. 3 x 3 x 3 Hex8 elasticity, every third subdomain twice as stiff.
+TEUCHOS_UNIT_TEST(FetiSolver, UpdateStiffnessRefactorizesOnlyTheChangedSubdomains) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(3, 3, 3, 2, 2, 2, false);
+  const int N = box.numSubdomains();
+  tfeti_test::Material3d soft, stiff;
+  soft.dofsPerNode = stiff.dofsPerNode = 3;
+  stiff.E = 2.0 * soft.E;
+  const auto changes = [](int id) { return id % 3 == 0; };
+  std::vector<tfeti::SubdomainData> mixed = localBoxSubdomains(box, soft);
+  for (auto& d : mixed)
+    if (changes(d.mesh.id)) {
+      tfeti::CsrMatrix K;
+      std::vector<double> f;
+      tfeti_test::assemble3d(d.mesh.coords, d.mesh.elements, stiff, boxLoad(stiff, 1.0), K, f);
+      d.K = std::move(K);
+    }
+  int changed = 0;
+  for (int s = 0; s < N; ++s) changed += changes(s) ? 1 : 0;
+
+  Options o;
+  tfeti::FetiSolver updated(comm, N, localBoxSubdomains(box, soft), solverParameters(o));
+  TEST_ASSERT(updated.solve().converged);
+  std::vector<tfeti::CsrMatrix> K;
+  std::vector<std::vector<double>> coords, loads;
+  for (const auto& d : mixed) {
+    K.push_back(d.K);
+    coords.push_back(d.mesh.coords);
+    loads.push_back(d.f);
+  }
+  updated.updateStiffness(K, coords, loads, {});
+  TEST_EQUALITY(updated.timings().factorizations, static_cast<long long>(N + changed));
+  TEST_EQUALITY(updated.timings().factorizationsReused, static_cast<long long>(N - changed));
+  const tfeti::DualResult ru = updated.solve();
+
+  tfeti::FetiSolver fresh(comm, N, mixed, solverParameters(o));
+  const tfeti::DualResult rf = fresh.solve();
+  TEST_ASSERT(ru.converged && rf.converged);
+  TEST_EQUALITY(ru.iterations, rf.iterations);
+  double diff = 0.0, size = 0.0;
+  for (std::size_t i = 0; i < mixed.size(); ++i)
+    for (std::size_t k = 0; k < fresh.solution(i).size(); ++k) {
+      diff = std::max(diff, std::abs(updated.solution(i)[k] - fresh.solution(i)[k]));
+      size = std::max(size, std::abs(fresh.solution(i)[k]));
+    }
+  diff = tfeti_test::globalMax(*comm, diff) / tfeti_test::globalMax(*comm, size);
+  out << changed << " of " << N << " subdomains changed: " << ru.iterations << " / "
+      << rf.iterations << " iterations, relative solution difference " << diff << "\n";
+  TEST_COMPARE(diff, <, 1e-9);
+
+  updated.updateStiffness(K, coords, loads, {});
+  TEST_EQUALITY(updated.timings().factorizations, static_cast<long long>(N + changed));
+  TEST_EQUALITY(updated.timings().factorizationsReused, static_cast<long long>(2 * N - changed));
+  TEST_ASSERT(updated.solve().converged);
+}

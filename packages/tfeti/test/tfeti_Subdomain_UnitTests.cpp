@@ -305,3 +305,39 @@ TEUCHOS_UNIT_TEST(Subdomain, InvalidDofsPerNodeThrowsNamingTheSubdomain) {
   }
   TEST_ASSERT(threw);
 }
+
+// refactorize() keeps the factor of a K equal to the one factorized (the elastic subdomains of a
+// plastic body get the same tangent at every Newton iteration) and renews it for any other: a
+// scaled K, and a K that differs from it in one value by one unit in the last place.
+TEUCHOS_UNIT_TEST(Subdomain, RefactorizeKeepsTheFactorOfAnUnchangedK) {
+  const tfeti::SubdomainMesh mesh = distortedLShape();
+  const tfeti::SubdomainData data = tfeti_test::subdomainData(mesh, tfeti_test::elasticity());
+  tfeti::Subdomain sd(mesh.id, 2, mesh.coords, data.K, data.f, {}, Formulation::TFETI, "cholmod");
+  const auto first = sd.factorVersion();
+  TEST_ASSERT(!sd.refactorize(data.K));
+  TEST_EQUALITY(sd.factorVersion(), first);
+
+  tfeti::CsrMatrix doubled = data.K;
+  for (double& v : doubled.values) v *= 2.0;
+  TEST_ASSERT(sd.refactorize(doubled));
+  const auto second = sd.factorVersion();
+  TEST_INEQUALITY(second, first);
+  checkGeneralizedInverse(sd, 3, out, success);
+  TEST_ASSERT(!sd.refactorize(doubled));
+  TEST_EQUALITY(sd.factorVersion(), second);
+
+  // One diagonal value one ulp larger (and the matrix still symmetric).
+  tfeti::CsrMatrix nudged = doubled;
+  const long k = nudged.find(7, 7);
+  TEST_COMPARE(k, >=, 0L);
+  nudged.values[k] = std::nextafter(nudged.values[k], 2.0 * nudged.values[k]);
+  TEST_ASSERT(nudged.digest() != doubled.digest());
+  TEST_ASSERT(sd.refactorize(nudged));
+  TEST_INEQUALITY(sd.factorVersion(), second);
+
+  // The digest covers the pattern too: an explicit zero added to a row is another matrix.
+  const auto identity = tfeti::csrFromTriplets(2, 2, {0, 1}, {0, 1}, {1.0, 1.0}).digest();
+  TEST_ASSERT(identity !=
+              tfeti::csrFromTriplets(2, 2, {0, 0, 1}, {0, 1, 1}, {1.0, 0.0, 1.0}).digest());
+  TEST_ASSERT(identity == tfeti::csrFromTriplets(2, 2, {1, 0}, {1, 0}, {1.0, 1.0}).digest());
+}

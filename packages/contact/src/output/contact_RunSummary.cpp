@@ -24,6 +24,8 @@ Json timingsJson(const tfeti::FetiTimings& t, int iterations) {
   j["solve_s"] = t.solve;
   j["recovery_s"] = t.recovery;
   j["per_iteration_s"] = iterations > 0 ? t.solve / iterations : 0.0;
+  j["subdomain_factorizations"] = t.factorizations;
+  j["subdomain_factorizations_reused"] = t.factorizationsReused;
   return j;
 }
 

@@ -91,6 +91,9 @@ struct FetiTimings {
   double dualOperator = 0;    // "Dual operator" = explicit: the assembly of the local F_s
   double solve = 0;           // PCPG
   double recovery = 0;        // primal solution
+  // Subdomain factorizations of K+ over all ranks: computed, and kept because a new tangent
+  // brought the same K (FetiSolver::updateStiffness; the elastic subdomains of a plastic body).
+  long long factorizations = 0, factorizationsReused = 0;
   double setup() const {
     return factorization + tearing + coarse + preconditioner + dualRhs + dualOperator;
   }
@@ -274,7 +277,11 @@ class FetiSolver {
   void buildSubdomains(const std::vector<std::vector<double>>& coords);
   void refactorizeSubdomains();  // data_'s new K and f into the existing subdomains
   std::vector<std::vector<double>> kernelCoords_;  // the positions of the subdomains' kernels
-  void buildConstraints(const std::vector<InequalityRow>& inequalities, bool newSubdomains);
+  // Per local subdomain: K (re)factorized since the last buildConstraints, whose preconditioner
+  // must then be set up again.
+  std::vector<char> stiffnessChanged_;
+  void countFactorizations();  // collective: stiffnessChanged_ into timings_
+  void buildConstraints(const std::vector<InequalityRow>& inequalities);
   void requireNoRowOnEliminatedDofs() const;
   void buildDualRhs();
   void buildDualOperator();

@@ -102,7 +102,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   std::vector<std::vector<double>> coords;
   for (const auto& sd : data_) coords.push_back(sd.mesh.coords);
   buildSubdomains(coords);
-  buildConstraints(inequalities, true);
+  buildConstraints(inequalities);
   buildDualRhs();
 }
 
@@ -128,22 +128,34 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
                                                         dirichletDofs, formulation, solver));
     }
   });
+  stiffnessChanged_.assign(subdomains_.size(), 1);
+  countFactorizations();
+}
+
+void FetiSolver::countFactorizations() {
+  long long local[2] = {0, 0}, global[2] = {0, 0};
+  for (char changed : stiffnessChanged_) ++local[changed ? 0 : 1];
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, local, global);
+  timings_.factorizations += global[0];
+  timings_.factorizationsReused += global[1];
 }
 
 void FetiSolver::refactorizeSubdomains() {
   PhaseTimer t(*comm_, timings_.factorization, &memory_, "factorization");
+  stiffnessChanged_.assign(subdomains_.size(), 0);
   collectively(*comm_, [&] {
     for (std::size_t i = 0; i < data_.size(); ++i) {
-      subdomains_[i]->refactorize(std::move(data_[i].K), params_.get<double>("Kernel tolerance"));
+      stiffnessChanged_[i] = subdomains_[i]->refactorize(std::move(data_[i].K),
+                                                         params_.get<double>("Kernel tolerance"));
       subdomains_[i]->setLoad(std::move(data_[i].f));
       data_[i].K = CsrMatrix();
       data_[i].f.clear();
     }
   });
+  countFactorizations();
 }
 
-void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities,
-                                  bool newSubdomains) {
+void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities) {
   const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
   const PreconditionerType precType =
       parsePreconditioner(params_.get<std::string>("Preconditioner"));
@@ -168,13 +180,15 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
         std::sort(dofs.begin(), dofs.end());
         dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
         // Contact rows that move between iterations of a nonlinear solve mostly keep the same
-        // dofs: the interior factorization is redone only when they change.
-        if (newSubdomains || dofs != subdomains_[i]->interfaceDofs())
+        // dofs, and most subdomains of a plastic body keep their K: the interior factorization
+        // is redone only when either changes.
+        if (stiffnessChanged_[i] || dofs != subdomains_[i]->interfaceDofs())
           subdomains_[i]->setupPreconditioner(dofs, precType, solver);
         // Freed one by one, so that K and the preconditioner's factors never coexist in full.
         if (!params_.get<bool>("Keep subdomain matrices")) subdomains_[i]->releaseStiffness();
       }
     });
+    stiffnessChanged_.assign(subdomains_.size(), 0);
     if (precType != PreconditionerType::None)
       M_ = Teuchos::rcp(new DualPreconditioner(tearing_, subdomains_));
   }
@@ -326,7 +340,7 @@ void FetiSolver::update(const std::vector<std::vector<double>>& loads,
   previousNorm_ = normEstimate_;
   const RowIdentities before = rowIdentities(tearing_);
   const auto radii = discRadii();
-  buildConstraints(inequalities, false);
+  buildConstraints(inequalities);
   carryWarmStartOver(before, radii);
   buildDualRhs();
   u_vec_ = Teuchos::null;
@@ -368,7 +382,7 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
     buildSubdomains(coords);
   const RowIdentities before = rowIdentities(tearing_);
   const auto radii = discRadii();
-  buildConstraints(inequalities, true);
+  buildConstraints(inequalities);
   carryWarmStartOver(before, radii);
   buildDualRhs();
   u_vec_ = Teuchos::null;

@@ -120,6 +120,7 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
   try {
     factor_->factorize(fixing_.empty() ? K_ : decoupleDofs(K_, fixing_));
     factorVersion_ = nextFactorVersion();
+    factoredDigest_ = K_.digest();
   } catch (const std::exception& e) {
     throw std::runtime_error(name() + ": K with its " + std::to_string(kernelDim_) +
                              " kernel dofs fixed is not positive definite, so K has a larger "
@@ -130,7 +131,7 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
   checkNoExtraKernel();
 }
 
-void Subdomain::refactorize(CsrMatrix K, double kernelTolerance) {
+bool Subdomain::refactorize(CsrMatrix K, double kernelTolerance) {
   if (const std::string e = csrError(K, "K"); !e.empty())
     throw std::invalid_argument(name() + ": refactorize: " + e);
   if (K.rows != numDofs_ || K.cols != numDofs_)
@@ -138,9 +139,15 @@ void Subdomain::refactorize(CsrMatrix K, double kernelTolerance) {
                                 std::to_string(K.cols) + ", the subdomain has " +
                                 std::to_string(numDofs_) + " dofs");
   K_ = dirichlet_.empty() ? std::move(K) : decoupleDofs(K, dirichlet_);
+  // The factor (and the kernel check) of this very matrix is at hand: in a plastic body most
+  // subdomains stay elastic, and their tangent is the same matrix from one iteration to the next.
+  const auto digest = K_.digest();
+  if (digest == factoredDigest_) return false;
   checkKernelResidual(kernelTolerance);
   factor_->factorize(fixing_.empty() ? K_ : decoupleDofs(K_, fixing_));
   factorVersion_ = nextFactorVersion();
+  factoredDigest_ = digest;
+  return true;
 }
 
 void Subdomain::releaseStiffness() {

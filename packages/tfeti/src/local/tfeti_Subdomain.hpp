@@ -7,6 +7,8 @@
 // kernelDim() dofs is chosen so that R(F, :) is well conditioned; K_reg is K with the rows and
 // columns of F replaced by their diagonal, and K+ = [K_rr^{-1} 0; 0 0]. Because no kernel vector
 // vanishes on F, K_rr has the rank of K and K+ is a generalized inverse.
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -77,7 +79,9 @@ class Subdomain {
   // New values of K on the same pattern of dofs, kernel and Dirichlet dofs (a new material
   // tangent): ||K R|| is checked as in the constructor and K+ is refactorized in place, which
   // renews factorVersion(). The preconditioner is not rebuilt (call setupPreconditioner()).
-  void refactorize(CsrMatrix K, double kernelTolerance = 1e-8);
+  // A K equal to the one factorized (CsrMatrix::digest: the elastic part of a plastic body,
+  // whose tangent stays the elastic one) keeps its factor and version: returns false then.
+  bool refactorize(CsrMatrix K, double kernelTolerance = 1e-8);
 
   // x = K+ b for nrhs columns (leading dimension numDofs()).
   void applyPseudoInverse(const double* b, double* x, int nrhs = 1);
@@ -119,6 +123,7 @@ class Subdomain {
   double kernelResidual_ = 0.0, lambdaMinRelative_ = 0.0;
   std::unique_ptr<LocalSolver> factor_;
   unsigned long long factorVersion_ = 0;
+  std::array<std::uint64_t, 2> factoredDigest_{};  // of K_ when factorized
 
   PreconditionerType precType_ = PreconditionerType::None;
   std::vector<int> interface_, interior_;

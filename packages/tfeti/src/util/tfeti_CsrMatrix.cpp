@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <iomanip>
 #include <numeric>
 #include <sstream>
@@ -35,6 +36,59 @@ double CsrMatrix::frobeniusNorm() const {
   double s = 0.0;
   for (double v : values) s += v * v;
   return std::sqrt(s);
+}
+
+namespace {
+constexpr std::uint64_t kPrime1 = 0x9e3779b185ebca87ULL, kPrime2 = 0xc2b2ae3d27d4eb4fULL,
+                        kPrime3 = 0x165667b19e3779f9ULL;
+
+std::uint64_t rotl(std::uint64_t x, int r) {
+  return (x << r) | (x >> (64 - r));
+}
+
+// SplitMix64's finalizer: every input bit moves every output bit.
+std::uint64_t mix64(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+// A 64-bit digest of `bytes` bytes in the manner of xxHash64: four independent lanes over 32-byte
+// stripes (so the multiplications pipeline; a subdomain's K takes about a millisecond), the tail
+// word by word, then a finalizer.
+std::uint64_t digestBytes(const void* data, std::size_t bytes, std::uint64_t seed) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  std::uint64_t lane[4] = {seed + kPrime1 + kPrime2, seed + kPrime2, seed, seed - kPrime1};
+  const auto round = [](std::uint64_t acc, std::uint64_t w) {
+    return rotl(acc + w * kPrime2, 31) * kPrime1;
+  };
+  std::size_t at = 0;
+  for (; at + 32 <= bytes; at += 32)
+    for (int l = 0; l < 4; ++l) {
+      std::uint64_t w;
+      std::memcpy(&w, p + at + 8 * l, 8);
+      lane[l] = round(lane[l], w);
+    }
+  std::uint64_t h = rotl(lane[0], 1) + rotl(lane[1], 7) + rotl(lane[2], 12) + rotl(lane[3], 18);
+  for (int l = 0; l < 4; ++l) h = (h ^ round(0, lane[l])) * kPrime1 + kPrime3;
+  for (; at < bytes; ++at) h = rotl(h ^ (p[at] * kPrime3), 11) * kPrime1;
+  return mix64(h ^ bytes);
+}
+}  // namespace
+
+std::array<std::uint64_t, 2> CsrMatrix::digest() const {
+  // Two seeds give two 64-bit digests of every array; sizes and arrays are chained into each.
+  std::array<std::uint64_t, 2> d{};
+  const std::uint64_t seeds[2] = {0x243f6a8885a308d3ULL, 0x13198a2e03707344ULL};
+  for (int k = 0; k < 2; ++k) {
+    std::uint64_t h = mix64(seeds[k] ^ (static_cast<std::uint64_t>(rows) << 32) ^
+                            static_cast<std::uint32_t>(cols));
+    h = mix64(h ^ digestBytes(rowPtr.data(), rowPtr.size() * sizeof(int), seeds[k]));
+    h = mix64(h ^ digestBytes(colInd.data(), colInd.size() * sizeof(int), seeds[k] + 1));
+    h = mix64(h ^ digestBytes(values.data(), values.size() * sizeof(double), seeds[k] + 2));
+    d[k] = h;
+  }
+  return d;
 }
 
 bool CsrMatrix::isSymmetric(double tol) const {

@@ -2,7 +2,9 @@
 // A serial sparse matrix in compressed sparse row form: the storage of one subdomain's
 // stiffness matrix. Subdomain matrices live on one rank and are factorized there, so they
 // need no Tpetra map; the local solvers read these arrays directly.
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,10 @@ struct CsrMatrix {
   // Frobenius norm.
   double frobeniusNorm() const;
   bool isSymmetric(double tol) const;
+  // Two 64-bit digests (different seeds) of the sizes, the pattern and every value's bits. Two
+  // matrices with the same digest are taken to be equal: Subdomain::refactorize keeps the factor
+  // of an unchanged K by it, without holding a copy of K.
+  std::array<std::uint64_t, 2> digest() const;
   // The submatrix A(rowsKept, colsKept); index lists must be sorted ascending.
   CsrMatrix submatrix(const std::vector<int>& rowsKept, const std::vector<int>& colsKept) const;
 };
