@@ -964,6 +964,27 @@ def plastic(d):
           f"(sigma_Y {sy:.2e}, H {h:.2e})")
 
 
+def factorizations_reused(dirs):
+    """A small-strain plastic run with the tangent refactorized: the subdomains whose tangent
+    stayed elastic keep their factor (timings subdomain_factorizations_reused > 0, fewer
+    factorizations than subdomains times tangents), and which ones does not depend on the rank
+    count (the same counts in every run)."""
+    counts = []
+    for d in dirs:
+        s = load(d)
+        t = s["timings"]
+        done, kept = t["subdomain_factorizations"], t["subdomain_factorizations_reused"]
+        if not kept > 0:
+            fail(f"{d}: no factorization reused ({done} computed)")
+        if (done + kept) % s["subdomains"] != 0 or done < s["subdomains"]:
+            fail(f"{d}: {done} computed and {kept} reused factorizations are not whole "
+                 f"refactorizations of {s['subdomains']} subdomains")
+        counts.append((done, kept))
+    if len(set(counts)) != 1:
+        fail(f"the factorizations depend on the rank count: {counts} for {dirs}")
+    print(f"OK: {counts[0][0]} factorizations computed, {counts[0][1]} reused, in every run")
+
+
 def plastic_vs_elastic(pdir, edir):
     p, e = load(pdir), load(edir)
     for s, d in ((p, pdir), (e, edir)):
@@ -1307,6 +1328,8 @@ if __name__ == "__main__":
     elif mode == "same_dual_operator":
         same_dual_operator([a for i, a in enumerate(args) if a != "--tol" and
                             (i == 0 or args[i - 1] != "--tol")], option(args, "--tol", 1e-10))
+    elif mode == "factorizations_reused":
+        factorizations_reused(args)
     elif mode == "diverged":
         diverged(args[0])
     elif mode == "prescribed":

@@ -836,4 +836,50 @@ TEUCHOS_UNIT_TEST(FetiSolver, UpdateStiffnessRefactorizesOnlyTheChangedSubdomain
   TEST_EQUALITY(updated.timings().factorizations, static_cast<long long>(N + changed));
   TEST_EQUALITY(updated.timings().factorizationsReused, static_cast<long long>(2 * N - changed));
   TEST_ASSERT(updated.solve().converged);
+
+  // An empty K keeps the subdomain's own (the caller knows it unchanged): back to the soft
+  // material where it changed, nothing given elsewhere, and again the fresh solver's solution.
+  std::vector<tfeti::CsrMatrix> back;
+  const std::vector<tfeti::SubdomainData> softData = localBoxSubdomains(box, soft);
+  for (const auto& d : softData) back.push_back(changes(d.mesh.id) ? d.K : tfeti::CsrMatrix{});
+  updated.updateStiffness(back, coords, loads, {});
+  TEST_EQUALITY(updated.timings().factorizations, static_cast<long long>(N + 2 * changed));
+  TEST_EQUALITY(updated.timings().factorizationsReused,
+                static_cast<long long>(3 * N - 2 * changed));
+  const tfeti::DualResult rb = updated.solve();
+  std::vector<tfeti::SubdomainData> softAgain = localBoxSubdomains(box, soft);
+  for (std::size_t i = 0; i < softAgain.size(); ++i) softAgain[i].f = loads[i];
+  tfeti::FetiSolver freshSoft(comm, N, softAgain, solverParameters(o));
+  const tfeti::DualResult rs = freshSoft.solve();
+  TEST_ASSERT(rb.converged && rs.converged);
+  TEST_EQUALITY(rb.iterations, rs.iterations);
+  double backDiff = 0.0;
+  for (std::size_t i = 0; i < mixed.size(); ++i)
+    for (std::size_t k = 0; k < freshSoft.solution(i).size(); ++k)
+      backDiff = std::max(backDiff, std::abs(updated.solution(i)[k] - freshSoft.solution(i)[k]));
+  TEST_COMPARE(tfeti_test::globalMax(*comm, backDiff), <,
+               1e-9 * tfeti_test::globalMax(*comm, size));
+
+  // An empty K cannot be kept where the solver rebuilds every subdomain (new kernel positions)
+  // or has freed K ("Keep subdomain matrices" = false): clear errors, on every rank.
+  std::vector<tfeti::CsrMatrix> none(mixed.size());
+  std::vector<std::vector<double>> moved = coords;
+  for (auto& c : moved)
+    for (double& x : c) x += 0.5;
+  const std::string rebuilt =
+      tfeti_test::messageOf([&] { updated.updateStiffness(none, moved, loads, {}); });
+  out << rebuilt << "\n";
+  TEST_ASSERT(tfeti_test::contains(rebuilt, "an empty K keeps the current one") || mixed.empty());
+  // Checked before anything changed: the solver goes on as before the call.
+  updated.updateStiffness(back, coords, loads, {});
+  const tfeti::DualResult after = updated.solve();
+  TEST_ASSERT(after.converged);
+  TEST_EQUALITY(after.iterations, rs.iterations);
+  Teuchos::ParameterList freedParams = solverParameters(o);
+  freedParams.set("Keep subdomain matrices", false);
+  tfeti::FetiSolver freed(comm, N, localBoxSubdomains(box, soft), freedParams);
+  const std::string released =
+      tfeti_test::messageOf([&] { freed.updateStiffness(none, coords, loads, {}); });
+  out << released << "\n";
+  TEST_ASSERT(tfeti_test::contains(released, "Keep subdomain matrices") || mixed.empty());
 }

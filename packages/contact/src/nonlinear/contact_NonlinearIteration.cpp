@@ -1,5 +1,7 @@
 #include "contact_NonlinearIteration.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -96,17 +98,31 @@ tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field&
   const std::vector<tfeti::EqualityRow> prescribed = prescribedIncrementRows(u, t);
   bool refactor =
       options_.stiffness == "iteration" || (options_.stiffness == "step" && iteration == 1);
-  // In small strain a tangent with every point elastic is the elastic stiffness: when the factor
-  // holds that already (the solver is built with it), refactorizing would only repeat it.
+  // In small strain a subdomain's tangent with every point elastic is its elastic stiffness:
+  // where the factor holds that already (the solver is built with it), the tangent is neither
+  // assembled nor refactorized, and with no subdomain left to refactorize the solver only
+  // updates its rows.
+  std::vector<char> keep;
   if (refactor && options_.kinematics == plasticity::Kinematics::SmallStrain) {
-    const bool elastic = !model_.plasticLoading(*comm_);
-    refactor = !(elastic && factorIsElastic_);
-    if (refactor) factorIsElastic_ = elastic;
+    const std::vector<char> loading = model_.plasticLoadingPerSubdomain();
+    factorIsElastic_.resize(loading.size(), 1);
+    keep.resize(loading.size());
+    int local = 0;
+    for (std::size_t i = 0; i < loading.size(); ++i) {
+      keep[i] = !loading[i] && factorIsElastic_[i];
+      local = keep[i] ? local : 1;
+    }
+    int any = 0;
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &local, &any);
+    refactor = any == 1;
+    if (refactor)
+      for (std::size_t i = 0; i < loading.size(); ++i)
+        if (!keep[i]) factorIsElastic_[i] = !loading[i];
   }
   // Inexact solves and partial steps leave jumps in u: the next increment closes them.
   if (inexact()) solver_.setIncrementOrigin(u);
   if (refactor)
-    solver_.updateStiffness(model_.tangent(u, options_.kinematics),
+    solver_.updateStiffness(model_.tangent(u, options_.kinematics, keep),
                             model_.kernelCoordinates(u, options_.kinematics), rhs,
                             model_.problem.inequalities, prescribed);
   else

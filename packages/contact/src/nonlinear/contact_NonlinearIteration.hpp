@@ -112,9 +112,9 @@ class LoadStepIteration {
   // The frozen rows' gaps at the surface displacement `current`, and their dual rows.
   void moveFrozenGaps(const std::vector<double>& current) const;
 
-  // The solver's factor is of the elastic stiffness (it is built with it; a small-strain
-  // tangent with every point elastic is it again).
-  mutable bool factorIsElastic_ = true;
+  // Per local subdomain: the solver's factor is of the elastic stiffness (it is built with it; a
+  // small-strain tangent with every point elastic is it again). Empty until the first tangent.
+  mutable std::vector<char> factorIsElastic_;
 
   Teuchos::RCP<const tfeti::Comm> comm_;
   NonlinearModel& model_;

@@ -71,26 +71,33 @@ Field NonlinearModel::internalForce(const Field& disp, plasticity::Kinematics ki
   return f;
 }
 
-std::vector<tfeti::CsrMatrix> NonlinearModel::tangent(const Field& disp,
-                                                      plasticity::Kinematics kin) const {
-  std::vector<tfeti::CsrMatrix> K;
+std::vector<tfeti::CsrMatrix> NonlinearModel::tangent(const Field& disp, plasticity::Kinematics kin,
+                                                      const std::vector<char>& keep) const {
+  std::vector<tfeti::CsrMatrix> K(disp.size());
   for (std::size_t i = 0; i < disp.size(); ++i)
-    K.push_back(
-        plasticity::tangentStiffness(problem.localElements[i], *laws[i], disp[i], kin, false));
+    if (keep.empty() || !keep.at(i))
+      K[i] = plasticity::tangentStiffness(problem.localElements[i], *laws[i], disp[i], kin, false);
   return K;
+}
+
+std::vector<char> NonlinearModel::plasticLoadingPerSubdomain() const {
+  std::vector<char> loading(plastic.size(), 0);
+  for (std::size_t i = 0; i < plastic.size(); ++i) {
+    const auto* p = plastic[i];
+    if (p == nullptr) continue;
+    for (int e = 0; e < p->numElements() && !loading[i]; ++e)
+      for (int g = 0; g < p->gaussPointsPerElement(); ++g)
+        if (p->trialEquivalentPlasticStrain({e, g}) > p->equivalentPlasticStrain({e, g})) {
+          loading[i] = 1;
+          break;
+        }
+  }
+  return loading;
 }
 
 bool NonlinearModel::plasticLoading(const tfeti::Comm& comm) const {
   int local = 0;
-  for (const auto* p : plastic) {
-    if (p == nullptr || local == 1) continue;
-    for (int e = 0; e < p->numElements() && local == 0; ++e)
-      for (int g = 0; g < p->gaussPointsPerElement(); ++g)
-        if (p->trialEquivalentPlasticStrain({e, g}) > p->equivalentPlasticStrain({e, g})) {
-          local = 1;
-          break;
-        }
-  }
+  for (char l : plasticLoadingPerSubdomain()) local = l ? 1 : local;
   int any = 0;
   Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &local, &any);
   return any == 1;

@@ -36,8 +36,11 @@ struct NonlinearModel {
   Field currentCoordinates(const Field& disp) const;
   // f_int(u) per subdomain; writes the laws' trial history.
   Field internalForce(const Field& disp, plasticity::Kinematics kin) const;
-  // The material tangent (without the initial-stress part, see tangentStiffness) per subdomain.
-  std::vector<tfeti::CsrMatrix> tangent(const Field& disp, plasticity::Kinematics kin) const;
+  // The material tangent (without the initial-stress part, see tangentStiffness) per subdomain;
+  // an empty matrix (not assembled) where `keep` (empty, or one flag per subdomain) says so:
+  // FetiSolver::updateStiffness keeps that subdomain's K then.
+  std::vector<tfeti::CsrMatrix> tangent(const Field& disp, plasticity::Kinematics kin,
+                                        const std::vector<char>& keep = {}) const;
   // The positions whose rigid motions are the kernel of tangent(disp, kin):
   //  - small strain: the reference positions X. The strain is the symmetric gradient of the
   //    displacement, zero for a translation and for an infinitesimal rotation about X, whatever
@@ -50,6 +53,8 @@ struct NonlinearModel {
   // (its equivalent plastic strain grows): otherwise the small-strain tangent is the elastic
   // stiffness everywhere. Collective.
   bool plasticLoading(const tfeti::Comm& comm) const;
+  // The same per local subdomain (not collective): 1 where some Gauss point loads plastically.
+  std::vector<char> plasticLoadingPerSubdomain() const;
 
   void commit();  // trial history -> committed (a converged step)
   void revert();  // committed -> trial (a rejected attempt)

@@ -179,6 +179,10 @@ class FetiSolver {
   // `coords` (mesh.dim per node, e.g. the current configuration), with new loads and rows as
   // update(). K must annihilate those modes (||K R|| is checked as in the constructor): the
   // material tangent does, the full tangent of a stressed body does not.
+  // An empty K (CsrMatrix{}: 0 x 0, no arrays) keeps the subdomain's K and factor, when the
+  // caller knows it unchanged (the elastic subdomains of a small-strain plastic body) and the
+  // kernel positions are the same; "Keep subdomain matrices" must then be true. A given K equal
+  // to the factorized one is kept too (Subdomain::refactorize), after reading it.
   void updateStiffness(std::vector<CsrMatrix> K, const std::vector<std::vector<double>>& coords,
                        const std::vector<std::vector<double>>& loads,
                        const std::vector<InequalityRow>& inequalities);
@@ -281,6 +285,10 @@ class FetiSolver {
   // must then be set up again.
   std::vector<char> stiffnessChanged_;
   void countFactorizations();  // collective: stiffnessChanged_ into timings_
+  // An empty K given to updateStiffness: keep the subdomain's.
+  static bool keepsStiffness(const CsrMatrix& K) {
+    return K.rows == 0 && K.cols == 0 && K.rowPtr.empty();
+  }
   void buildConstraints(const std::vector<InequalityRow>& inequalities);
   void requireNoRowOnEliminatedDofs() const;
   void buildDualRhs();

@@ -145,8 +145,9 @@ void FetiSolver::refactorizeSubdomains() {
   stiffnessChanged_.assign(subdomains_.size(), 0);
   collectively(*comm_, [&] {
     for (std::size_t i = 0; i < data_.size(); ++i) {
-      stiffnessChanged_[i] = subdomains_[i]->refactorize(std::move(data_[i].K),
-                                                         params_.get<double>("Kernel tolerance"));
+      if (!keepsStiffness(data_[i].K))
+        stiffnessChanged_[i] = subdomains_[i]->refactorize(std::move(data_[i].K),
+                                                           params_.get<double>("Kernel tolerance"));
       subdomains_[i]->setLoad(std::move(data_[i].f));
       data_[i].K = CsrMatrix();
       data_[i].f.clear();
@@ -357,9 +358,31 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
       throw std::invalid_argument("FetiSolver::updateStiffness: expected " +
                                   std::to_string(data_.size()) +
                                   " matrices, coordinate sets and loads");
+  });
+  // The same kernel positions (a small-strain tangent: the reference ones): the subdomains keep
+  // their rigid modes and fixing dofs and refactorize in place, the symbolic analysis reused.
+  int sameLocal = coords == kernelCoords_ && subdomains_.size() == data_.size() ? 1 : 0;
+  for (const auto& sd : data_) sameLocal = sd.kernel.empty() ? sameLocal : 0;
+  int same = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, 1, &sameLocal, &same);
+  collectively(*comm_, [&] {
     for (std::size_t i = 0; i < data_.size(); ++i) {
+      // An empty K keeps the subdomain's own, which must still be there (the preconditioner is
+      // set up from it when the rows move) and stay valid (the same kernel positions).
+      const bool keep = keepsStiffness(K[i]);
+      const std::string name =
+          "FetiSolver::updateStiffness: subdomain " + std::to_string(data_[i].mesh.id);
+      if (keep && same != 1)
+        throw std::invalid_argument(name +
+                                    ": an empty K keeps the current one, but new kernel positions "
+                                    "(or a supplied kernel) rebuild every subdomain; pass K");
+      if (keep && !subdomains_[i]->hasStiffness())
+        throw std::invalid_argument(name +
+                                    ": an empty K keeps the current one, which \"Keep subdomain "
+                                    "matrices\" = false has freed; pass K");
       const std::string error = subdomainDataError(data_[i].mesh, coords[i], data_[i].dofsPerNode,
-                                                   K[i], loads[i], {}, numSubdomains_);
+                                                   keep ? subdomains_[i]->stiffness() : K[i],
+                                                   loads[i], {}, numSubdomains_);
       if (!error.empty()) throw std::invalid_argument("FetiSolver::updateStiffness: " + error);
     }
   });
@@ -370,12 +393,6 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
   previousLambda_ = lambda_;
   previousEqualityMultiplier_ = equalityMultiplier_;
   previousNorm_ = 0.0;  // a new K: estimate ||P F P|| again
-  // The same kernel positions (a small-strain tangent: the reference ones): the subdomains keep
-  // their rigid modes and fixing dofs and refactorize in place, the symbolic analysis reused.
-  int sameLocal = coords == kernelCoords_ && subdomains_.size() == data_.size() ? 1 : 0;
-  for (const auto& sd : data_) sameLocal = sd.kernel.empty() ? sameLocal : 0;
-  int same = 0;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, 1, &sameLocal, &same);
   if (same == 1)
     refactorizeSubdomains();
   else
