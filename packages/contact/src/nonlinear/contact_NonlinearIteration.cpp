@@ -118,6 +118,10 @@ tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field&
     if (refactor)
       for (std::size_t i = 0; i < loading.size(); ++i)
         if (!keep[i]) factorIsElastic_[i] = !loading[i];
+    // A solver that has freed its matrices ("Keep subdomain matrices" = false) cannot keep a K
+    // it no longer holds: it gets the assembled one, whose factor it still keeps if unchanged.
+    for (std::size_t i = 0; i < keep.size(); ++i)
+      if (keep[i] && !solver_.subdomains()[i]->hasStiffness()) keep[i] = 0;
   }
   // Inexact solves and partial steps leave jumps in u: the next increment closes them.
   if (inexact()) solver_.setIncrementOrigin(u);
