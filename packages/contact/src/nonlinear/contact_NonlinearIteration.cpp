@@ -91,42 +91,46 @@ std::vector<tfeti::EqualityRow> LoadStepIteration::prescribedIncrementRows(const
   return equalityRowsAt(model_.problem, t, u);
 }
 
+LoadStepIteration::TangentPlan LoadStepIteration::planTangent(int iteration) const {
+  TangentPlan plan;
+  plan.refactor =
+      options_.stiffness == "iteration" || (options_.stiffness == "step" && iteration == 1);
+  if (!plan.refactor || options_.kinematics != plasticity::Kinematics::SmallStrain) return plan;
+  // In small strain a subdomain's tangent with every point elastic is its elastic stiffness:
+  // where the factor holds that already (the solver is built with it), the tangent is neither
+  // assembled nor refactorized, and with no subdomain left to refactorize the solver only
+  // updates its rows.
+  const std::vector<char> loading = model_.plasticLoadingPerSubdomain();
+  factorIsElastic_.resize(loading.size(), 1);
+  plan.keep.resize(loading.size());
+  int local = 0;
+  for (std::size_t i = 0; i < loading.size(); ++i) {
+    plan.keep[i] = !loading[i] && factorIsElastic_[i];
+    local = plan.keep[i] ? local : 1;
+  }
+  int any = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &local, &any);
+  plan.refactor = any == 1;
+  if (plan.refactor)
+    for (std::size_t i = 0; i < loading.size(); ++i)
+      if (!plan.keep[i]) factorIsElastic_[i] = !loading[i];
+  // A solver that has freed its matrices ("Keep subdomain matrices" = false) cannot keep a K
+  // it no longer holds: it gets the assembled one, whose factor it still keeps if unchanged.
+  for (std::size_t i = 0; i < plan.keep.size(); ++i)
+    if (plan.keep[i] && !solver_.subdomains()[i]->hasStiffness()) plan.keep[i] = 0;
+  return plan;
+}
+
 tfeti::DualResult LoadStepIteration::solveIncrement(const Field& u, const Field& fint, double t,
                                                     int iteration) const {
   if (options_.solveAsBuilt && iteration == 1) return solver_.solve();
   const Field rhs = incrementLoads(fint, t);
   const std::vector<tfeti::EqualityRow> prescribed = prescribedIncrementRows(u, t);
-  bool refactor =
-      options_.stiffness == "iteration" || (options_.stiffness == "step" && iteration == 1);
-  // In small strain a subdomain's tangent with every point elastic is its elastic stiffness:
-  // where the factor holds that already (the solver is built with it), the tangent is neither
-  // assembled nor refactorized, and with no subdomain left to refactorize the solver only
-  // updates its rows.
-  std::vector<char> keep;
-  if (refactor && options_.kinematics == plasticity::Kinematics::SmallStrain) {
-    const std::vector<char> loading = model_.plasticLoadingPerSubdomain();
-    factorIsElastic_.resize(loading.size(), 1);
-    keep.resize(loading.size());
-    int local = 0;
-    for (std::size_t i = 0; i < loading.size(); ++i) {
-      keep[i] = !loading[i] && factorIsElastic_[i];
-      local = keep[i] ? local : 1;
-    }
-    int any = 0;
-    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &local, &any);
-    refactor = any == 1;
-    if (refactor)
-      for (std::size_t i = 0; i < loading.size(); ++i)
-        if (!keep[i]) factorIsElastic_[i] = !loading[i];
-    // A solver that has freed its matrices ("Keep subdomain matrices" = false) cannot keep a K
-    // it no longer holds: it gets the assembled one, whose factor it still keeps if unchanged.
-    for (std::size_t i = 0; i < keep.size(); ++i)
-      if (keep[i] && !solver_.subdomains()[i]->hasStiffness()) keep[i] = 0;
-  }
+  const TangentPlan plan = planTangent(iteration);
   // Inexact solves and partial steps leave jumps in u: the next increment closes them.
   if (inexact()) solver_.setIncrementOrigin(u);
-  if (refactor)
-    solver_.updateStiffness(model_.tangent(u, options_.kinematics, keep),
+  if (plan.refactor)
+    solver_.updateStiffness(model_.tangent(u, options_.kinematics, plan.keep),
                             model_.kernelCoordinates(u, options_.kinematics), rhs,
                             model_.problem.inequalities, prescribed);
   else

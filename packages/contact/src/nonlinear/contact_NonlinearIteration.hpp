@@ -112,6 +112,13 @@ class LoadStepIteration {
   // The frozen rows' gaps at the surface displacement `current`, and their dual rows.
   void moveFrozenGaps(const std::vector<double>& current) const;
 
+  // Whether this iteration gives the solver a new tangent, and per local subdomain whether it
+  // keeps its K instead (an empty matrix passed): updates factorIsElastic_ (collective).
+  struct TangentPlan {
+    bool refactor = false;
+    std::vector<char> keep;
+  };
+  TangentPlan planTangent(int iteration) const;
   // Per local subdomain: the solver's factor is of the elastic stiffness (it is built with it; a
   // small-strain tangent with every point elastic is it again). Empty until the first tangent.
   mutable std::vector<char> factorIsElastic_;

@@ -285,6 +285,12 @@ class FetiSolver {
   // must then be set up again.
   std::vector<char> stiffnessChanged_;
   void countFactorizations();  // collective: stiffnessChanged_ into timings_
+  // updateStiffness's steps: whether the subdomains refactorize in place (collective), and its
+  // arguments checked before anything changes (collective, throws naming the subdomain).
+  bool sameKernelPositions(const std::vector<std::vector<double>>& coords) const;
+  void checkStiffnessUpdate(const std::vector<CsrMatrix>& K,
+                            const std::vector<std::vector<double>>& coords,
+                            const std::vector<std::vector<double>>& loads, bool inPlace) const;
   // An empty K given to updateStiffness: keep the subdomain's.
   static bool keepsStiffness(const CsrMatrix& K) {
     return K.rows == 0 && K.cols == 0 && K.rowPtr.empty();

@@ -349,22 +349,20 @@ void FetiSolver::update(const std::vector<std::vector<double>>& loads,
   u_.clear();
 }
 
-void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
-                                 const std::vector<std::vector<double>>& coords,
-                                 const std::vector<std::vector<double>>& loads,
-                                 const std::vector<InequalityRow>& inequalities) {
-  collectively(*comm_, [&] {
-    if (K.size() != data_.size() || coords.size() != data_.size() || loads.size() != data_.size())
-      throw std::invalid_argument("FetiSolver::updateStiffness: expected " +
-                                  std::to_string(data_.size()) +
-                                  " matrices, coordinate sets and loads");
-  });
+bool FetiSolver::sameKernelPositions(const std::vector<std::vector<double>>& coords) const {
   // The same kernel positions (a small-strain tangent: the reference ones): the subdomains keep
   // their rigid modes and fixing dofs and refactorize in place, the symbolic analysis reused.
   int sameLocal = coords == kernelCoords_ && subdomains_.size() == data_.size() ? 1 : 0;
   for (const auto& sd : data_) sameLocal = sd.kernel.empty() ? sameLocal : 0;
   int same = 0;
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, 1, &sameLocal, &same);
+  return same == 1;
+}
+
+void FetiSolver::checkStiffnessUpdate(const std::vector<CsrMatrix>& K,
+                                      const std::vector<std::vector<double>>& coords,
+                                      const std::vector<std::vector<double>>& loads,
+                                      bool inPlace) const {
   collectively(*comm_, [&] {
     for (std::size_t i = 0; i < data_.size(); ++i) {
       // An empty K keeps the subdomain's own, which must still be there (the preconditioner is
@@ -372,7 +370,7 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
       const bool keep = keepsStiffness(K[i]);
       const std::string name =
           "FetiSolver::updateStiffness: subdomain " + std::to_string(data_[i].mesh.id);
-      if (keep && same != 1)
+      if (keep && !inPlace)
         throw std::invalid_argument(name +
                                     ": an empty K keeps the current one, but new kernel positions "
                                     "(or a supplied kernel) rebuild every subdomain; pass K");
@@ -386,6 +384,20 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
       if (!error.empty()) throw std::invalid_argument("FetiSolver::updateStiffness: " + error);
     }
   });
+}
+
+void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
+                                 const std::vector<std::vector<double>>& coords,
+                                 const std::vector<std::vector<double>>& loads,
+                                 const std::vector<InequalityRow>& inequalities) {
+  collectively(*comm_, [&] {
+    if (K.size() != data_.size() || coords.size() != data_.size() || loads.size() != data_.size())
+      throw std::invalid_argument("FetiSolver::updateStiffness: expected " +
+                                  std::to_string(data_.size()) +
+                                  " matrices, coordinate sets and loads");
+  });
+  const bool inPlace = sameKernelPositions(coords);
+  checkStiffnessUpdate(K, coords, loads, inPlace);
   for (std::size_t i = 0; i < data_.size(); ++i) {
     data_[i].K = std::move(K[i]);
     data_[i].f = loads[i];
@@ -393,7 +405,7 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
   previousLambda_ = lambda_;
   previousEqualityMultiplier_ = equalityMultiplier_;
   previousNorm_ = 0.0;  // a new K: estimate ||P F P|| again
-  if (same == 1)
+  if (inPlace)
     refactorizeSubdomains();
   else
     buildSubdomains(coords);

@@ -53,12 +53,20 @@ std::uint64_t mix64(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
-// A 64-bit digest of `bytes` bytes in the manner of xxHash64: four independent lanes over 32-byte
-// stripes (so the multiplications pipeline; a subdomain's K takes about a millisecond), the tail
-// word by word, then a finalizer.
-std::uint64_t digestBytes(const void* data, std::size_t bytes, std::uint64_t seed) {
+// Two 64-bit digests (seeds s0, s1) of `bytes` bytes in one pass, each in the manner of
+// xxHash64: four independent lanes over 32-byte stripes (so the multiplications pipeline; a
+// subdomain's K takes about a millisecond), the tail byte by byte, then a finalizer.
+std::array<std::uint64_t, 2> digestBytes(const void* data, std::size_t bytes, std::uint64_t s0,
+                                         std::uint64_t s1) {
   const auto* p = static_cast<const unsigned char*>(data);
-  std::uint64_t lane[4] = {seed + kPrime1 + kPrime2, seed + kPrime2, seed, seed - kPrime1};
+  const std::uint64_t seed[2] = {s0, s1};
+  std::uint64_t lane[2][4];
+  for (int k = 0; k < 2; ++k) {
+    lane[k][0] = seed[k] + kPrime1 + kPrime2;
+    lane[k][1] = seed[k] + kPrime2;
+    lane[k][2] = seed[k];
+    lane[k][3] = seed[k] - kPrime1;
+  }
   const auto round = [](std::uint64_t acc, std::uint64_t w) {
     return rotl(acc + w * kPrime2, 31) * kPrime1;
   };
@@ -67,27 +75,35 @@ std::uint64_t digestBytes(const void* data, std::size_t bytes, std::uint64_t see
     for (int l = 0; l < 4; ++l) {
       std::uint64_t w;
       std::memcpy(&w, p + at + 8 * l, 8);
-      lane[l] = round(lane[l], w);
+      lane[0][l] = round(lane[0][l], w);
+      lane[1][l] = round(lane[1][l], w);
     }
-  std::uint64_t h = rotl(lane[0], 1) + rotl(lane[1], 7) + rotl(lane[2], 12) + rotl(lane[3], 18);
-  for (int l = 0; l < 4; ++l) h = (h ^ round(0, lane[l])) * kPrime1 + kPrime3;
-  for (; at < bytes; ++at) h = rotl(h ^ (p[at] * kPrime3), 11) * kPrime1;
-  return mix64(h ^ bytes);
+  std::array<std::uint64_t, 2> d{};
+  for (int k = 0; k < 2; ++k) {
+    const std::uint64_t* v = lane[k];
+    std::uint64_t h = rotl(v[0], 1) + rotl(v[1], 7) + rotl(v[2], 12) + rotl(v[3], 18);
+    for (int l = 0; l < 4; ++l) h = (h ^ round(0, v[l])) * kPrime1 + kPrime3;
+    for (std::size_t t = at; t < bytes; ++t) h = rotl(h ^ (p[t] * kPrime3), 11) * kPrime1;
+    d[k] = mix64(h ^ bytes);
+  }
+  return d;
 }
 }  // namespace
 
 std::array<std::uint64_t, 2> CsrMatrix::digest() const {
-  // Two seeds give two 64-bit digests of every array; sizes and arrays are chained into each.
-  std::array<std::uint64_t, 2> d{};
+  // Two seeds, one pass over each array; the sizes and the arrays are chained into each digest.
   const std::uint64_t seeds[2] = {0x243f6a8885a308d3ULL, 0x13198a2e03707344ULL};
-  for (int k = 0; k < 2; ++k) {
-    std::uint64_t h = mix64(seeds[k] ^ (static_cast<std::uint64_t>(rows) << 32) ^
-                            static_cast<std::uint32_t>(cols));
-    h = mix64(h ^ digestBytes(rowPtr.data(), rowPtr.size() * sizeof(int), seeds[k]));
-    h = mix64(h ^ digestBytes(colInd.data(), colInd.size() * sizeof(int), seeds[k] + 1));
-    h = mix64(h ^ digestBytes(values.data(), values.size() * sizeof(double), seeds[k] + 2));
-    d[k] = h;
-  }
+  std::array<std::uint64_t, 2> d{};
+  for (int k = 0; k < 2; ++k)
+    d[k] = mix64(seeds[k] ^ (static_cast<std::uint64_t>(rows) << 32) ^
+                 static_cast<std::uint32_t>(cols));
+  const auto chain = [&](const void* data, std::size_t bytes, std::uint64_t offset) {
+    const auto h = digestBytes(data, bytes, seeds[0] + offset, seeds[1] + offset);
+    for (int k = 0; k < 2; ++k) d[k] = mix64(d[k] ^ h[k]);
+  };
+  chain(rowPtr.data(), rowPtr.size() * sizeof(int), 0);
+  chain(colInd.data(), colInd.size() * sizeof(int), 1);
+  chain(values.data(), values.size() * sizeof(double), 2);
   return d;
 }
 
