@@ -964,25 +964,48 @@ def plastic(d):
           f"(sigma_Y {sy:.2e}, H {h:.2e})")
 
 
+def built_and_reused(dirs, built_key, reused_key, what, check):
+    """The counters timings[built_key] and timings[reused_key] of every run: check(d, s, built,
+    reused) fails on a run's own rule; the counts must be the same in every run (they must not
+    depend on the rank count)."""
+    counts = []
+    for d in dirs:
+        s = load(d)
+        built, reused = s["timings"][built_key], s["timings"][reused_key]
+        if not reused > 0:
+            fail(f"{d}: no {what} reused ({built} built)")
+        check(d, s, built, reused)
+        counts.append((built, reused))
+    if len(set(counts)) != 1:
+        fail(f"the {what}s depend on the rank count: {counts} for {dirs}")
+    print(f"OK: {counts[0][0]} {what}s built, {counts[0][1]} reused, in every run")
+
+
 def factorizations_reused(dirs):
     """A small-strain plastic run with the tangent refactorized: the subdomains whose tangent
     stayed elastic keep their factor (timings subdomain_factorizations_reused > 0, fewer
     factorizations than subdomains times tangents), and which ones does not depend on the rank
     count (the same counts in every run)."""
-    counts = []
-    for d in dirs:
-        s = load(d)
-        t = s["timings"]
-        done, kept = t["subdomain_factorizations"], t["subdomain_factorizations_reused"]
-        if not kept > 0:
-            fail(f"{d}: no factorization reused ({done} computed)")
+    def whole(d, s, done, kept):
         if (done + kept) % s["subdomains"] != 0 or done < s["subdomains"]:
             fail(f"{d}: {done} computed and {kept} reused factorizations are not whole "
                  f"refactorizations of {s['subdomains']} subdomains")
-        counts.append((done, kept))
-    if len(set(counts)) != 1:
-        fail(f"the factorizations depend on the rank count: {counts} for {dirs}")
-    print(f"OK: {counts[0][0]} factorizations computed, {counts[0][1]} reused, in every run")
+    built_and_reused(dirs, "subdomain_factorizations", "subdomain_factorizations_reused",
+                     "factorization", whole)
+
+
+def tearings_reused(dirs):
+    """A Newton run against a height-function obstacle in small strain: the contact rows keep
+    their entries from one iteration to the next (only the gaps move), so the solver keeps its
+    tearing and coarse space (timings tearings_reused > 0); every iteration's QP either kept or
+    built them (tearings + tearings_reused = the Newton iterations + the first set-up), and the
+    counts do not depend on the rank count."""
+    def one_per_iteration(d, s, built, kept):
+        iterations = s["nonlinear"]["total_iterations"]
+        if built + kept != iterations + 1:
+            fail(f"{d}: {built} tearings built and {kept} kept for {iterations} Newton "
+                 f"iterations and the first set-up")
+    built_and_reused(dirs, "tearings", "tearings_reused", "tearing", one_per_iteration)
 
 
 def plastic_vs_elastic(pdir, edir):
@@ -1330,6 +1353,8 @@ if __name__ == "__main__":
                             (i == 0 or args[i - 1] != "--tol")], option(args, "--tol", 1e-10))
     elif mode == "factorizations_reused":
         factorizations_reused(args)
+    elif mode == "tearings_reused":
+        tearings_reused(args)
     elif mode == "diverged":
         diverged(args[0])
     elif mode == "prescribed":

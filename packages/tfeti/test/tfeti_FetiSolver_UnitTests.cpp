@@ -152,6 +152,41 @@ std::vector<tfeti::SubdomainData> localBoxSubdomains(const tfeti_test::Box3d& bo
   return local;
 }
 
+// SMALBE with both tolerances at 1e-10: the QP tests compare solutions to 1e-8.
+Teuchos::ParameterList tightSmalbeParameters() {
+  Teuchos::ParameterList params = solverParameters(Options());
+  params.set("Dual solver", "SMALBE");
+  params.sublist("SMALBE").set("Relative tolerance", 1e-10);
+  params.sublist("SMALBE").set("Equality tolerance", 1e-10);
+  return params;
+}
+
+// A rigid floor under a box: -u_z <= gap(x) for each node of the bottom z = 0 at x >= xMin, on
+// the first subdomain that holds it, keyed by the node (rank 0 passes them all).
+template <class Gap>
+std::vector<tfeti::InequalityRow> floorRows(const tfeti_test::Box3d& box, const Gap& gap,
+                                            double xMin, bool keyed) {
+  std::vector<tfeti::InequalityRow> rows;
+  if (Tpetra::getDefaultComm()->getRank() != 0) return rows;
+  std::vector<long long> seen;
+  for (int sub = 0; sub < box.numSubdomains(); ++sub) {
+    const tfeti::SubdomainMesh m = box.subdomain(sub);
+    for (int n = 0; n < m.numNodes(); ++n) {
+      const long long node = m.globalNode[n];
+      if (m.coords[3 * n + 2] != 0.0 || m.coords[3 * n] < xMin ||
+          std::find(seen.begin(), seen.end(), node) != seen.end())
+        continue;
+      seen.push_back(node);
+      tfeti::InequalityRow r;
+      r.entries = {{sub, 3 * n + 2, -1.0}};
+      r.gap = gap(m.coords[3 * n]);
+      r.key = keyed ? node : -1;
+      rows.push_back(r);
+    }
+  }
+  return rows;
+}
+
 tfeti::StructuredRectangle square() {
   return tfeti::StructuredRectangle(0, 1, 0, 1, 4, 4, 4, 4);
 }
@@ -630,39 +665,19 @@ TEUCHOS_UNIT_TEST(FetiSolver, InexactQpStopsTheFaceCgAtItsOwnTolerance) {
   const tfeti_test::Box3d box(4, 2, 1, 3, 3, 3, false);
   tfeti_test::Material3d mat;
   mat.dofsPerNode = 3;
-  const auto floorRows = [&]() {
-    std::vector<tfeti::InequalityRow> rows;
-    if (comm->getRank() != 0) return rows;
-    std::vector<long long> seen;
-    for (int sub = 0; sub < box.numSubdomains(); ++sub) {
-      const tfeti::SubdomainMesh m = box.subdomain(sub);
-      for (int n = 0; n < m.numNodes(); ++n) {
-        const long long node = m.globalNode[n];
-        if (m.coords[3 * n + 2] != 0.0 || m.coords[3 * n] < 6.0 ||
-            std::find(seen.begin(), seen.end(), node) != seen.end())
-          continue;
-        seen.push_back(node);
-        tfeti::InequalityRow r;
-        r.entries = {{sub, 3 * n + 2, -1.0}};  // -u_z <= 0
-        rows.push_back(r);
-      }
-    }
-    return rows;
+  const auto floor = [&] {
+    return floorRows(
+        box, [](double) { return 0.0; }, 6.0, false);
   };
   const auto solve = [&](double factor, double inexactFace, std::vector<double>& u) {
-    Options o;
-    Teuchos::ParameterList params = solverParameters(o);
-    params.set("Dual solver", "SMALBE");
+    Teuchos::ParameterList params = tightSmalbeParameters();
     params.set("Inexact face relative tolerance", inexactFace);
-    params.sublist("SMALBE").set("Relative tolerance", 1e-10);
-    params.sublist("SMALBE").set("Equality tolerance", 1e-10);
-    tfeti::FetiSolver s(comm, box.numSubdomains(), localBoxSubdomains(box, mat), params,
-                        floorRows());
+    tfeti::FetiSolver s(comm, box.numSubdomains(), localBoxSubdomains(box, mat), params, floor());
     TEST_ASSERT(s.solve().converged);
     // The Newton loop's situation: a warm start (its face first) for a changed load.
     std::vector<std::vector<double>> loads;
     for (const auto& d : localBoxSubdomains(box, mat, 2.0)) loads.push_back(d.f);
-    s.update(loads, floorRows());
+    s.update(loads, floor());
     s.setToleranceFactor(factor);
     const tfeti::DualResult r = s.solve();
     u.clear();
@@ -706,6 +721,95 @@ TEUCHOS_UNIT_TEST(FetiSolver, InexactQpStopsTheFaceCgAtItsOwnTolerance) {
     out << value << ": " << message.substr(0, 200) << "\n";
     TEST_ASSERT(message.find("Inexact face relative tolerance") != std::string::npos);
   }
+}
+
+// update() with contact rows whose entries are unchanged and only their gaps moved (a Newton
+// iteration against a height-function obstacle in small strain) keeps the tearing and the coarse
+// space, and solves as a solver that builds them anew: the box on a rigid floor, the floor moved,
+// the load doubled, from an increment's origin with jumps between the subdomains (whose gluing
+// rows it shifts, so that a kept tearing must start from unshifted rows each time). Rows with
+// other entries are built anew.
+TEUCHOS_UNIT_TEST(FetiSolver, UpdateWithTheSameRowEntriesKeepsTheTearing) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(4, 2, 1, 3, 3, 3, false);
+  const int N = box.numSubdomains();
+  tfeti_test::Material3d mat;
+  mat.dofsPerNode = 3;
+  Teuchos::ParameterList params = tightSmalbeParameters();
+  const auto solution = [&](const tfeti::FetiSolver& s) {
+    std::vector<std::vector<double>> u;
+    for (std::size_t i = 0; i < s.data().size(); ++i) u.push_back(s.solution(i));
+    return u;
+  };
+  const auto difference = [&](const auto& a, const auto& b) {
+    double diff = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t k = 0; k < a[i].size(); ++k) {
+        diff = std::max(diff, std::abs(a[i][k] - b[i][k]));
+        scale = std::max(scale, std::abs(b[i][k]));
+      }
+    return tfeti_test::globalMax(*comm, diff) / tfeti_test::globalMax(*comm, scale);
+  };
+  const auto flat = [](double) { return 0.0; };
+  tfeti::FetiSolver s(comm, N, localBoxSubdomains(box, mat), params,
+                      floorRows(box, flat, 6.0, true));
+  TEST_ASSERT(s.solve().converged);
+  TEST_EQUALITY(s.timings().tearings, 1LL);
+  TEST_EQUALITY(s.timings().tearingsReused, 0LL);
+  // The origin: the first solution with every subdomain moved by its own amount (jumps); the
+  // floor curved, so that the doubled load closes some rows and not others.
+  std::vector<std::vector<double>> origin = solution(s);
+  double uMax = 0.0;
+  for (const auto& v : origin)
+    for (double x : v) uMax = std::max(uMax, std::abs(x));
+  uMax = tfeti_test::globalMax(*comm, uMax);
+  for (std::size_t i = 0; i < origin.size(); ++i)
+    for (std::size_t k = 2; k < origin[i].size(); k += 3)
+      origin[i][k] += 0.01 * uMax * (s.data()[i].mesh.id % 3);
+  std::vector<std::vector<double>> loads;
+  for (const auto& d : localBoxSubdomains(box, mat, 2.0)) loads.push_back(d.f);
+  const auto curved = [&](double x) { return uMax * (0.2 + 2.0 * (x - 9.0) * (x - 9.0) / 9.0); };
+  const std::vector<tfeti::InequalityRow> moved = floorRows(box, curved, 6.0, true);
+
+  // The reference builds its tearing for these rows: it was built without any.
+  tfeti::FetiSolver ref(comm, N, localBoxSubdomains(box, mat), params);
+  ref.setIncrementOrigin(origin);
+  ref.update(loads, moved);
+  const tfeti::DualResult rr = ref.solve();
+  TEST_ASSERT(rr.converged);
+  TEST_EQUALITY(ref.timings().tearings, 2LL);
+  TEST_EQUALITY(ref.timings().tearingsReused, 0LL);
+  const tfeti::GO refActive = ref.constraintReport().activeRows;
+  TEST_COMPARE(refActive, >, 0);
+  TEST_COMPARE(refActive, <, ref.constraintReport().inequalityRows);
+  const auto uRef = solution(ref);
+  for (int pass = 1; pass <= 2; ++pass) {
+    s.setIncrementOrigin(origin);
+    s.update(loads, moved);
+    const tfeti::DualResult r = s.solve();
+    const double diff = difference(solution(s), uRef);
+    const tfeti::GO active = s.constraintReport().activeRows;
+    out << "pass " << pass << ": " << r.qp.hessianMultiplications << " multiplications ("
+        << rr.qp.hessianMultiplications << " for the reference), " << active << " active rows of "
+        << ref.constraintReport().inequalityRows << ", solution difference " << diff << "\n";
+    TEST_ASSERT(r.converged);
+    TEST_EQUALITY(active, refActive);
+    TEST_COMPARE(diff, <, 1e-8);
+    TEST_EQUALITY(s.timings().tearings, 1LL);
+    TEST_EQUALITY(s.timings().tearingsReused, static_cast<long long>(pass));
+  }
+  // Fewer rows: a new tearing, and again the solution of a solver built with them.
+  const std::vector<tfeti::InequalityRow> fewer = floorRows(box, curved, 7.0, true);
+  s.setIncrementOrigin(origin);
+  s.update(loads, fewer);
+  TEST_ASSERT(s.solve().converged);
+  TEST_EQUALITY(s.timings().tearings, 2LL);
+  TEST_EQUALITY(s.timings().tearingsReused, 2LL);
+  tfeti::FetiSolver refFewer(comm, N, localBoxSubdomains(box, mat), params);
+  refFewer.setIncrementOrigin(origin);
+  refFewer.update(loads, fewer);
+  TEST_ASSERT(refFewer.solve().converged);
+  TEST_COMPARE(difference(solution(s), solution(refFewer)), <, 1e-8);
 }
 
 // "Keep subdomain matrices" = false frees every K once its preconditioner is set up: the same

@@ -26,6 +26,8 @@ Json timingsJson(const tfeti::FetiTimings& t, int iterations) {
   j["per_iteration_s"] = iterations > 0 ? t.solve / iterations : 0.0;
   j["subdomain_factorizations"] = t.factorizations;
   j["subdomain_factorizations_reused"] = t.factorizationsReused;
+  j["tearings"] = t.tearings;
+  j["tearings_reused"] = t.tearingsReused;
   return j;
 }
 

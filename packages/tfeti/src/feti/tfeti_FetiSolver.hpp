@@ -94,6 +94,9 @@ struct FetiTimings {
   // Subdomain factorizations of K+ over all ranks: computed, and kept because a new tangent
   // brought the same K (FetiSolver::updateStiffness; the elastic subdomains of a plastic body).
   long long factorizations = 0, factorizationsReused = 0;
+  // Tearings (B with its maps and scaling) and coarse spaces built, and kept by an update whose
+  // rows changed only their right-hand sides and bounds (the count is the same on every rank).
+  long long tearings = 0, tearingsReused = 0;
   double setup() const {
     return factorization + tearing + coarse + preconditioner + dualRhs + dualOperator;
   }
@@ -295,7 +298,9 @@ class FetiSolver {
   static bool keepsStiffness(const CsrMatrix& K) {
     return K.rows == 0 && K.cols == 0 && K.rowPtr.empty();
   }
-  void buildConstraints(const std::vector<InequalityRow>& inequalities);
+  // subdomainsKept: the subdomains (and their kernels) are those of the last call, so rows whose
+  // entries did not change keep the tearing and the coarse space (updateTearingValues).
+  void buildConstraints(const std::vector<InequalityRow>& inequalities, bool subdomainsKept);
   void requireNoRowOnEliminatedDofs() const;
   void buildDualRhs();
   void buildDualOperator();

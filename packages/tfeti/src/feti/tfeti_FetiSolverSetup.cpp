@@ -102,7 +102,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   std::vector<std::vector<double>> coords;
   for (const auto& sd : data_) coords.push_back(sd.mesh.coords);
   buildSubdomains(coords);
-  buildConstraints(inequalities);
+  buildConstraints(inequalities, false);
   buildDualRhs();
 }
 
@@ -156,18 +156,28 @@ void FetiSolver::refactorizeSubdomains() {
   countFactorizations();
 }
 
-void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities) {
+void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities,
+                                  bool subdomainsKept) {
   const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
   const PreconditionerType precType =
       parsePreconditioner(params_.get<std::string>("Preconditioner"));
   const std::string solver = params_.get<std::string>("Local solver");
+  // Rows with their entries unchanged (a Newton iteration against a height-function obstacle in
+  // small strain moves only the gaps) over the same subdomains, hence the same kernels: B, the
+  // maps, the scaling and G = R^T B^T are those already built, and only c changes.
+  bool kept = false;
   {
     PhaseTimer t(*comm_, timings_.tearing, &memory_, "tearing");
-    tearing_ = buildTearing(comm_, numSubdomains_, tearingInput(data_), dofsPerNode_,
-                            tearingOptions(params_), inequalities, equalities_);
-    if (formulation == Formulation::FETI) requireNoRowOnEliminatedDofs();
+    kept = subdomainsKept && coarse_ &&
+           updateTearingValues(comm_, tearing_, inequalities, equalities_);
+    if (!kept) {
+      tearing_ = buildTearing(comm_, numSubdomains_, tearingInput(data_), dofsPerNode_,
+                              tearingOptions(params_), inequalities, equalities_);
+      if (formulation == Formulation::FETI) requireNoRowOnEliminatedDofs();
+    }
+    ++(kept ? timings_.tearingsReused : timings_.tearings);
   }
-  {
+  if (!kept) {
     PhaseTimer t(*comm_, timings_.coarse, &memory_, "coarse");
     coarse_ = std::make_unique<CoarseSpace>(tearing_, subdomains_,
                                             params_.get<std::string>("Coarse solver"));
@@ -341,7 +351,7 @@ void FetiSolver::update(const std::vector<std::vector<double>>& loads,
   previousNorm_ = normEstimate_;
   const RowIdentities before = rowIdentities(tearing_);
   const auto radii = discRadii();
-  buildConstraints(inequalities);
+  buildConstraints(inequalities, true);
   carryWarmStartOver(before, radii);
   buildDualRhs();
   u_vec_ = Teuchos::null;
@@ -411,7 +421,7 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
     buildSubdomains(coords);
   const RowIdentities before = rowIdentities(tearing_);
   const auto radii = discRadii();
-  buildConstraints(inequalities);
+  buildConstraints(inequalities, inPlace);
   carryWarmStartOver(before, radii);
   buildDualRhs();
   u_vec_ = Teuchos::null;

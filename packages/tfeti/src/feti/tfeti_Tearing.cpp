@@ -542,6 +542,47 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   return t;
 }
 
+bool updateTearingValues(const Teuchos::RCP<const Comm>& comm, Tearing& t,
+                         const std::vector<InequalityRow>& inequalities,
+                         const std::vector<EqualityRow>& equalities) {
+  const std::size_t numSubdomains = t.dofOffset.empty() ? 0 : t.dofOffset.size() - 1;
+  std::vector<long long> allSizes(numSubdomains);
+  for (std::size_t s = 0; s < numSubdomains; ++s) allSizes[s] = t.dofOffset[s + 1] - t.dofOffset[s];
+  RowSet set;
+  addCallerRows(*comm, equalities, inequalities, allSizes, set);
+  // B, its maps and the scaling groups follow from the entries alone (and the pairing of disc
+  // rows, which the canonical order keeps together); every rank gathered the same rows.
+  const auto sameEntries = [](const auto& a, const auto& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].entries.size() != b[i].entries.size()) return false;
+      for (std::size_t k = 0; k < a[i].entries.size(); ++k) {
+        const ConstraintEntry &x = a[i].entries[k], &y = b[i].entries[k];
+        if (x.subdomain != y.subdomain || x.dof != y.dof || x.coef != y.coef) return false;
+      }
+    }
+    return true;
+  };
+  if (!sameEntries(set.user, t.userEqualityRows) || !sameEntries(set.ineq, t.inequalityRows))
+    return false;
+  for (std::size_t i = 0; i < set.ineq.size(); ++i)
+    if (set.ineq[i].disc != t.inequalityRows[i].disc) return false;
+  auto c = t.rhs->getDataNonConst();
+  const Map& map = *t.multiplierMap;
+  for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) {
+    const GO r = map.getGlobalElement(static_cast<LO>(l));
+    if (t.isInequality(r))
+      c[l] = set.ineq[static_cast<std::size_t>(r - t.firstInequalityRow)].gap;
+    else if (t.isUserEquality(r))
+      c[l] = set.user[static_cast<std::size_t>(r - t.firstUserEqualityRow)].rhs;
+    else
+      c[l] = 0.0;  // as built: a caller may have shifted them since (an increment's origin)
+  }
+  t.userEqualityRows = std::move(set.user);
+  t.inequalityRows = std::move(set.ineq);
+  return true;
+}
+
 void ScalingGroups::apply(double* x) const {
   // Most groups are a single row (a dof shared by two subdomains) and the dense ones hold at most
   // kMaxDenseScalingGroup rows: no allocation per group (this runs twice per preconditioner apply,

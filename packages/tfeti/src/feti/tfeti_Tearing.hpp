@@ -173,4 +173,15 @@ Tearing buildTearing(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                      const std::vector<InequalityRow>& inequalities = {},
                      const std::vector<EqualityRow>& equalities = {});
 
+// The caller's rows of an existing tearing with new values (a Newton iteration whose contact rows
+// kept their entries: a height-function obstacle in small strain, or tied rows): the rows are
+// gathered, checked and ordered as buildTearing does. Where every equality and inequality row has
+// the entries (and disc pairing) of t's row in its place, t takes their right-hand sides, bounds
+// and keys, keeps B, its maps and the scaling groups, and this returns true; otherwise t is left
+// as it was and it returns false (the caller builds the tearing anew). Collective: every rank
+// returns the same.
+bool updateTearingValues(const Teuchos::RCP<const Comm>& comm, Tearing& t,
+                         const std::vector<InequalityRow>& inequalities,
+                         const std::vector<EqualityRow>& equalities = {});
+
 }  // namespace tfeti
