@@ -370,3 +370,55 @@ TEUCHOS_UNIT_TEST(Partition, HexahedraConnectedThroughFacesOnly) {
   TEST_EQUALITY(whole.subdomains[0].numNodes(), 64);
   TEST_EQUALITY(static_cast<int>(whole.subdomains[0].boundaryNodes().size()), 64 - 8);
 }
+
+// Coordinate bisection: a 6 x 4 x 2 block of unit cubes (elements shuffled, so that the cut does
+// not follow the element order) into 12 parts gives 12 boxes of 4 cubes (each part's cubes fill
+// the box their extent spans). 5 parts (not a power of two) get 9 or 10 elements each, each part
+// one facet-connected subdomain (none split, every element in one). The same call gives the same
+// parts; 0 parts, or more parts than elements, are errors.
+TEUCHOS_UNIT_TEST(Partition, CoordinateBisectionCutsABlockIntoBoxes) {
+  std::vector<std::array<int, 3>> offsets;
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 6; ++i) offsets.push_back({i, j, k});
+  std::vector<std::array<int, 3>> shuffled;
+  for (std::size_t e = 0; e < offsets.size(); ++e) shuffled.push_back(offsets[(7 * e) % 48]);
+  const contact::GmshMesh m = hexCubes(shuffled);
+  const contact::GmshBody& b = m.bodies[0];
+  const std::vector<int> part = contact::bisectCoordinates(m, b, 12);
+  std::map<int, std::vector<std::array<int, 3>>> cubesOf;
+  for (std::size_t e = 0; e < part.size(); ++e) cubesOf[part[e]].push_back(shuffled[e]);
+  TEST_EQUALITY(cubesOf.size(), 12u);
+  for (const auto& [p, cubes] : cubesOf) {
+    std::array<int, 3> lo{99, 99, 99}, hi{-1, -1, -1};
+    for (const auto& c : cubes)
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], c[d]);
+        hi[d] = std::max(hi[d], c[d]);
+      }
+    out << "part " << p << ": " << cubes.size() << " cubes, extent " << hi[0] - lo[0] << " x "
+        << hi[1] - lo[1] << " x " << hi[2] - lo[2] << "\n";
+    TEST_EQUALITY(cubes.size(), 4u);
+    TEST_EQUALITY(
+        static_cast<std::size_t>((hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1)),
+        cubes.size());
+  }
+  TEST_ASSERT(contact::bisectCoordinates(m, b, 12) == part);
+
+  const std::vector<int> five = contact::bisectCoordinates(m, b, 5);
+  std::map<int, int> sizes;
+  for (int p : five) ++sizes[p];
+  TEST_EQUALITY(sizes.size(), 5u);
+  for (const auto& [p, n] : sizes) TEST_ASSERT(n == 9 || n == 10);
+  const contact::BodyPartition bp =
+      contact::partitionBody(m, b, 5, 0, contact::Partitioner::CoordinateBisection);
+  TEST_EQUALITY(bp.numSubdomains(), 5);
+  TEST_EQUALITY(bp.splitParts, 0);
+  std::vector<int> owners(b.numElements(), 0);
+  for (const auto& sd : bp.subdomains)
+    for (int e : sd.elements) ++owners[e];
+  TEST_ASSERT(std::all_of(owners.begin(), owners.end(), [](int n) { return n == 1; }));
+
+  TEST_THROW(contact::bisectCoordinates(m, b, 0), std::invalid_argument);
+  TEST_THROW(contact::bisectCoordinates(m, b, 49), std::invalid_argument);
+}

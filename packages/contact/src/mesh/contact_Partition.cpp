@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -248,8 +249,57 @@ BodyPartition splitIntoSubdomains(const GmshMesh& mesh, const GmshBody& body,
   return out;
 }
 
-BodyPartition partitionBody(const GmshMesh& mesh, const GmshBody& body, int numParts, int firstId) {
-  return splitIntoSubdomains(mesh, body, partitionElements(body, numParts), numParts, firstId);
+std::vector<int> bisectCoordinates(const GmshMesh& mesh, const GmshBody& body, int numParts) {
+  const int ne = body.numElements(), npe = body.nodesPerElement(), dim = mesh.dim;
+  if (numParts < 1 || numParts > ne)
+    throw std::invalid_argument("bisectCoordinates: body \"" + body.name + "\" has " +
+                                std::to_string(ne) + " elements; cannot cut it into " +
+                                std::to_string(numParts) + " parts");
+  std::vector<double> centre(static_cast<std::size_t>(ne) * 3, 0.0);
+  for (int e = 0; e < ne; ++e)
+    for (int a = 0; a < npe; ++a) {
+      const int n = body.connectivity[static_cast<std::size_t>(e) * npe + a];
+      for (int c = 0; c < dim; ++c) centre[3 * e + c] += mesh.coords[dim * n + c] / npe;
+    }
+  std::vector<int> order(ne), part(ne, 0);
+  for (int e = 0; e < ne; ++e) order[e] = e;
+  // Each range of `order` is cut across its longest extent, at the element count that gives
+  // each side its share of the parts; ties go by element number, so every rank cuts alike.
+  const std::function<void(int, int, int, int)> cut = [&](int begin, int end, int parts,
+                                                          int first) {
+    if (parts == 1) {
+      for (int i = begin; i < end; ++i) part[order[i]] = first;
+      return;
+    }
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (int i = begin; i < end; ++i)
+      for (int c = 0; c < dim; ++c) {
+        lo[c] = std::min(lo[c], centre[3 * order[i] + c]);
+        hi[c] = std::max(hi[c], centre[3 * order[i] + c]);
+      }
+    int axis = 0;
+    for (int c = 1; c < dim; ++c)
+      if (hi[c] - lo[c] > hi[axis] - lo[axis]) axis = c;
+    const int left = parts / 2;
+    const int mid = begin + static_cast<int>(static_cast<long long>(end - begin) * left / parts);
+    std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                     [&](int a, int b) {
+                       const double ca = centre[3 * a + axis], cb = centre[3 * b + axis];
+                       return ca != cb ? ca < cb : a < b;
+                     });
+    cut(begin, mid, left, first);
+    cut(mid, end, parts - left, first + left);
+  };
+  cut(0, ne, numParts, 0);
+  return part;
+}
+
+BodyPartition partitionBody(const GmshMesh& mesh, const GmshBody& body, int numParts, int firstId,
+                            Partitioner partitioner) {
+  const std::vector<int> part = partitioner == Partitioner::Metis
+                                    ? partitionElements(body, numParts)
+                                    : bisectCoordinates(mesh, body, numParts);
+  return splitIntoSubdomains(mesh, body, part, numParts, firstId);
 }
 
 }  // namespace contact

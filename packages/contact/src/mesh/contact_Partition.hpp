@@ -47,6 +47,15 @@ DualGraph edgeDualGraph(const GmshBody& body);
 // Throws std::invalid_argument unless 1 <= numParts <= number of elements.
 std::vector<int> partitionElements(const GmshBody& body, int numParts);
 
+// Recursive coordinate bisection of the elements' centroids: the body's elements are cut across
+// their longest extent at the element count that gives each side its share of the parts, and
+// each side again, until every part is one (numParts need not be a power of two). On a
+// structured box it gives equal boxes (64^3 hexahedra into 512 parts: 8^3 each), whose regular
+// interfaces FETI converges on in a quarter of the iterations of METIS's jagged ones
+// (docs/benchmarks.md, step-42 on 2026-12-01). Ties go by element number, so every rank cuts
+// alike. Throws std::invalid_argument unless 1 <= numParts <= number of elements.
+std::vector<int> bisectCoordinates(const GmshMesh& mesh, const GmshBody& body, int numParts);
+
 // Component of every element within its part (graph restricted to same-part edges), numbered
 // 0, 1, ... per part in the order of each component's smallest element.
 std::vector<int> componentsWithinParts(const DualGraph& graph, const std::vector<int>& part);
@@ -67,8 +76,10 @@ struct BodyPartition {
 BodyPartition splitIntoSubdomains(const GmshMesh& mesh, const GmshBody& body,
                                   const std::vector<int>& part, int numParts, int firstId = 0);
 
-// partitionElements followed by splitIntoSubdomains.
+enum class Partitioner { Metis, CoordinateBisection };
+
+// partitionElements (Metis) or bisectCoordinates followed by splitIntoSubdomains.
 BodyPartition partitionBody(const GmshMesh& mesh, const GmshBody& body, int numParts,
-                            int firstId = 0);
+                            int firstId = 0, Partitioner partitioner = Partitioner::Metis);
 
 }  // namespace contact

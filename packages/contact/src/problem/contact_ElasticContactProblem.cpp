@@ -151,7 +151,7 @@ void partitionBodies(const ElasticContactSpec& spec, ElasticContactProblem& p) {
     } catch (const std::exception& e) {
       throw std::invalid_argument(std::string("Bodies: ") + e.what());
     }
-    // A body cannot have more METIS parts than elements; name the parameter that asks for them
+    // A body cannot have more parts than elements; name the parameter that asks for them
     // (and the size factor when it is what made the mesh so coarse).
     std::ostringstream factor;
     if (spec.meshOptions.sizeFactor != 1.0)
@@ -163,7 +163,7 @@ void partitionBodies(const ElasticContactSpec& spec, ElasticContactProblem& p) {
                                   " elements" + factor.str());
     BodyPartition part;
     try {
-      part = partitionBody(mesh, *gb, body.subdomains, p.numSubdomains());
+      part = partitionBody(mesh, *gb, body.subdomains, p.numSubdomains(), spec.partitioner);
     } catch (const std::exception& e) {
       throw std::invalid_argument(std::string("Subdomains per body: ") + e.what());
     }

@@ -56,7 +56,8 @@ struct ElasticContactSpec {
   bool tied = false;        // Contact type = tied or bonded: the rows held with equality
   // Contact type = bonded: the contact rows' tangential rows join them (held with equality too).
   bool bonded = false;
-  std::string distribution = "graph";  // subdomains to ranks: graph (Zoltan2) or block
+  std::string distribution = "graph";            // subdomains to ranks: graph (Zoltan2) or block
+  Partitioner partitioner = Partitioner::Metis;  // bodies into subdomains
   // The contact zone's shape (how its extent is reported): auto, line or point; point needs a
   // 3D mesh.
   std::string contactZone = "auto";
