@@ -375,7 +375,7 @@ TEUCHOS_UNIT_TEST(Partition, HexahedraConnectedThroughFacesOnly) {
 // not follow the element order) into 12 parts gives 12 boxes of 4 cubes (each part's cubes fill
 // the box their extent spans). 5 parts (not a power of two) get 9 or 10 elements each, each part
 // one facet-connected subdomain (none split, every element in one). The same call gives the same
-// parts; 0 parts, or more parts than elements, are errors.
+// parts; 0 parts, or more parts than elements, are errors. A 2D grid gives squares.
 TEUCHOS_UNIT_TEST(Partition, CoordinateBisectionCutsABlockIntoBoxes) {
   std::vector<std::array<int, 3>> offsets;
   for (int k = 0; k < 2; ++k)
@@ -421,4 +421,19 @@ TEUCHOS_UNIT_TEST(Partition, CoordinateBisectionCutsABlockIntoBoxes) {
 
   TEST_THROW(contact::bisectCoordinates(m, b, 0), std::invalid_argument);
   TEST_THROW(contact::bisectCoordinates(m, b, 49), std::invalid_argument);
+
+  // 2D: an 8 x 4 grid of quadrilaterals into 8 parts, squares of 2 x 2 (the element at (i, j)
+  // is i + 8 j), each one subdomain.
+  const contact::GmshMesh g = quadGrid(8, 4);
+  const std::vector<int> squares = contact::bisectCoordinates(g, g.bodies[0], 8);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 8; ++i) {
+      const int e = i + 8 * j, corner = (i / 2) * 2 + 8 * ((j / 2) * 2);
+      TEST_EQUALITY(squares[e], squares[corner]);
+    }
+  TEST_EQUALITY(std::set<int>(squares.begin(), squares.end()).size(), 8u);
+  const contact::BodyPartition gp =
+      contact::partitionBody(g, g.bodies[0], 8, 0, contact::Partitioner::CoordinateBisection);
+  TEST_EQUALITY(gp.numSubdomains(), 8);
+  TEST_EQUALITY(checkDecomposition(out, g, g.bodies[0], gp), 0);
 }

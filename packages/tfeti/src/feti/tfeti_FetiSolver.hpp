@@ -301,6 +301,8 @@ class FetiSolver {
   // subdomainsKept: the subdomains (and their kernels) are those of the last call, so rows whose
   // entries did not change keep the tearing and the coarse space (updateTearingValues).
   void buildConstraints(const std::vector<InequalityRow>& inequalities, bool subdomainsKept);
+  // buildConstraints' first step: true where the tearing was kept (its values updated).
+  bool keepOrBuildTearing(const std::vector<InequalityRow>& inequalities, bool subdomainsKept);
   void requireNoRowOnEliminatedDofs() const;
   void buildDualRhs();
   void buildDualOperator();

@@ -156,27 +156,30 @@ void FetiSolver::refactorizeSubdomains() {
   countFactorizations();
 }
 
-void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities,
-                                  bool subdomainsKept) {
-  const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
-  const PreconditionerType precType =
-      parsePreconditioner(params_.get<std::string>("Preconditioner"));
-  const std::string solver = params_.get<std::string>("Local solver");
+bool FetiSolver::keepOrBuildTearing(const std::vector<InequalityRow>& inequalities,
+                                    bool subdomainsKept) {
+  PhaseTimer t(*comm_, timings_.tearing, &memory_, "tearing");
   // Rows with their entries unchanged (a Newton iteration against a height-function obstacle in
   // small strain moves only the gaps) over the same subdomains, hence the same kernels: B, the
   // maps, the scaling and G = R^T B^T are those already built, and only c changes.
-  bool kept = false;
-  {
-    PhaseTimer t(*comm_, timings_.tearing, &memory_, "tearing");
-    kept = subdomainsKept && coarse_ &&
-           updateTearingValues(comm_, tearing_, inequalities, equalities_);
-    if (!kept) {
-      tearing_ = buildTearing(comm_, numSubdomains_, tearingInput(data_), dofsPerNode_,
-                              tearingOptions(params_), inequalities, equalities_);
-      if (formulation == Formulation::FETI) requireNoRowOnEliminatedDofs();
-    }
-    ++(kept ? timings_.tearingsReused : timings_.tearings);
+  const bool kept =
+      subdomainsKept && coarse_ && updateTearingValues(comm_, tearing_, inequalities, equalities_);
+  if (!kept) {
+    tearing_ = buildTearing(comm_, numSubdomains_, tearingInput(data_), dofsPerNode_,
+                            tearingOptions(params_), inequalities, equalities_);
+    if (parseFormulation(params_.get<std::string>("Formulation")) == Formulation::FETI)
+      requireNoRowOnEliminatedDofs();
   }
+  ++(kept ? timings_.tearingsReused : timings_.tearings);
+  return kept;
+}
+
+void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities,
+                                  bool subdomainsKept) {
+  const PreconditionerType precType =
+      parsePreconditioner(params_.get<std::string>("Preconditioner"));
+  const std::string solver = params_.get<std::string>("Local solver");
+  const bool kept = keepOrBuildTearing(inequalities, subdomainsKept);
   if (!kept) {
     PhaseTimer t(*comm_, timings_.coarse, &memory_, "coarse");
     coarse_ = std::make_unique<CoarseSpace>(tearing_, subdomains_,

@@ -398,6 +398,21 @@ std::vector<GO> buildMultiplierMap(const Teuchos::RCP<const Comm>& comm,
   return myRows;
 }
 
+// c on the rows owned here: zero on the numAuto automatic rows, then the caller's right-hand
+// sides and gaps.
+void fillRightHandSide(GO numAuto, const std::vector<EqualityRow>& user,
+                       const std::vector<InequalityRow>& ineq, Tearing& t) {
+  const GO numEq = numAuto + static_cast<GO>(user.size());
+  auto c = t.rhs->getDataNonConst();
+  const Map& map = *t.multiplierMap;
+  for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) {
+    const GO r = map.getGlobalElement(static_cast<LO>(l));
+    c[l] = r >= numEq     ? ineq[static_cast<std::size_t>(r - numEq)].gap
+           : r >= numAuto ? user[static_cast<std::size_t>(r - numAuto)].rhs
+                          : 0.0;
+  }
+}
+
 // B and c on the rows owned here.
 void assembleConstraintMatrix(const RowSet& set, const std::vector<GO>& myRows, Tearing& t) {
   const std::vector<Row>& rows = set.automatic;
@@ -407,40 +422,30 @@ void assembleConstraintMatrix(const RowSet& set, const std::vector<GO>& myRows, 
   for (const auto& row : set.ineq) maxEntries = std::max(maxEntries, row.entries.size());
   t.B = Teuchos::rcp(new CrsMatrix(t.multiplierMap, maxEntries, Tpetra::StaticProfile));
   t.rhs = Teuchos::rcp(new Vector(t.multiplierMap));
-  {
-    auto c = t.rhs->getDataNonConst();
-    std::vector<GO> cols(maxEntries);
-    std::vector<double> vals(maxEntries);
-    for (std::size_t l = 0; l < myRows.size(); ++l) {
-      const GO r = myRows[l];
-      int n = 0;
-      if (r < numAuto) {
-        const Row& row = rows[r];
-        for (n = 0; n < row.n; ++n) {
-          cols[n] = t.dofOffset[row.sub[n]] + row.dof[n];
-          vals[n] = row.coef[n];
-        }
-      } else if (r < numEq) {
-        const EqualityRow& row = set.user[r - numAuto];
-        for (const auto& e : row.entries) {
-          cols[n] = t.dofOffset[e.subdomain] + e.dof;
-          vals[n++] = e.coef;
-        }
-        c[l] = row.rhs;
-      } else {
-        const InequalityRow& row = set.ineq[r - numEq];
-        // Entries on the same dof are summed: Tpetra would sum them at fillComplete anyway.
-        for (const auto& e : row.entries) {
-          cols[n] = t.dofOffset[e.subdomain] + e.dof;
-          vals[n++] = e.coef;
-        }
-        c[l] = row.gap;
+  std::vector<GO> cols(maxEntries);
+  std::vector<double> vals(maxEntries);
+  for (std::size_t l = 0; l < myRows.size(); ++l) {
+    const GO r = myRows[l];
+    int n = 0;
+    if (r < numAuto) {
+      const Row& row = rows[r];
+      for (n = 0; n < row.n; ++n) {
+        cols[n] = t.dofOffset[row.sub[n]] + row.dof[n];
+        vals[n] = row.coef[n];
       }
-      t.B->insertGlobalValues(r, Teuchos::ArrayView<const GO>(cols.data(), n),
-                              Teuchos::ArrayView<const double>(vals.data(), n));
+    } else {
+      // Entries on the same dof are summed: Tpetra would sum them at fillComplete anyway.
+      const auto& entries = r < numEq ? set.user[r - numAuto].entries : set.ineq[r - numEq].entries;
+      for (const auto& e : entries) {
+        cols[n] = t.dofOffset[e.subdomain] + e.dof;
+        vals[n++] = e.coef;
+      }
     }
+    t.B->insertGlobalValues(r, Teuchos::ArrayView<const GO>(cols.data(), n),
+                            Teuchos::ArrayView<const double>(vals.data(), n));
   }
   t.B->fillComplete(t.primalMap, t.multiplierMap);
+  fillRightHandSide(numAuto, set.user, set.ineq, t);
 }
 
 // The rows touching each local subdomain.
@@ -567,17 +572,8 @@ bool updateTearingValues(const Teuchos::RCP<const Comm>& comm, Tearing& t,
     return false;
   for (std::size_t i = 0; i < set.ineq.size(); ++i)
     if (set.ineq[i].disc != t.inequalityRows[i].disc) return false;
-  auto c = t.rhs->getDataNonConst();
-  const Map& map = *t.multiplierMap;
-  for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) {
-    const GO r = map.getGlobalElement(static_cast<LO>(l));
-    if (t.isInequality(r))
-      c[l] = set.ineq[static_cast<std::size_t>(r - t.firstInequalityRow)].gap;
-    else if (t.isUserEquality(r))
-      c[l] = set.user[static_cast<std::size_t>(r - t.firstUserEqualityRow)].rhs;
-    else
-      c[l] = 0.0;  // as built: a caller may have shifted them since (an increment's origin)
-  }
+  // The automatic rows' zeros too: a caller may have shifted them since (an increment's origin).
+  fillRightHandSide(t.firstUserEqualityRow, set.user, set.ineq, t);
   t.userEqualityRows = std::move(set.user);
   t.inequalityRows = std::move(set.ineq);
   return true;
