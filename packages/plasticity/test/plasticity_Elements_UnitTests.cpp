@@ -394,6 +394,34 @@ TEUCHOS_UNIT_TEST(Elements, InvertedElementThrowsNamingIt) {
   }
 }
 
+// The kernels skip the checks for a mesh they already found valid (ElementMesh::checkedDigest),
+// and repeat them once its coordinates or connectivity change in place.
+TEUCHOS_UNIT_TEST(Elements, ChecksRepeatOnceTheMeshChanges) {
+  for (ElementType type : kAllTypes) {
+    ElementMesh m = distortedPatch(type).mesh;
+    TEST_EQUALITY(m.checkedDigest, 0ULL);
+    const tfeti::CsrMatrix K = plasticity::assembleStiffness(m, ElasticLaw());
+    const unsigned long long digest = m.checkedDigest;
+    TEST_INEQUALITY(digest, 0ULL);
+    // Checked again or not, the same matrix.
+    const tfeti::CsrMatrix K2 = plasticity::assembleStiffness(m, ElasticLaw());
+    TEST_EQUALITY(m.checkedDigest, digest);
+    TEST_COMPARE_ARRAYS(K.values, K2.values);
+    // Node 0 of element 0 moved through the element to its opposite side: inverted.
+    const int dim = m.dim(), n0 = m.connectivity[0];
+    const int far = m.connectivity[plasticity::cornersPerElement(type) / 2];
+    const std::vector<double> saved = m.coords;
+    for (int i = 0; i < dim; ++i)
+      m.coords[dim * n0 + i] =
+          saved[dim * far + i] + 2.0 * (saved[dim * far + i] - saved[dim * n0 + i]);
+    TEST_THROW(plasticity::assembleStiffness(m, ElasticLaw()), std::invalid_argument);
+    TEST_EQUALITY(m.checkedDigest, digest);  // a failed check records nothing
+    m.coords = saved;
+    TEST_NOTHROW(plasticity::assembleStiffness(m, ElasticLaw()));
+    TEST_EQUALITY(m.checkedDigest, digest);
+  }
+}
+
 TEUCHOS_UNIT_TEST(Elements, MisplacedMidNodeThrowsThroughTheNodalJacobian) {
   // A Quad9 on the unit square whose edge 0-1 mid-node sits at x = 0.2, inside the quarter
   // point: det J turns negative at corner 0 but stays positive at every 3x3 Gauss point.
