@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -12,6 +11,7 @@
 
 #include "plasticity_ReferenceValues.hpp"
 #include "plasticity_TotalLagrangian.hpp"
+#include "tfeti_Digest.hpp"
 
 namespace plasticity {
 namespace {
@@ -91,26 +91,12 @@ void checkJacobians(const ElementMesh& mesh, const HostView2& xe) {
                                   std::to_string(minDet(e)) + ")");
 }
 
-// 64-bit digest of the mesh's type, coordinates (their bits) and connectivity, word by word
-// (a multiply-rotate mix per word, then a final avalanche); never 0, the "not checked" value.
-unsigned long long meshDigest(const ElementMesh& mesh) {
-  unsigned long long h = 0x9e3779b97f4a7c15ULL ^ static_cast<unsigned long long>(mesh.type);
-  const auto mix = [&h](unsigned long long w) {
-    h ^= w * 0xbf58476d1ce4e5b9ULL;
-    h = (h << 27 | h >> 37) * 0x94d049bb133111ebULL;
-  };
-  mix(mesh.coords.size());
-  for (double x : mesh.coords) {
-    unsigned long long w;
-    std::memcpy(&w, &x, sizeof w);
-    mix(w);
-  }
-  mix(mesh.connectivity.size());
-  for (int n : mesh.connectivity) mix(static_cast<unsigned int>(n));
-  h ^= h >> 31;
-  h *= 0xff51afd7ed558ccdULL;
-  h ^= h >> 33;
-  return h == 0 ? 1 : h;
+// The digest of what the checks read: the type, the coordinates' bits and the connectivity.
+std::array<std::uint64_t, 2> meshDigest(const ElementMesh& mesh) {
+  tfeti::Digest d(static_cast<std::uint64_t>(mesh.type));
+  d.add(mesh.coords.data(), mesh.coords.size() * sizeof(double));
+  d.add(mesh.connectivity.data(), mesh.connectivity.size() * sizeof(int));
+  return d.value();
 }
 
 }  // namespace
@@ -124,7 +110,7 @@ std::string elementLabel(const ElementMesh& mesh, int e) {
 // The common prologue of every entry point. The checks are skipped for a mesh whose digest
 // matches the one recorded when it last passed them.
 HostView2 checkedElementCoords(const ElementMesh& mesh) {
-  const unsigned long long digest = meshDigest(mesh);
+  const std::array<std::uint64_t, 2> digest = meshDigest(mesh);
   const bool checked = mesh.checkedDigest == digest;
   if (!checked) validateMesh(mesh);
   HostView2 xe = gather(mesh, mesh.coords, "xe");

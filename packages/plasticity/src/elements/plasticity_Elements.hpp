@@ -5,7 +5,9 @@
 // is the element type's. Unknowns: dim per node, interleaved (dof dim*node + component).
 #include <Kokkos_Core_fwd.hpp>  // KOKKOS_INLINE_FUNCTION and View declarations; kernels in .cpp
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,11 +27,12 @@ struct ElementMesh {
   int dim() const { return spatialDimension(type); }
   int numNodes() const { return static_cast<int>(coords.size()) / dim(); }
   int numElements() const { return static_cast<int>(connectivity.size()) / nodesPerElement(type); }
-  // A digest of type, coords and connectivity when the kernels last found them valid (0: not
-  // checked). A Newton method evaluates f_int and the tangent on the same reference mesh many
-  // times; the kernels repeat the Jacobian checks only when the digest no longer matches (on
-  // step-42 at 64^3 plastic they were 1.6 % of the samples). Copies carry it with the data.
-  mutable unsigned long long checkedDigest = 0;
+  // The digest (tfeti::Digest) of type, coords and connectivity when the kernels last found them
+  // valid ({0, 0}: never). A Newton method evaluates f_int and the tangent on the same reference
+  // mesh many times; the kernels repeat the connectivity and Jacobian checks only when the digest
+  // no longer matches (on step-42 at 64^3 plastic they were 1.6 % of the samples). Copies carry
+  // it with the data. The kernels write it: one mesh is not for concurrent calls.
+  mutable std::array<std::uint64_t, 2> checkedDigest{};
 };
 
 // Stiffness matrix (tangent of the law at zero strain) of the whole mesh, dim dofs per node;

@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <iomanip>
 #include <numeric>
 #include <sstream>
 #include <string>
+
+#include "tfeti_Digest.hpp"
 
 namespace tfeti {
 
@@ -38,73 +39,12 @@ double CsrMatrix::frobeniusNorm() const {
   return std::sqrt(s);
 }
 
-namespace {
-constexpr std::uint64_t kPrime1 = 0x9e3779b185ebca87ULL, kPrime2 = 0xc2b2ae3d27d4eb4fULL,
-                        kPrime3 = 0x165667b19e3779f9ULL;
-
-std::uint64_t rotl(std::uint64_t x, int r) {
-  return (x << r) | (x >> (64 - r));
-}
-
-// SplitMix64's finalizer: every input bit moves every output bit.
-std::uint64_t mix64(std::uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-// Two 64-bit digests (seeds s0, s1) of `bytes` bytes in one pass, each in the manner of
-// xxHash64: four independent lanes over 32-byte stripes (so the multiplications pipeline; a
-// subdomain's K takes about a millisecond), the tail byte by byte, then a finalizer.
-std::array<std::uint64_t, 2> digestBytes(const void* data, std::size_t bytes, std::uint64_t s0,
-                                         std::uint64_t s1) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  const std::uint64_t seed[2] = {s0, s1};
-  std::uint64_t lane[2][4];
-  for (int k = 0; k < 2; ++k) {
-    lane[k][0] = seed[k] + kPrime1 + kPrime2;
-    lane[k][1] = seed[k] + kPrime2;
-    lane[k][2] = seed[k];
-    lane[k][3] = seed[k] - kPrime1;
-  }
-  const auto round = [](std::uint64_t acc, std::uint64_t w) {
-    return rotl(acc + w * kPrime2, 31) * kPrime1;
-  };
-  std::size_t at = 0;
-  for (; at + 32 <= bytes; at += 32)
-    for (int l = 0; l < 4; ++l) {
-      std::uint64_t w;
-      std::memcpy(&w, p + at + 8 * l, 8);
-      lane[0][l] = round(lane[0][l], w);
-      lane[1][l] = round(lane[1][l], w);
-    }
-  std::array<std::uint64_t, 2> d{};
-  for (int k = 0; k < 2; ++k) {
-    const std::uint64_t* v = lane[k];
-    std::uint64_t h = rotl(v[0], 1) + rotl(v[1], 7) + rotl(v[2], 12) + rotl(v[3], 18);
-    for (int l = 0; l < 4; ++l) h = (h ^ round(0, v[l])) * kPrime1 + kPrime3;
-    for (std::size_t t = at; t < bytes; ++t) h = rotl(h ^ (p[t] * kPrime3), 11) * kPrime1;
-    d[k] = mix64(h ^ bytes);
-  }
-  return d;
-}
-}  // namespace
-
 std::array<std::uint64_t, 2> CsrMatrix::digest() const {
-  // Two seeds, one pass over each array; the sizes and the arrays are chained into each digest.
-  const std::uint64_t seeds[2] = {0x243f6a8885a308d3ULL, 0x13198a2e03707344ULL};
-  std::array<std::uint64_t, 2> d{};
-  for (int k = 0; k < 2; ++k)
-    d[k] = mix64(seeds[k] ^ (static_cast<std::uint64_t>(rows) << 32) ^
-                 static_cast<std::uint32_t>(cols));
-  const auto chain = [&](const void* data, std::size_t bytes, std::uint64_t offset) {
-    const auto h = digestBytes(data, bytes, seeds[0] + offset, seeds[1] + offset);
-    for (int k = 0; k < 2; ++k) d[k] = mix64(d[k] ^ h[k]);
-  };
-  chain(rowPtr.data(), rowPtr.size() * sizeof(int), 0);
-  chain(colInd.data(), colInd.size() * sizeof(int), 1);
-  chain(values.data(), values.size() * sizeof(double), 2);
-  return d;
+  Digest d((static_cast<std::uint64_t>(rows) << 32) ^ static_cast<std::uint32_t>(cols));
+  d.add(rowPtr.data(), rowPtr.size() * sizeof(int));
+  d.add(colInd.data(), colInd.size() * sizeof(int));
+  d.add(values.data(), values.size() * sizeof(double));
+  return d.value();
 }
 
 bool CsrMatrix::isSymmetric(double tol) const {
