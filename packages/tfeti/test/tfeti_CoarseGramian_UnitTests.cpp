@@ -3,7 +3,9 @@
 // Tpetra's sparse product G * G^T entry by entry, and the projector P = I - G^T (G G^T)^{-1} G
 // built on its factor must satisfy G P x = 0 and P P x = P x to rounding; the columns of
 // Q = I - P at chosen multipliers, computed from G's entries and block coarse solves (SMALBE's
-// face solves), must equal Q applied to unit vectors.
+// face solves), must equal Q applied to unit vectors; and a face projector built on Q's factors
+// must equal the one that applies Q twice.
+#include <BelosTpetraAdapter.hpp>
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
 #include <TpetraExt_MatrixMatrix.hpp>
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "tfeti_CoarseGramian.hpp"
+#include "tfeti_FaceProjector.hpp"
 #include "tfeti_FetiSolver.hpp"
 #include "tfeti_Gather.hpp"
 #include "tfeti_ProjectedOperators.hpp"
@@ -110,6 +113,15 @@ void checkGramian(const std::string& formulation, int subdomainsPerSide, int ele
   TEST_COMPARE(PPv.norm2(), <, 1e-12 * Pv.norm2());
 }
 
+// Every multiplier id of the map, sorted, on every rank.
+std::vector<long long> allMultiplierIds(const tfeti::Map& map) {
+  std::vector<long long> mine;
+  for (tfeti::GO g : map.getNodeElementList()) mine.push_back(g);
+  std::vector<long long> all = tfeti::allGather(*map.getComm(), mine);
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
 }  // namespace
 
 TEUCHOS_UNIT_TEST(CoarseGramian, TfetiBlocksEqualSparseProduct) {
@@ -126,10 +138,8 @@ TEUCHOS_UNIT_TEST(CoarseGramian, ComplementColumnsEqualQOnUnitVectors) {
   const auto map = solver.tearing().multiplierMap;
   const auto& comm = *map->getComm();
   // Candidates C: every 5th multiplier id; columns J: every 3rd candidate, in reverse order.
-  std::vector<long long> mine;
-  for (tfeti::GO g : map->getNodeElementList()) mine.push_back(g);
-  std::vector<long long> all = tfeti::allGather(comm, mine), C, J;
-  std::sort(all.begin(), all.end());
+  const std::vector<long long> all = allMultiplierIds(*map);
+  std::vector<long long> C, J;
   for (std::size_t k = 0; k < all.size(); k += 5) C.push_back(all[k]);
   for (std::size_t k = 0; k < C.size(); k += 3) J.insert(J.begin(), C[k]);
   TEST_COMPARE(J.size(), >, std::size_t(50));
@@ -169,4 +179,88 @@ TEUCHOS_UNIT_TEST(CoarseGramian, ComplementColumnsEqualQOnUnitVectors) {
   // A column that is not a candidate is an error, not a silent zero.
   std::vector<long long> notCandidate{all[1]};
   TEST_THROW(structured.columns(notCandidate, columns), std::logic_error);
+}
+
+// A face projector built on Q's factors (one pass over G and one over G^T per application)
+// against the one that applies Q twice: the same P_F x, multipliers and affine projection to
+// rounding, with unit rows and circle rows; and P_F x in ker G, zero on the rows.
+TEUCHOS_UNIT_TEST(CoarseGramian, FaceProjectorFromFactorsEqualsTwoProjections) {
+  using Face = tfeti::FaceProjector<double, tfeti::MultiVector, tfeti::Operator>;
+  const tfeti::FetiSolver solver = boxSolver("TFETI", 3, 2);
+  const tfeti::CoarseSpace& coarse = solver.coarseSpace();
+  const auto map = solver.tearing().multiplierMap;
+  const auto& comm = *map->getComm();
+  const std::vector<long long> all = allMultiplierIds(*map);
+  std::vector<long long> active;
+  // Unit rows: every 7th id; circles: the pairs (k, k + 1) at every 11th id clear of them.
+  std::vector<tfeti::FaceCircle<double>> circles;
+  for (std::size_t k = 0; k < all.size(); k += 7) active.push_back(all[k]);
+  for (std::size_t k = 3; k + 1 < all.size(); k += 11) {
+    const bool clear = !std::binary_search(active.begin(), active.end(), all[k]) &&
+                       !std::binary_search(active.begin(), active.end(), all[k + 1]) &&
+                       map->getLocalElement(static_cast<tfeti::GO>(all[k])) !=
+                           Teuchos::OrdinalTraits<tfeti::LO>::invalid();
+    int here = clear && map->getLocalElement(static_cast<tfeti::GO>(all[k + 1])) !=
+                            Teuchos::OrdinalTraits<tfeti::LO>::invalid()
+                   ? 1
+                   : 0,
+        everywhere = 0;
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &here, &everywhere);
+    const double angle = 0.3 * static_cast<double>(k);
+    if (everywhere == 1) circles.push_back({all[k], std::cos(angle), std::sin(angle)});
+  }
+  TEST_COMPARE(circles.size(), >, std::size_t(5));
+  const Teuchos::RCP<const tfeti::Operator> Q =
+      Teuchos::rcp(new tfeti::ComplementProjector(map, coarse));
+  const tfeti::CoarseComplementFactors factors(coarse);
+  tfeti::Vector like(map);
+  const Face twice(Q, active, like, nullptr, circles);
+  const Face once(Q, active, like, nullptr, circles, &factors);
+  TEST_ASSERT(twice.valid() && once.valid());
+
+  tfeti::Vector x(map), y1(map), y2(map);
+  x.randomize();
+  const auto maxDiff = [](const tfeti::Vector& a, const tfeti::Vector& b) {
+    tfeti::Vector d(a, Teuchos::Copy);
+    d.update(-1.0, b, 1.0);
+    return d.normInf() / std::max(a.normInf(), 1e-300);
+  };
+  twice.apply(x, y1);
+  once.apply(x, y2);
+  out << active.size() << " unit rows, " << circles.size() << " circles: P_F x differs by "
+      << maxDiff(y1, y2) << " (relative, max norm)\n";
+  TEST_COMPARE(maxDiff(y1, y2), <=, 1e-13);
+  // P_F x lies in ker G and vanishes on the rows.
+  tfeti::Vector Gy(coarse.coarseMap()), Gx(coarse.coarseMap());
+  coarse.G()->apply(y2, Gy);
+  coarse.G()->apply(x, Gx);
+  TEST_COMPARE(Gy.norm2(), <=, 1e-12 * Gx.norm2());
+  const std::vector<double> rows = once.gatherRows(y2);
+  double rowMax = 0.0;
+  for (double r : rows) rowMax = std::max(rowMax, std::abs(r));
+  TEST_COMPARE(rowMax, <=, 1e-13 * y2.normInf());
+  // In place, as the face CG applies it.
+  Tpetra::deep_copy(y1, x);
+  once.apply(y1, y1);
+  TEST_COMPARE(maxDiff(y1, y2), <=, 1e-15);
+
+  const std::vector<double> s1 = twice.activeMultipliers(x), s2 = once.activeMultipliers(x);
+  TEST_EQUALITY(s1.size(), s2.size());
+  double sDiff = 0.0, sScale = 0.0;
+  for (std::size_t k = 0; k < s1.size(); ++k)
+    sDiff = std::max(sDiff, std::abs(s1[k] - s2[k])), sScale = std::max(sScale, std::abs(s1[k]));
+  TEST_COMPARE(sDiff, <=, 1e-13 * sScale);
+
+  std::vector<double> r(s1.size());
+  for (std::size_t k = 0; k < r.size(); ++k) r[k] = std::sin(1.0 + static_cast<double>(k));
+  Tpetra::deep_copy(y1, x);
+  Tpetra::deep_copy(y2, x);
+  twice.projectAffine(r, y1);
+  once.projectAffine(r, y2);
+  TEST_COMPARE(maxDiff(y1, y2), <=, 1e-13);
+  const std::vector<double> held = once.gatherRows(y2);
+  double heldDiff = 0.0;
+  for (std::size_t k = 0; k < r.size(); ++k)
+    heldDiff = std::max(heldDiff, std::abs(held[k] - r[k]));
+  TEST_COMPARE(heldDiff, <=, 1e-13);
 }

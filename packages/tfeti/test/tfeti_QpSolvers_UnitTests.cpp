@@ -683,6 +683,61 @@ TEUCHOS_UNIT_TEST(Smalbe, FaceToleranceBoundsTheFreeGradient) {
   TEST_COMPARE(c[1].history.back(), <, c[0].history.back());
 }
 
+// P F P with P = I - Q, the Hessian of a projected dual problem (FETI's P F P).
+class Projected : public Operator {
+ public:
+  Projected(RCP<const Operator> F, RCP<const Operator> Q) : F_(std::move(F)), Q_(std::move(Q)) {}
+  RCP<const Map> getDomainMap() const override { return F_->getDomainMap(); }
+  RCP<const Map> getRangeMap() const override { return F_->getRangeMap(); }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp = Teuchos::NO_TRANS,
+             double alpha = 1.0, double beta = 0.0) const override {
+    MultiVector px(X, Teuchos::Copy), fpx(X.getMap(), X.getNumVectors());
+    Q_->apply(X, px, Teuchos::NO_TRANS, -1.0, 1.0);
+    F_->apply(px, fpx);
+    Q_->apply(fpx, fpx, Teuchos::NO_TRANS, -1.0, 1.0);
+    Y.update(alpha, fpx, beta);
+  }
+
+ private:
+  RCP<const Operator> F_, Q_;
+};
+
+// The face solves' in-face Hessian (setInFaceOperators): on the obstacle problem with zero mean,
+// the Hessian P F P with F the Laplacian, the face CG applying F itself (F v - P F P v is in
+// range(Q) for Q v = 0) reaches the solution of the CG that applies P F P, in as many
+// multiplications.
+TEUCHOS_UNIT_TEST(Smalbe, InFaceHessianReachesTheSameSolution) {
+  auto o = obstacle(world(), 15, [](double x, double) { return 60.0 * (x - 0.65); });
+  auto ones = vectorOf(o.x->getMap(), [](GO) { return 1.0; });
+  auto Q = rcp(new SpanProjector(*ones));
+  const RCP<const Operator> PFP = rcp(new Projected(o.A, Q));
+  std::vector<std::vector<double>> u;
+  std::vector<long long> mults;
+  for (bool inFace : {false, true}) {
+    Teuchos::ParameterList p = smalbeParams(1e-10);
+    p.set("Face solve", "pcpg");
+    o.x->putScalar(0.0);
+    Smalbe solver(Qp{PFP, o.b, o.lower, o.x}, Q, p);
+    if (inFace) solver.setInFaceOperators(o.A, Teuchos::null);
+    const Belos::ReturnType result = solver.solve();
+    out << (inFace ? "in-face F: " : "P F P:     ") << solver.counters().message << "\n";
+    TEST_EQUALITY(result, Belos::Converged);
+    TEST_ASSERT(solver.faceCounters().accepted);
+    TEST_COMPARE(solver.faceCounters().iterations, >, 0);
+    const auto muView = solver.getMultiplier()->getVector(0);
+    const Kkt k = checkKkt(*PFP, *o.b, *o.lower, *o.x, muView.getRawPtr(), Q.get());
+    expectKkt(k, 1e-9 * o.b->norm2(), out, success);
+    u.push_back(gatherAll(*o.x));
+    mults.push_back(solver.counters().hessianMultiplications);
+  }
+  const double scale = tfeti_test::maxAbs(u[0]);
+  double d = 0.0;
+  for (std::size_t i = 0; i < u[0].size(); ++i) d = std::max(d, std::abs(u[1][i] - u[0][i]));
+  out << "max |u_F - u_PFP| / max |u| = " << d / scale << "\n";
+  TEST_COMPARE(d, <=, 1e-8 * scale);
+  TEST_EQUALITY(mults[1], mults[0]);
+}
+
 // ---------------------------------------------------------------------------------------------
 // 6. The rank count does not change the results: the obstacle problem (MPRGP) and the equality
 // problem (SMALBE) on sub-communicators of 1, 2, ..., P ranks.

@@ -141,6 +141,24 @@ void CoarseSpace::leastSquaresCoefficients(const Vector& x, Vector& alpha) const
   coarseSolve(*c_, alpha);
 }
 
+void CoarseSpace::coefficientsEverywhere(const Vector& x, double* a) const {
+  if (dimension_ == 0) return;
+  G_->apply(x, *c_);
+  replicated_->doImport(*c_, *replicate_, Tpetra::INSERT);
+  auto r = replicated_->getData();
+  for (GO g = 0; g < dimension_; ++g) rhs_[g] = r[g];
+  factor_->solve(rhs_.data(), a);
+}
+
+void CoarseSpace::addTransposeEverywhere(const double* a, double scale, Vector& y) const {
+  if (dimension_ == 0) return;
+  auto local = alpha_->getDataNonConst();
+  const auto& map = *coarseMap_;
+  for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) local[l] = a[map.getGlobalElement(l)];
+  local = Teuchos::null;
+  G_->apply(*alpha_, y, Teuchos::TRANS, scale, 1.0);
+}
+
 void CoarseSpace::project(const Vector& x, Vector& y) const {
   if (&x != &y) Tpetra::deep_copy(y, x);
   if (dimension_ == 0) return;

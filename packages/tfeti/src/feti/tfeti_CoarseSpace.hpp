@@ -32,6 +32,10 @@ class CoarseSpace {
                           const std::string& localSolver) const;
   // alpha = (G G^T)^{-1} c
   void coarseSolve(const Vector& c, Vector& alpha) const;
+  // a = (G G^T)^{-1} G x on every rank (dimension() values; collective).
+  void coefficientsEverywhere(const Vector& x, double* a) const;
+  // y += scale G^T a for coefficients a that every rank holds alike (collective).
+  void addTransposeEverywhere(const double* a, double scale, Vector& y) const;
   // y = P x (y may alias x)
   void project(const Vector& x, Vector& y) const;
   // G's columns at the multiplier ids `ids`, on every rank (collective): per id its entries as

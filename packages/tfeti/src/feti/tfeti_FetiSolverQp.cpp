@@ -255,6 +255,11 @@ Belos::ReturnType FetiSolver::solveSmalbe(DualQp& dual, QpCounters& counters) {
   // The face solves' columns of Q from G's entries: step-42 at 64^3 elastic asked for about 800
   // per QP at 7 ms each as applications of Q; the solve fell from 75-78 s to 55-57 s.
   solver.setComplementColumns(Teuchos::rcp(new CoarseComplementColumns(*coarse_)));
+  // Every face CG direction p lies in ker G, where P F P p = P F p and (P M P + Q / rho) p =
+  // P M p, and the face's projector removes the outer P: F and M alone, without the four coarse
+  // projections of each CG step.
+  solver.setInFaceOperators(F_, dual.prec.is_null() ? Teuchos::null : M_);
+  solver.setComplementFactors(Teuchos::rcp(new CoarseComplementFactors(*coarse_)));
   if (warmFace) solver.setFaceStart(warmIncrement());
   const auto nu0 = smalbeInitialMultiplier(dual.warm, *dual.Q);
   if (!nu0.is_null()) solver.setInitialMultiplier(nu0);

@@ -94,4 +94,30 @@ void CoarseComplementColumns::columns(const std::vector<long long>& J,
     }
 }
 
+void CoarseComplementFactors::coefficients(const MultiVector& x, std::vector<Scalar>& a) const {
+  a.assign(static_cast<std::size_t>(coarse_.dimension()), 0.0);
+  coarse_.coefficientsEverywhere(*x.getVector(0), a.data());
+}
+
+void CoarseComplementFactors::addTranspose(const std::vector<Scalar>& a, Scalar alpha,
+                                           MultiVector& y) const {
+  coarse_.addTransposeEverywhere(a.data(), alpha, *y.getVectorNonConst(0));
+}
+
+void CoarseComplementFactors::solve(std::vector<Scalar>& b) const {
+  if (b.empty()) return;
+  x_.resize(b.size());
+  coarse_.coarseSolveLocal(b.data(), x_.data(), 1);
+  b.swap(x_);
+}
+
+std::vector<std::vector<std::pair<int, Scalar>>> CoarseComplementFactors::columns(
+    const std::vector<long long>& ids) const {
+  const auto g = coarse_.columnsOfG(ids);
+  std::vector<std::vector<std::pair<int, Scalar>>> out(g.size());
+  for (std::size_t i = 0; i < g.size(); ++i)
+    for (const auto& e : g[i]) out[i].emplace_back(static_cast<int>(e.first), e.second);
+  return out;
+}
+
 }  // namespace tfeti

@@ -5,6 +5,7 @@
 // penalized / augmented Hessian is P F P + rho Q.
 #include "tfeti_CoarseSpace.hpp"
 #include "tfeti_ComplementColumns.hpp"
+#include "tfeti_ComplementFactors.hpp"
 
 namespace tfeti {
 
@@ -73,6 +74,25 @@ class CoarseComplementColumns : public ComplementColumns<Scalar> {
   const CoarseSpace& coarse_;
   std::vector<long long> c_;
   std::vector<std::vector<std::pair<GO, double>>> g_;  // G's column of each candidate
+};
+
+// Q = G^T (G G^T)^{-1} G in its factors, for SMALBE's face projectors: one pass over G and one
+// over G^T per application of P_F (tfeti_FaceProjector.hpp) instead of two of each, and two
+// coarse solves on the replicated factor instead of two Imports and solves.
+class CoarseComplementFactors : public ComplementFactors<Scalar, MultiVector> {
+ public:
+  // coarse must outlive this.
+  explicit CoarseComplementFactors(const CoarseSpace& coarse) : coarse_(coarse) {}
+  int rows() const override { return static_cast<int>(coarse_.dimension()); }
+  void coefficients(const MultiVector& x, std::vector<Scalar>& a) const override;
+  void addTranspose(const std::vector<Scalar>& a, Scalar alpha, MultiVector& y) const override;
+  void solve(std::vector<Scalar>& b) const override;
+  std::vector<std::vector<std::pair<int, Scalar>>> columns(
+      const std::vector<long long>& ids) const override;
+
+ private:
+  const CoarseSpace& coarse_;
+  mutable std::vector<Scalar> x_;
 };
 
 }  // namespace tfeti

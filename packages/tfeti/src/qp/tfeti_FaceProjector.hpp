@@ -15,6 +15,11 @@
 // of E_A (its outward normal at the face's entry point), so that the face holds n . (x - c) = r
 // and leaves the tangent free. Rows are the unit rows first, then the circles; they have unit
 // norm and disjoint supports, so E_A E_A^T = I still and S = I - E_A Q E_A^T as above.
+//
+// With Q's factors Q = G^T (G G^T)^{-1} G (tfeti_ComplementFactors.hpp) one application of P_F
+// costs one of Q: with a = (G G^T)^{-1} G x and s = S^{-1} E_A (x - G^T a),
+//   P_F x = x - E_A^T s - G^T (a - (G G^T)^{-1} (G E_A^T) s),
+// where G E_A^T s and (G^T a) at the rows come from G's columns at the rows.
 #include <BelosMultiVecTraits.hpp>
 #include <BelosOperatorTraits.hpp>
 #include <Teuchos_LAPACK.hpp>
@@ -24,6 +29,7 @@
 #include <vector>
 
 #include "tfeti_BoundTraits.hpp"
+#include "tfeti_ComplementFactors.hpp"
 #include "tfeti_FaceGramian.hpp"
 
 namespace tfeti {
@@ -43,14 +49,17 @@ class FaceProjector {
   using BT = BoundTraits<S, MV>;
 
   // active: sorted global indices (BoundTraits::activeIndices); like: a vector on the map.
-  // gramian (optional): the columns of Q shared by the faces of one solve; the result is the same
-  // with or without it.
+  // gramian (optional): the columns of Q shared by the faces of one solve; factors (optional):
+  // Q's factors, for one application of Q per application of P_F. The result is the same, to
+  // rounding, with or without either.
   FaceProjector(Teuchos::RCP<const OP> Q, std::vector<long long> active, const MV& like,
-                FaceGramian<S, MV, OP>* gramian = nullptr, std::vector<FaceCircle<S>> circles = {})
+                FaceGramian<S, MV, OP>* gramian = nullptr, std::vector<FaceCircle<S>> circles = {},
+                const ComplementFactors<S, MV>* factors = nullptr)
       : Q_(std::move(Q)),
         active_(std::move(active)),
         circles_(std::move(circles)),
-        m_(static_cast<int>(active_.size() + circles_.size())) {
+        m_(static_cast<int>(active_.size() + circles_.size())),
+        factors_(factors) {
     t1_ = MVT::Clone(like, 1);
     t2_ = MVT::Clone(like, 1);
     // The components the rows touch: the unit rows', then both of each circle's.
@@ -58,6 +67,7 @@ class FaceProjector {
     for (const auto& c : circles_) idx_.push_back(c.index), idx_.push_back(c.index + 1);
     std::vector<long long> sorted = idx_;
     std::sort(sorted.begin(), sorted.end());
+    if (factors_ != nullptr) gColumns_ = factors_->columns(idx_);
     // S = I - E_A Q E_A^T, column by column (each a Q c_j gathered on the rows).
     L_.assign(static_cast<std::size_t>(m_) * m_, S(0));
     if (gramian != nullptr && gramian->covers(sorted)) {
@@ -116,19 +126,17 @@ class FaceProjector {
   std::vector<S> gatherRows(const MV& v) const { return combine(BT::gatherAt(v, idx_)); }
   // v += alpha E_A^T s.
   void addRows(const std::vector<S>& s, S alpha, MV& v) const {
-    std::vector<S> values(s.begin(), s.begin() + active_.size());
-    for (std::size_t k = 0; k < circles_.size(); ++k) {
-      const S sk = s[active_.size() + k];
-      values.push_back(circles_[k].n0 * sk);
-      values.push_back(circles_[k].n1 * sk);
-    }
-    BT::addAt(idx_, values, alpha, v);
+    BT::addAt(idx_, expandRows(s), alpha, v);
   }
   long long projectorApplications() const { return qApplies_; }
 
   // sigma = S^{-1} E_A P g: the active rows' multipliers, with which
   // g = P_F g + E_A^T sigma + (a part in range(Q)).
   std::vector<S> activeMultipliers(const MV& g) const {
+    if (factors_ != nullptr) {
+      std::vector<S> a;
+      return projectedRows(g, a);
+    }
     applyP(g, *t1_);
     std::vector<S> s = gatherRows(*t1_);
     solveS(s);
@@ -137,6 +145,12 @@ class FaceProjector {
 
   // y = P_F x (y may be x).
   void apply(const MV& x, MV& y) const {
+    if (factors_ != nullptr) {
+      std::vector<S> a;
+      const std::vector<S> s = projectedRows(x, a);
+      subtractRowsAndRange(x, a, s, y);
+      return;
+    }
     applyP(x, *t1_);
     std::vector<S> s = gatherRows(*t1_);
     solveS(s);
@@ -150,6 +164,15 @@ class FaceProjector {
 
   // The point of {Q x = 0, E_A x = r} nearest to x: P_F x + P E_A^T S^{-1} r.
   void projectAffine(const std::vector<S>& r, MV& x) const {
+    if (factors_ != nullptr) {
+      // P_F x + P E_A^T t, t = S^{-1} r: P_F x's formula with s - t for s.
+      std::vector<S> a, t = r;
+      std::vector<S> s = projectedRows(x, a);
+      solveS(t);
+      for (std::size_t k = 0; k < s.size(); ++k) s[k] -= t[k];
+      subtractRowsAndRange(x, a, s, x);
+      return;
+    }
     apply(x, x);
     std::vector<S> s = r;
     solveS(s);
@@ -165,6 +188,8 @@ class FaceProjector {
   std::vector<long long> active_;
   std::vector<FaceCircle<S>> circles_;
   int m_;
+  const ComplementFactors<S, MV>* factors_;
+  std::vector<std::vector<std::pair<int, S>>> gColumns_;  // G's column at each of idx_
   std::vector<long long> idx_;  // the unit rows, then each circle's two components
   std::vector<S> L_;            // Cholesky factor of S, column-major, lower triangle
   bool valid_ = false;
@@ -188,6 +213,39 @@ class FaceProjector {
       r.push_back(circles_[k].n0 * atIdx[i] + circles_[k].n1 * atIdx[i + 1]);
     }
     return r;
+  }
+  // With factors: s = S^{-1} E_A P x, and a = (G G^T)^{-1} G x (one pass over G).
+  std::vector<S> projectedRows(const MV& x, std::vector<S>& a) const {
+    factors_->coefficients(x, a);
+    ++qApplies_;
+    std::vector<S> at = BT::gatherAt(x, idx_);
+    for (std::size_t i = 0; i < idx_.size(); ++i)
+      for (const auto& e : gColumns_[i]) at[i] -= e.second * a[e.first];
+    std::vector<S> s = combine(at);
+    solveS(s);
+    return s;
+  }
+  // y = x - E_A^T s - G^T (a - (G G^T)^{-1} G E_A^T s) (one pass over G^T; y may be x).
+  void subtractRowsAndRange(const MV& x, std::vector<S> a, const std::vector<S>& s, MV& y) const {
+    const std::vector<S> v = expandRows(s);
+    std::vector<S> c(a.size(), S(0));
+    for (std::size_t i = 0; i < idx_.size(); ++i)
+      for (const auto& e : gColumns_[i]) c[e.first] += e.second * v[i];
+    factors_->solve(c);
+    for (std::size_t k = 0; k < a.size(); ++k) a[k] -= c[k];
+    if (&x != &y) MVT::Assign(x, y);
+    BT::addAt(idx_, v, S(-1), y);
+    factors_->addTranspose(a, S(-1), y);
+  }
+  // E_A^T s at idx_.
+  std::vector<S> expandRows(const std::vector<S>& s) const {
+    std::vector<S> values(s.begin(), s.begin() + active_.size());
+    for (std::size_t k = 0; k < circles_.size(); ++k) {
+      const S sk = s[active_.size() + k];
+      values.push_back(circles_[k].n0 * sk);
+      values.push_back(circles_[k].n1 * sk);
+    }
+    return values;
   }
   void solveS(std::vector<S>& s) const {
     if (m_ == 0) return;

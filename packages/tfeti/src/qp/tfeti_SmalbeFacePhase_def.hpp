@@ -27,6 +27,8 @@ template <class S, class MV, class OP>
 struct SmalbeSolMgr<S, MV, OP>::FaceRun {
   bool root = false;
   Teuchos::RCP<const OP> A, M;  // the timed Hessian; the preconditioner (null: none)
+  // Their in-face counterparts for the CG (setInFaceOperators; A and M where none is given).
+  Teuchos::RCP<const OP> cgA, cgM;
   // Discs: the circles of the current face (tfeti_SeparableSet.hpp), the curvature nu / r on
   // their components (null without circles) and the face's Hessian A + diag(curvature).
   std::vector<typename SeparableSet<S, MV>::Circle> circles;
@@ -120,6 +122,10 @@ typename SmalbeSolMgr<S, MV, OP>::FaceRun SmalbeSolMgr<S, MV, OP>::startFaceRun(
   run.root = BT::commRank(*qp_.x) == 0;
   run.A = TimedOperator<S, MV, OP>::wrap(qp_.A, solverTimer("tfeti: Hessian apply"));
   run.M = params_.sublist("MPRGP").get<bool>("Preconditioning in face") ? P_ : Teuchos::null;
+  run.cgA = inFaceA_.is_null()
+                ? run.A
+                : TimedOperator<S, MV, OP>::wrap(inFaceA_, solverTimer("tfeti: Hessian apply"));
+  run.cgM = run.M.is_null() || inFaceM_.is_null() ? run.M : inFaceM_;
   run.x = MVT::CloneCopy(start != nullptr ? *start : *qp_.x);
   run.g = MVT::Clone(*qp_.x, 1), run.t = MVT::Clone(*qp_.x, 1), run.mu = MVT::Clone(*qp_.x, 1);
   run.phi = MVT::Clone(*qp_.x, 1), run.chopped = MVT::Clone(*qp_.x, 1);
@@ -141,7 +147,8 @@ std::unique_ptr<FaceProjector<S, MV, OP>> SmalbeSolMgr<S, MV, OP>::faceOf(
   // a disc of radius 0 (a point) stay unit rows, held where they are.
   run.circles.clear();
   if (qp_.discs.is_null())
-    return std::make_unique<FaceProjector<S, MV, OP>>(Q_, active, x, gramian_.get());
+    return std::make_unique<FaceProjector<S, MV, OP>>(
+        Q_, active, x, gramian_.get(), std::vector<FaceCircle<S>>(), complementFactors_.get());
   run.circles = feasibleSet(qp_).circles(x, active);
   std::vector<long long> unit;
   std::vector<FaceCircle<S>> rows;
@@ -154,7 +161,7 @@ std::unique_ptr<FaceProjector<S, MV, OP>> SmalbeSolMgr<S, MV, OP>::faceOf(
   }
   for (const auto& c : run.circles) rows.push_back({c.index, c.n0, c.n1});
   return std::make_unique<FaceProjector<S, MV, OP>>(Q_, std::move(unit), x, gramian_.get(),
-                                                    std::move(rows));
+                                                    std::move(rows), complementFactors_.get());
 }
 
 template <class S, class MV, class OP>
@@ -189,7 +196,7 @@ void SmalbeSolMgr<S, MV, OP>::setCircleCurvature(const FaceProjector<S, MV, OP>&
                                                  FaceRun& run) {
   using MVT = Belos::MultiVecTraits<S, MV>;
   using BT = BoundTraits<S, MV>;
-  run.faceA = run.A;
+  run.faceA = run.cgA;
   run.curvature = Teuchos::null;
   run.stiff = FaceStiffCircles<S, MV>();
   if (run.circles.empty()) return;
@@ -216,7 +223,7 @@ void SmalbeSolMgr<S, MV, OP>::setCircleCurvature(const FaceProjector<S, MV, OP>&
   run.curvature = MVT::Clone(*run.x, 1);
   MVT::MvInit(*run.curvature, S(0));
   BT::setAt(idx, d, *run.curvature);
-  run.faceA = OperatorSum<S, MV, OP>::shift(run.A, run.curvature);
+  run.faceA = OperatorSum<S, MV, OP>::shift(run.cgA, run.curvature);
   addCurvatureGradient(run, *run.x, S(1), *run.g);
 }
 
@@ -292,7 +299,10 @@ void SmalbeSolMgr<S, MV, OP>::addCurvatureGradient(const FaceRun& run, const MV&
 template <class S, class MV, class OP>
 FacePcpgResult<S> SmalbeSolMgr<S, MV, OP>::faceCg(const FaceProjector<S, MV, OP>& face, S tol,
                                                   int maxIterations, FaceRun& run) {
-  FacePcpg<S, MV, OP> pcpg(run.faceA, run.M, face, tol, maxIterations, S(0), run.stiff);
+  // The stiff circles' update is M's (P M P + Q / rho for FETI), whose image of a face vector
+  // the in-face M gives only up to range(Q): with stiff circles the CG keeps M.
+  const Teuchos::RCP<const OP> M = run.stiff.empty() ? run.cgM : run.M;
+  FacePcpg<S, MV, OP> pcpg(run.faceA, M, face, tol, maxIterations, S(0), run.stiff);
   const FacePcpgResult<S> res = pcpg.solve(*run.x, *run.g);
   counters_.hessianMultiplications += res.iterations;
   face_.iterations += res.iterations;
@@ -468,7 +478,7 @@ typename SmalbeSolMgr<S, MV, OP>::FaceVerdict SmalbeSolMgr<S, MV, OP>::trialFace
   using BT = BoundTraits<S, MV>;
   FaceVerdict v;
   ++face_.levelSolves;
-  FaceProjector<S, MV, OP> face(Q_, active, x, gramian_.get());
+  FaceProjector<S, MV, OP> face(Q_, active, x, gramian_.get(), {}, complementFactors_.get());
   qApplies_ += face.projectorApplications();
   if (!face.valid()) return v;
   v.valid = true;
@@ -484,14 +494,19 @@ typename SmalbeSolMgr<S, MV, OP>::FaceVerdict SmalbeSolMgr<S, MV, OP>::trialFace
   OPT::Apply(*A, x, *g);
   MVT::MvAddMv(S(1), *g, S(-1), *qp_.b, *g);
   ++counters_.hessianMultiplications;
-  const Teuchos::RCP<const OP> M =
-      params_.sublist("MPRGP").get<bool>("Preconditioning in face") ? P_ : Teuchos::null;
+  const bool precondition = params_.sublist("MPRGP").get<bool>("Preconditioning in face");
+  const Teuchos::RCP<const OP> M = !precondition        ? Teuchos::null
+                                   : inFaceM_.is_null() ? P_
+                                                        : inFaceM_;
+  const auto faceA = inFaceA_.is_null() ? A
+                                        : TimedOperator<S, MV, OP>::wrap(
+                                              inFaceA_, solverTimer("tfeti: Hessian apply"));
   // Solved loosely, to kLevelReduction of its own start's projected gradient (or to tol if that
   // is looser; tfeti_SmalbeSolMgr_decl.hpp), then, if the verdict says nothing, to tol.
   const int maxIterations = params_.get<int>("Face maximum iterations");
   const auto solveTo = [&](S reduction) {
     const FacePcpgResult<S> res =
-        FacePcpg<S, MV, OP>(A, M, face, S(tol), maxIterations, reduction).solve(x, *g);
+        FacePcpg<S, MV, OP>(faceA, M, face, S(tol), maxIterations, reduction).solve(x, *g);
     BT::setAt(active, values, x);
     judgeTrialFace(face, judged, x, *g, v);
     return res;

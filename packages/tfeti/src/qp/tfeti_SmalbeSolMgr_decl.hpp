@@ -73,6 +73,7 @@
 #include <vector>
 
 #include "tfeti_ComplementColumns.hpp"
+#include "tfeti_ComplementFactors.hpp"
 #include "tfeti_QpProblem.hpp"
 #include "tfeti_SolverConventions.hpp"
 #include "tfeti_SolverOutput.hpp"
@@ -152,6 +153,21 @@ class SmalbeSolMgr {
   // same columns, to rounding.
   void setComplementColumns(Teuchos::RCP<ComplementColumns<S>> columns) {
     complementColumns_ = std::move(columns);
+  }
+  // Q's factors (FETI: G and the coarse factor), with which each application of a face's
+  // projector costs one of Q instead of two (tfeti_FaceProjector.hpp); null: Q applied as is.
+  void setComplementFactors(Teuchos::RCP<const ComplementFactors<S, MV>> factors) {
+    complementFactors_ = std::move(factors);
+  }
+  // Operators the face solves may apply in place of A and of the preconditioner on vectors of
+  // ker Q, where every face CG direction lies: A_f v - A v and M_f v - M v in range(Q) whenever
+  // Q v = 0 (FETI: F for P F P, and M for P M P + Q / rho; neither needs a coarse projection).
+  // The face CG's recursive gradient then differs from A x - b by a part in range(Q), which
+  // every use of it removes (P_F, and the multipliers S^{-1} E_A P g); the face's entry and final
+  // gradients stay A x - b. Null: A and the preconditioner themselves.
+  void setInFaceOperators(Teuchos::RCP<const OP> A, Teuchos::RCP<const OP> M) {
+    inFaceA_ = std::move(A);
+    inFaceM_ = std::move(M);
   }
   // Progress lines of SMALBE and its inner MPRGP (Verbosity >= 1, rank 0) go here, e.g. a
   // Teuchos::FancyOStream; null: std::cout. Its format state is never changed.
@@ -274,6 +290,8 @@ class SmalbeSolMgr {
   Teuchos::RCP<const MV> faceStart_;
   Teuchos::RCP<FaceGramian<S, MV, OP>> gramian_;  // during a solve with "Face solve" = pcpg
   Teuchos::RCP<ComplementColumns<S>> complementColumns_;
+  Teuchos::RCP<const OP> inFaceA_, inFaceM_;  // setInFaceOperators
+  Teuchos::RCP<const ComplementFactors<S, MV>> complementFactors_;
   // "Face relative tolerance"'s default (docs/qp_solvers.md, "Face solve"): the face CG's
   // ||P_F g|| is the residual of the rows that hold with equality (for FETI, B u - c over the
   // gluing rows and the contact rows in contact), which SMALBE alone ends one to two orders
