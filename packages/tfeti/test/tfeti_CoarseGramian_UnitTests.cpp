@@ -181,10 +181,13 @@ TEUCHOS_UNIT_TEST(CoarseGramian, ComplementColumnsEqualQOnUnitVectors) {
   TEST_THROW(structured.columns(notCandidate, columns), std::logic_error);
 }
 
-// A face projector built on Q's factors (one pass over G and one over G^T per application)
-// against the one that applies Q twice: the same P_F x, multipliers and affine projection to
-// rounding, with unit rows and circle rows; and P_F x in ker G, zero on the rows.
-TEUCHOS_UNIT_TEST(CoarseGramian, FaceProjectorFromFactorsEqualsTwoProjections) {
+namespace {
+
+// A face projector built on Q's factors against the one that applies Q twice, on a face of
+// every unitStep-th multiplier and circles at every circleStep-th: the same P_F x, multipliers
+// and affine projection to rounding; P_F x in ker G and zero on the rows.
+void checkFactoredFace(std::size_t unitStep, std::size_t circleStep, bool coarseSide,
+                       Teuchos::FancyOStream& out, bool& success) {
   using Face = tfeti::FaceProjector<double, tfeti::MultiVector, tfeti::Operator>;
   const tfeti::FetiSolver solver = boxSolver("TFETI", 3, 2);
   const tfeti::CoarseSpace& coarse = solver.coarseSpace();
@@ -192,10 +195,10 @@ TEUCHOS_UNIT_TEST(CoarseGramian, FaceProjectorFromFactorsEqualsTwoProjections) {
   const auto& comm = *map->getComm();
   const std::vector<long long> all = allMultiplierIds(*map);
   std::vector<long long> active;
-  // Unit rows: every 7th id; circles: the pairs (k, k + 1) at every 11th id clear of them.
+  // Circles: the pairs (k, k + 1) clear of the unit rows.
   std::vector<tfeti::FaceCircle<double>> circles;
-  for (std::size_t k = 0; k < all.size(); k += 7) active.push_back(all[k]);
-  for (std::size_t k = 3; k + 1 < all.size(); k += 11) {
+  for (std::size_t k = 0; k < all.size(); k += unitStep) active.push_back(all[k]);
+  for (std::size_t k = 3; k + 1 < all.size(); k += circleStep) {
     const bool clear = !std::binary_search(active.begin(), active.end(), all[k]) &&
                        !std::binary_search(active.begin(), active.end(), all[k + 1]) &&
                        map->getLocalElement(static_cast<tfeti::GO>(all[k])) !=
@@ -209,7 +212,7 @@ TEUCHOS_UNIT_TEST(CoarseGramian, FaceProjectorFromFactorsEqualsTwoProjections) {
     const double angle = 0.3 * static_cast<double>(k);
     if (everywhere == 1) circles.push_back({all[k], std::cos(angle), std::sin(angle)});
   }
-  TEST_COMPARE(circles.size(), >, std::size_t(5));
+  TEST_COMPARE(circles.size(), >, std::size_t(2));
   const Teuchos::RCP<const tfeti::Operator> Q =
       Teuchos::rcp(new tfeti::ComplementProjector(map, coarse));
   const tfeti::CoarseComplementFactors factors(coarse);
@@ -217,6 +220,9 @@ TEUCHOS_UNIT_TEST(CoarseGramian, FaceProjectorFromFactorsEqualsTwoProjections) {
   const Face twice(Q, active, like, nullptr, circles);
   const Face once(Q, active, like, nullptr, circles, &factors);
   TEST_ASSERT(twice.valid() && once.valid());
+  // More rows than G (162 here): the coarse side, with G G^T in place of S.
+  TEST_EQUALITY(once.coarseSide(), coarseSide);
+  TEST_ASSERT(!twice.coarseSide());
 
   tfeti::Vector x(map), y1(map), y2(map);
   x.randomize();
@@ -227,8 +233,9 @@ TEUCHOS_UNIT_TEST(CoarseGramian, FaceProjectorFromFactorsEqualsTwoProjections) {
   };
   twice.apply(x, y1);
   once.apply(x, y2);
-  out << active.size() << " unit rows, " << circles.size() << " circles: P_F x differs by "
-      << maxDiff(y1, y2) << " (relative, max norm)\n";
+  out << active.size() << " unit rows, " << circles.size() << " circles"
+      << (coarseSide ? " (coarse side)" : "") << ": P_F x differs by " << maxDiff(y1, y2)
+      << " (relative, max norm)\n";
   TEST_COMPARE(maxDiff(y1, y2), <=, 1e-13);
   // P_F x lies in ker G and vanishes on the rows.
   tfeti::Vector Gy(coarse.coarseMap()), Gx(coarse.coarseMap());
@@ -263,4 +270,13 @@ TEUCHOS_UNIT_TEST(CoarseGramian, FaceProjectorFromFactorsEqualsTwoProjections) {
   for (std::size_t k = 0; k < r.size(); ++k)
     heldDiff = std::max(heldDiff, std::abs(held[k] - r[k]));
   TEST_COMPARE(heldDiff, <=, 1e-13);
+}
+
+}  // namespace
+
+// Q's factors give P_F in one pass over G and one over G^T, with S (fewer rows than G) or with
+// G G^T on the coarse side (more rows than G).
+TEUCHOS_UNIT_TEST(CoarseGramian, FaceProjectorFromFactorsEqualsTwoProjections) {
+  checkFactoredFace(40, 60, false, out, success);
+  checkFactoredFace(7, 11, true, out, success);
 }

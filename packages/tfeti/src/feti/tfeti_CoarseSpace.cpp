@@ -4,15 +4,18 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 #include "tfeti_CoarseGramian.hpp"
+#include "tfeti_ComplementFactors.hpp"
 #include "tfeti_Gather.hpp"
 
 namespace tfeti {
 
 std::unique_ptr<LocalSolver> CoarseSpace::factorizeGramian(const CrsMatrix& G,
-                                                           const std::string& localSolver) const {
+                                                           const std::string& localSolver,
+                                                           CsrMatrix* keep) const {
   // G G^T assembled from its subdomain-pair blocks and replicated on every rank, which factorizes
   // it there: the coarse problem is small, and a replicated factor makes every coarse solve
   // communication-free after one Import.
@@ -21,6 +24,7 @@ std::unique_ptr<LocalSolver> CoarseSpace::factorizeGramian(const CrsMatrix& G,
   const CsrMatrix GGt = assembleGramian(G, offset);
   auto factor = createLocalSolver(localSolver);
   factor->factorize(GGt);
+  if (keep != nullptr) *keep = GGt;
   return factor;
 }
 
@@ -99,7 +103,9 @@ CoarseSpace::CoarseSpace(const Tearing& tearing, const SubdomainList& subdomains
   if (dimension_ == 0) return;
 
   try {
-    factor_ = factorizeGramian(*G_, localSolver);
+    // G G^T is kept for SMALBE's faces with more rows than G, which use it densely.
+    factor_ = factorizeGramian(*G_, localSolver,
+                               dimension_ <= kDenseGramianMaxRows ? &gramian_ : nullptr);
   } catch (const std::exception& e) {
     throw std::runtime_error(
         std::string("coarse problem G G^T is singular: the constraints do not remove every "
@@ -141,13 +147,31 @@ void CoarseSpace::leastSquaresCoefficients(const Vector& x, Vector& alpha) const
   coarseSolve(*c_, alpha);
 }
 
-void CoarseSpace::coefficientsEverywhere(const Vector& x, double* a) const {
+void CoarseSpace::applyGEverywhere(const Vector& x, double* c) const {
   if (dimension_ == 0) return;
   G_->apply(x, *c_);
   replicated_->doImport(*c_, *replicate_, Tpetra::INSERT);
   auto r = replicated_->getData();
-  for (GO g = 0; g < dimension_; ++g) rhs_[g] = r[g];
+  for (GO g = 0; g < dimension_; ++g) c[g] = r[g];
+}
+
+void CoarseSpace::coefficientsEverywhere(const Vector& x, double* a) const {
+  if (dimension_ == 0) return;
+  applyGEverywhere(x, rhs_.data());
   factor_->solve(rhs_.data(), a);
+}
+
+std::vector<double> CoarseSpace::denseGramian() const {
+  if (dimension_ > kDenseGramianMaxRows)
+    throw std::logic_error("CoarseSpace::denseGramian: G G^T of dimension " +
+                           std::to_string(dimension_) + " is not kept (at most " +
+                           std::to_string(kDenseGramianMaxRows) + ")");
+  const std::size_t n = static_cast<std::size_t>(dimension_);
+  std::vector<double> dense(n * n, 0.0);
+  for (int i = 0; i < gramian_.rows; ++i)
+    for (int k = gramian_.rowPtr[i]; k < gramian_.rowPtr[i + 1]; ++k)
+      dense[static_cast<std::size_t>(gramian_.colInd[k]) * n + i] = gramian_.values[k];
+  return dense;
 }
 
 void CoarseSpace::addTransposeEverywhere(const double* a, double scale, Vector& y) const {

@@ -34,6 +34,10 @@ class CoarseSpace {
   void coarseSolve(const Vector& c, Vector& alpha) const;
   // a = (G G^T)^{-1} G x on every rank (dimension() values; collective).
   void coefficientsEverywhere(const Vector& x, double* a) const;
+  // c = G x on every rank (dimension() values; collective).
+  void applyGEverywhere(const Vector& x, double* c) const;
+  // G G^T, dense and column-major (dimension()^2 values; local: every rank holds it).
+  std::vector<double> denseGramian() const;
   // y += scale G^T a for coefficients a that every rank holds alike (collective).
   void addTransposeEverywhere(const double* a, double scale, Vector& y) const;
   // y = P x (y may alias x)
@@ -57,8 +61,9 @@ class CoarseSpace {
  private:
   // alpha = factor^{-1} c with c brought to every rank (the factor is replicated).
   void solveReplicated(LocalSolver& factor, const Vector& c, Vector& alpha) const;
-  std::unique_ptr<LocalSolver> factorizeGramian(const CrsMatrix& G,
-                                                const std::string& localSolver) const;
+  // keep (optional): receives the assembled G G^T.
+  std::unique_ptr<LocalSolver> factorizeGramian(const CrsMatrix& G, const std::string& localSolver,
+                                                CsrMatrix* keep = nullptr) const;
   GO dimension_ = 0;
   SubdomainList subdomains_;
   std::vector<GO> coarseOffset_;  // per local subdomain: first coarse id
@@ -66,6 +71,7 @@ class CoarseSpace {
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> replicate_;
   Teuchos::RCP<CrsMatrix> G_;
   std::unique_ptr<LocalSolver> factor_;
+  CsrMatrix gramian_;  // G G^T as factorized, replicated
   mutable Teuchos::RCP<Vector> c_, alpha_;
   mutable Teuchos::RCP<Vector> replicated_;
   mutable std::vector<double> rhs_, sol_;

@@ -99,6 +99,16 @@ void CoarseComplementFactors::coefficients(const MultiVector& x, std::vector<Sca
   coarse_.coefficientsEverywhere(*x.getVector(0), a.data());
 }
 
+void CoarseComplementFactors::applyG(const MultiVector& x, std::vector<Scalar>& c) const {
+  c.assign(static_cast<std::size_t>(coarse_.dimension()), 0.0);
+  coarse_.applyGEverywhere(*x.getVector(0), c.data());
+}
+
+std::vector<Scalar> CoarseComplementFactors::gramian() const {
+  if (gramian_.empty()) gramian_ = coarse_.denseGramian();
+  return gramian_;
+}
+
 void CoarseComplementFactors::addTranspose(const std::vector<Scalar>& a, Scalar alpha,
                                            MultiVector& y) const {
   coarse_.addTransposeEverywhere(a.data(), alpha, *y.getVectorNonConst(0));

@@ -84,6 +84,8 @@ class CoarseComplementFactors : public ComplementFactors<Scalar, MultiVector> {
   // coarse must outlive this.
   explicit CoarseComplementFactors(const CoarseSpace& coarse) : coarse_(coarse) {}
   int rows() const override { return static_cast<int>(coarse_.dimension()); }
+  void applyG(const MultiVector& x, std::vector<Scalar>& c) const override;
+  std::vector<Scalar> gramian() const override;
   void coefficients(const MultiVector& x, std::vector<Scalar>& a) const override;
   void addTranspose(const std::vector<Scalar>& a, Scalar alpha, MultiVector& y) const override;
   void solve(std::vector<Scalar>& b) const override;
@@ -93,6 +95,7 @@ class CoarseComplementFactors : public ComplementFactors<Scalar, MultiVector> {
  private:
   const CoarseSpace& coarse_;
   mutable std::vector<Scalar> x_;
+  mutable std::vector<Scalar> gramian_;  // dense G G^T, built when a face first asks
 };
 
 }  // namespace tfeti

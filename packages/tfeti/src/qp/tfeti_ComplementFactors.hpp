@@ -9,12 +9,21 @@
 
 namespace tfeti {
 
+// Faces with more rows than G work with G G^T densely (tfeti_FaceProjector.hpp, "the coarse
+// side") up to this many rows of G; a source need not provide G G^T beyond it.
+constexpr int kDenseGramianMaxRows = 1000;
+
 template <class S, class MV>
 class ComplementFactors {
  public:
   virtual ~ComplementFactors() = default;
   // The number of rows of G.
   virtual int rows() const = 0;
+  // c = G x, on every rank (collective).
+  virtual void applyG(const MV& x, std::vector<S>& c) const = 0;
+  // G G^T, dense and column-major, the same on every rank (for faces with more rows than G;
+  // asked for only when rows() <= kDenseGramianMaxRows).
+  virtual std::vector<S> gramian() const = 0;
   // a = (G G^T)^{-1} G x, on every rank (collective).
   virtual void coefficients(const MV& x, std::vector<S>& a) const = 0;
   // y += alpha G^T a, a the same on every rank (collective).

@@ -22,6 +22,7 @@
 // where G E_A^T s and (G^T a) at the rows come from G's columns at the rows.
 #include <BelosMultiVecTraits.hpp>
 #include <BelosOperatorTraits.hpp>
+#include <Teuchos_BLAS.hpp>
 #include <Teuchos_LAPACK.hpp>
 #include <Teuchos_RCP.hpp>
 
@@ -68,6 +69,12 @@ class FaceProjector {
     std::vector<long long> sorted = idx_;
     std::sort(sorted.begin(), sorted.end());
     if (factors_ != nullptr) gColumns_ = factors_->columns(idx_);
+    coarseSide_ = factors_ != nullptr && factors_->rows() > 0 &&
+                  factors_->rows() <= kCoarseSideMaxRows && m_ > factors_->rows();
+    if (coarseSide_) {
+      buildCoarseSide();
+      return;
+    }
     // S = I - E_A Q E_A^T, column by column (each a Q c_j gathered on the rows).
     L_.assign(static_cast<std::size_t>(m_) * m_, S(0));
     if (gramian != nullptr && gramian->covers(sorted)) {
@@ -117,6 +124,8 @@ class FaceProjector {
   }
 
   bool valid() const { return valid_; }
+  // More rows than Q's factors have: P_F from G G^T instead of S (below).
+  bool coarseSide() const { return coarseSide_; }
   // The unit rows (sorted global indices) and the circles; rows are numbered in this order.
   const std::vector<long long>& active() const { return active_; }
   const std::vector<FaceCircle<S>>& circles() const { return circles_; }
@@ -133,6 +142,10 @@ class FaceProjector {
   // sigma = S^{-1} E_A P g: the active rows' multipliers, with which
   // g = P_F g + E_A^T sigma + (a part in range(Q)).
   std::vector<S> activeMultipliers(const MV& g) const {
+    if (coarseSide_) {
+      std::vector<S> a;
+      return coarseSideRows(g, a);
+    }
     if (factors_ != nullptr) {
       std::vector<S> a;
       return projectedRows(g, a);
@@ -145,6 +158,12 @@ class FaceProjector {
 
   // y = P_F x (y may be x).
   void apply(const MV& x, MV& y) const {
+    if (coarseSide_) {
+      std::vector<S> a;
+      const std::vector<S> sigma = coarseSideRows(x, a);
+      subtractRowsAndTranspose(x, a, sigma, y);
+      return;
+    }
     if (factors_ != nullptr) {
       std::vector<S> a;
       const std::vector<S> s = projectedRows(x, a);
@@ -164,6 +183,19 @@ class FaceProjector {
 
   // The point of {Q x = 0, E_A x = r} nearest to x: P_F x + P E_A^T S^{-1} r.
   void projectAffine(const std::vector<S>& r, MV& x) const {
+    if (coarseSide_) {
+      // P_F x + E_A^T r - Pi G^T b with b = H^{-1} G E_A^T r (the least-norm step onto the
+      // rows): P_F x's formula with a + b for a and sigma - r - (G E_A^T)^T b for sigma.
+      std::vector<S> a;
+      std::vector<S> sigma = coarseSideRows(x, a);
+      std::vector<S> b = rowsToCoarse(r);
+      solveH(b);
+      const std::vector<S> cb = coarseToRows(b);
+      for (std::size_t k = 0; k < sigma.size(); ++k) sigma[k] -= r[k] + cb[k];
+      for (std::size_t k = 0; k < a.size(); ++k) a[k] += b[k];
+      subtractRowsAndTranspose(x, a, sigma, x);
+      return;
+    }
     if (factors_ != nullptr) {
       // P_F x + P E_A^T t, t = S^{-1} r: P_F x's formula with s - t for s.
       std::vector<S> a, t = r;
@@ -184,6 +216,10 @@ class FaceProjector {
 
  private:
   static constexpr double kMinPivot = 1e-10;
+  // The coarse side (below) holds dense matrices of G's rows squared: used up to
+  // kDenseGramianMaxRows rows, where its factorization (rows^3 / 3 flops per face) is cheap
+  // next to S's (|A|^3 / 3).
+  static constexpr int kCoarseSideMaxRows = kDenseGramianMaxRows;
   Teuchos::RCP<const OP> Q_;
   std::vector<long long> active_;
   std::vector<FaceCircle<S>> circles_;
@@ -191,7 +227,17 @@ class FaceProjector {
   const ComplementFactors<S, MV>* factors_;
   std::vector<std::vector<std::pair<int, S>>> gColumns_;  // G's column at each of idx_
   std::vector<long long> idx_;  // the unit rows, then each circle's two components
-  std::vector<S> L_;            // Cholesky factor of S, column-major, lower triangle
+  // The coarse side: more face rows than G has (FETI: large contact zones on few subdomains).
+  // With Pi = I - E_A^T E_A (E_A's rows are orthonormal), the face is range(Pi) and ker G,
+  //   P_F = Pi - Pi G^T H^{-1} G Pi,   H = G Pi G^T = G G^T - C C^T,   C = G E_A^T,
+  // and H (rows of G squared) takes the place of S (|A| squared). With r = E_A x,
+  // a = H^{-1} (G x - C r) and sigma = r - C^T a: P_F x = x - E_A^T sigma - G^T a, and sigma
+  // is S^{-1} E_A P x, the rows' multipliers. H is factorized as L T L^T, G G^T = L L^T and
+  // T = I - L^{-1} C C^T L^{-T}, whose spectrum is S's but for eigenvalues 1: its pivots
+  // judge the face as S's do.
+  bool coarseSide_ = false;
+  std::vector<S> gramL_, gramT_;  // Cholesky factors of G G^T and of T (column-major, lower)
+  std::vector<S> L_;              // Cholesky factor of S, column-major, lower triangle
   bool valid_ = false;
   Teuchos::RCP<MV> t1_, t2_;
   mutable long long qApplies_ = 0;
@@ -213,6 +259,91 @@ class FaceProjector {
       r.push_back(circles_[k].n0 * atIdx[i] + circles_[k].n1 * atIdx[i + 1]);
     }
     return r;
+  }
+  void buildCoarseSide() {
+    Teuchos::LAPACK<int, S> lapack;
+    const int n = factors_->rows();
+    gramL_ = factors_->gramian();
+    // C C^T from the rows' columns of G (a few entries each).
+    std::vector<std::vector<std::pair<int, S>>> cols(static_cast<std::size_t>(m_));
+    for (int k = 0; k < m_; ++k) cols[k] = rowColumn(k);
+    gramT_.assign(static_cast<std::size_t>(n) * n, S(0));
+    for (const auto& c : cols)
+      for (const auto& ei : c)
+        for (const auto& ej : c) gramT_[ej.first * n + ei.first] += ei.second * ej.second;
+    int info = 0;
+    lapack.POTRF('L', n, gramL_.data(), n, &info);
+    valid_ = info == 0;
+    if (!valid_) return;
+    // T = I - L^{-1} (C C^T) L^{-T}, symmetrized against rounding.
+    Teuchos::BLAS<int, S> blas;
+    blas.TRSM(Teuchos::LEFT_SIDE, Teuchos::LOWER_TRI, Teuchos::NO_TRANS, Teuchos::NON_UNIT_DIAG, n,
+              n, S(1), gramL_.data(), n, gramT_.data(), n);
+    blas.TRSM(Teuchos::RIGHT_SIDE, Teuchos::LOWER_TRI, Teuchos::TRANS, Teuchos::NON_UNIT_DIAG, n, n,
+              S(1), gramL_.data(), n, gramT_.data(), n);
+    for (int j = 0; j < n; ++j)
+      for (int i = j; i < n; ++i) {
+        const S t = (i == j ? S(1) : S(0)) - S(0.5) * (gramT_[j * n + i] + gramT_[i * n + j]);
+        gramT_[j * n + i] = gramT_[i * n + j] = t;
+      }
+    lapack.POTRF('L', n, gramT_.data(), n, &info);
+    valid_ = info == 0;
+    for (int j = 0; valid_ && j < n; ++j)
+      if (!(gramT_[j * n + j] * gramT_[j * n + j] > kMinPivot)) valid_ = false;
+  }
+  // G's column of face row k (a unit row's, or a circle's two combined), sorted by G's row.
+  std::vector<std::pair<int, S>> rowColumn(int k) const {
+    if (k < static_cast<int>(active_.size())) return gColumns_[k];
+    const std::size_t i = active_.size() + 2 * (k - active_.size());
+    const auto& c = circles_[k - active_.size()];
+    std::vector<std::pair<int, S>> out;
+    for (const auto& e : gColumns_[i]) out.emplace_back(e.first, c.n0 * e.second);
+    for (const auto& e : gColumns_[i + 1]) out.emplace_back(e.first, c.n1 * e.second);
+    return out;
+  }
+  // C r and C^T a on the coarse side.
+  std::vector<S> rowsToCoarse(const std::vector<S>& r) const {
+    std::vector<S> c(static_cast<std::size_t>(factors_->rows()), S(0));
+    const std::vector<S> v = expandRows(r);
+    for (std::size_t i = 0; i < idx_.size(); ++i)
+      for (const auto& e : gColumns_[i]) c[e.first] += e.second * v[i];
+    return c;
+  }
+  std::vector<S> coarseToRows(const std::vector<S>& a) const {
+    std::vector<S> at(idx_.size(), S(0));
+    for (std::size_t i = 0; i < idx_.size(); ++i)
+      for (const auto& e : gColumns_[i]) at[i] += e.second * a[e.first];
+    return combine(at);
+  }
+  // b = H^{-1} b = L^{-T} T^{-1} L^{-1} b.
+  void solveH(std::vector<S>& b) const {
+    const int n = factors_->rows();
+    Teuchos::BLAS<int, S> blas;
+    blas.TRSM(Teuchos::LEFT_SIDE, Teuchos::LOWER_TRI, Teuchos::NO_TRANS, Teuchos::NON_UNIT_DIAG, n,
+              1, S(1), gramL_.data(), n, b.data(), n);
+    int info = 0;
+    Teuchos::LAPACK<int, S>().POTRS('L', n, 1, gramT_.data(), n, b.data(), n, &info);
+    blas.TRSM(Teuchos::LEFT_SIDE, Teuchos::LOWER_TRI, Teuchos::TRANS, Teuchos::NON_UNIT_DIAG, n, 1,
+              S(1), gramL_.data(), n, b.data(), n);
+  }
+  // The coarse side's sigma = S^{-1} E_A P x and a = H^{-1} G Pi x (one pass over G).
+  std::vector<S> coarseSideRows(const MV& x, std::vector<S>& a) const {
+    const std::vector<S> r = gatherRows(x);
+    factors_->applyG(x, a);
+    ++qApplies_;
+    const std::vector<S> cr = rowsToCoarse(r);
+    for (std::size_t k = 0; k < a.size(); ++k) a[k] -= cr[k];
+    solveH(a);
+    std::vector<S> sigma = coarseToRows(a);
+    for (std::size_t k = 0; k < sigma.size(); ++k) sigma[k] = r[k] - sigma[k];
+    return sigma;
+  }
+  // y = x - E_A^T sigma - G^T a (one pass over G^T; y may be x).
+  void subtractRowsAndTranspose(const MV& x, const std::vector<S>& a, const std::vector<S>& sigma,
+                                MV& y) const {
+    if (&x != &y) MVT::Assign(x, y);
+    addRows(sigma, S(-1), y);
+    factors_->addTranspose(a, S(-1), y);
   }
   // With factors: s = S^{-1} E_A P x, and a = (G G^T)^{-1} G x (one pass over G).
   std::vector<S> projectedRows(const MV& x, std::vector<S>& a) const {
