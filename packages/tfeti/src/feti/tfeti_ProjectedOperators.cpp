@@ -1,5 +1,7 @@
 #include "tfeti_ProjectedOperators.hpp"
 
+#include <Teuchos_LAPACK.hpp>
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -104,9 +106,19 @@ void CoarseComplementFactors::applyG(const MultiVector& x, std::vector<Scalar>& 
   coarse_.applyGEverywhere(*x.getVector(0), c.data());
 }
 
-std::vector<Scalar> CoarseComplementFactors::gramian() const {
-  if (gramian_.empty()) gramian_ = coarse_.denseGramian();
-  return gramian_;
+const std::vector<Scalar>& CoarseComplementFactors::gramianFactor() const {
+  if (!gramianFactor_.empty()) return gramianFactor_;
+  const int n = static_cast<int>(coarse_.dimension());
+  gramianFactor_ = coarse_.denseGramian();
+  int info = 0;
+  Teuchos::LAPACK<int, Scalar>().POTRF('L', n, gramianFactor_.data(), n, &info);
+  // The sparse factorization of the same matrix succeeded when the coarse space was built.
+  if (info != 0)
+    throw std::logic_error(
+        "CoarseComplementFactors: the dense Cholesky factorization of G G^T "
+        "failed at column " +
+        std::to_string(info));
+  return gramianFactor_;
 }
 
 void CoarseComplementFactors::addTranspose(const std::vector<Scalar>& a, Scalar alpha,

@@ -85,7 +85,7 @@ class CoarseComplementFactors : public ComplementFactors<Scalar, MultiVector> {
   explicit CoarseComplementFactors(const CoarseSpace& coarse) : coarse_(coarse) {}
   int rows() const override { return static_cast<int>(coarse_.dimension()); }
   void applyG(const MultiVector& x, std::vector<Scalar>& c) const override;
-  std::vector<Scalar> gramian() const override;
+  const std::vector<Scalar>& gramianFactor() const override;
   void coefficients(const MultiVector& x, std::vector<Scalar>& a) const override;
   void addTranspose(const std::vector<Scalar>& a, Scalar alpha, MultiVector& y) const override;
   void solve(std::vector<Scalar>& b) const override;
@@ -95,7 +95,7 @@ class CoarseComplementFactors : public ComplementFactors<Scalar, MultiVector> {
  private:
   const CoarseSpace& coarse_;
   mutable std::vector<Scalar> x_;
-  mutable std::vector<Scalar> gramian_;  // dense G G^T, built when a face first asks
+  mutable std::vector<Scalar> gramianFactor_;  // of the dense G G^T, when a face first asks
 };
 
 }  // namespace tfeti

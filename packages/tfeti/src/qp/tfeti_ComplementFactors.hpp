@@ -21,9 +21,10 @@ class ComplementFactors {
   virtual int rows() const = 0;
   // c = G x, on every rank (collective).
   virtual void applyG(const MV& x, std::vector<S>& c) const = 0;
-  // G G^T, dense and column-major, the same on every rank (for faces with more rows than G;
-  // asked for only when rows() <= kDenseGramianMaxRows).
-  virtual std::vector<S> gramian() const = 0;
+  // The lower Cholesky factor L of G G^T = L L^T, dense and column-major, the same on every
+  // rank, computed once (for faces with more rows than G; asked for only when rows() <=
+  // kDenseGramianMaxRows).
+  virtual const std::vector<S>& gramianFactor() const = 0;
   // a = (G G^T)^{-1} G x, on every rank (collective).
   virtual void coefficients(const MV& x, std::vector<S>& a) const = 0;
   // y += alpha G^T a, a the same on every rank (collective).

@@ -66,61 +66,13 @@ class FaceProjector {
     // The components the rows touch: the unit rows', then both of each circle's.
     idx_ = active_;
     for (const auto& c : circles_) idx_.push_back(c.index), idx_.push_back(c.index + 1);
-    std::vector<long long> sorted = idx_;
-    std::sort(sorted.begin(), sorted.end());
     if (factors_ != nullptr) gColumns_ = factors_->columns(idx_);
     coarseSide_ = factors_ != nullptr && factors_->rows() > 0 &&
                   factors_->rows() <= kCoarseSideMaxRows && m_ > factors_->rows();
-    if (coarseSide_) {
+    if (coarseSide_)
       buildCoarseSide();
-      return;
-    }
-    // S = I - E_A Q E_A^T, column by column (each a Q c_j gathered on the rows).
-    L_.assign(static_cast<std::size_t>(m_) * m_, S(0));
-    if (gramian != nullptr && gramian->covers(sorted)) {
-      std::vector<std::size_t> at(idx_.size());
-      for (std::size_t i = 0; i < idx_.size(); ++i) at[i] = gramian->position(idx_[i]);
-      // E_C Q c_j over the candidates C: a column of the gramian, or two combined (a circle).
-      gramian->prefetch(idx_);
-      std::vector<S> qc;
-      for (int j = 0; j < m_; ++j) {
-        if (j < static_cast<int>(active_.size())) {
-          qc = gramian->column(active_[j]);
-        } else {
-          const auto& c = circles_[j - active_.size()];
-          qc = gramian->column(c.index);
-          const std::vector<S>& second = gramian->column(c.index + 1);
-          for (std::size_t i = 0; i < qc.size(); ++i) qc[i] = c.n0 * qc[i] + c.n1 * second[i];
-        }
-        std::vector<S> atRows(idx_.size());
-        for (std::size_t i = 0; i < idx_.size(); ++i) atRows[i] = qc[at[i]];
-        const std::vector<S> col = combine(atRows);
-        for (int i = 0; i < m_; ++i) L_[j * m_ + i] = (i == j ? S(1) : S(0)) - col[i];
-      }
-    } else {
-      for (int j = 0; j < m_; ++j) {
-        MVT::MvInit(*t1_, S(0));
-        std::vector<S> e(m_, S(0));
-        e[j] = S(1);
-        addRows(e, S(1), *t1_);
-        applyQ(*t1_, *t2_);
-        const std::vector<S> col = gatherRows(*t2_);
-        for (int i = 0; i < m_; ++i) L_[j * m_ + i] = (i == j ? S(1) : S(0)) - col[i];
-      }
-    }
-    // Symmetrize against rounding, so that Cholesky sees the same matrix on every rank count.
-    for (int j = 0; j < m_; ++j)
-      for (int i = j + 1; i < m_; ++i) {
-        const S s = S(0.5) * (L_[j * m_ + i] + L_[i * m_ + j]);
-        L_[j * m_ + i] = L_[i * m_ + j] = s;
-      }
-    // The eigenvalues of S lie in [0, 1]; a pivot below kMinPivot means the active rows are
-    // (nearly) dependent on the equality rows.
-    int info = 0;
-    if (m_ > 0) Teuchos::LAPACK<int, S>().POTRF('L', m_, L_.data(), m_, &info);
-    valid_ = info == 0;
-    for (int j = 0; valid_ && j < m_; ++j)
-      if (!(L_[j * m_ + j] * L_[j * m_ + j] > kMinPivot)) valid_ = false;
+    else
+      buildSchurComplement(gramian);
   }
 
   bool valid() const { return valid_; }
@@ -236,8 +188,9 @@ class FaceProjector {
   // T = I - L^{-1} C C^T L^{-T}, whose spectrum is S's but for eigenvalues 1: its pivots
   // judge the face as S's do.
   bool coarseSide_ = false;
-  std::vector<S> gramL_, gramT_;  // Cholesky factors of G G^T and of T (column-major, lower)
-  std::vector<S> L_;              // Cholesky factor of S, column-major, lower triangle
+  const std::vector<S>* gramL_ = nullptr;  // Cholesky factor of G G^T (the factors' own)
+  std::vector<S> gramT_;                   // Cholesky factor of T (column-major, lower)
+  std::vector<S> L_;                       // Cholesky factor of S, column-major, lower triangle
   bool valid_ = false;
   Teuchos::RCP<MV> t1_, t2_;
   mutable long long qApplies_ = 0;
@@ -260,33 +213,81 @@ class FaceProjector {
     }
     return r;
   }
+  // S = I - E_A Q E_A^T and its Cholesky factor; valid_ unless a pivot is below kMinPivot.
+  void buildSchurComplement(FaceGramian<S, MV, OP>* gramian) {
+    std::vector<long long> sorted = idx_;
+    std::sort(sorted.begin(), sorted.end());
+    // Column by column (each a Q c_j gathered on the rows).
+    L_.assign(static_cast<std::size_t>(m_) * m_, S(0));
+    if (gramian != nullptr && gramian->covers(sorted)) {
+      std::vector<std::size_t> at(idx_.size());
+      for (std::size_t i = 0; i < idx_.size(); ++i) at[i] = gramian->position(idx_[i]);
+      // E_C Q c_j over the candidates C: a column of the gramian, or two combined (a circle).
+      gramian->prefetch(idx_);
+      std::vector<S> qc;
+      for (int j = 0; j < m_; ++j) {
+        if (j < static_cast<int>(active_.size())) {
+          qc = gramian->column(active_[j]);
+        } else {
+          const auto& c = circles_[j - active_.size()];
+          qc = gramian->column(c.index);
+          const std::vector<S>& second = gramian->column(c.index + 1);
+          for (std::size_t i = 0; i < qc.size(); ++i) qc[i] = c.n0 * qc[i] + c.n1 * second[i];
+        }
+        std::vector<S> atRows(idx_.size());
+        for (std::size_t i = 0; i < idx_.size(); ++i) atRows[i] = qc[at[i]];
+        const std::vector<S> col = combine(atRows);
+        for (int i = 0; i < m_; ++i) L_[j * m_ + i] = (i == j ? S(1) : S(0)) - col[i];
+      }
+    } else {
+      for (int j = 0; j < m_; ++j) {
+        MVT::MvInit(*t1_, S(0));
+        std::vector<S> e(m_, S(0));
+        e[j] = S(1);
+        addRows(e, S(1), *t1_);
+        applyQ(*t1_, *t2_);
+        const std::vector<S> col = gatherRows(*t2_);
+        for (int i = 0; i < m_; ++i) L_[j * m_ + i] = (i == j ? S(1) : S(0)) - col[i];
+      }
+    }
+    // Symmetrize against rounding, so that Cholesky sees the same matrix on every rank count.
+    for (int j = 0; j < m_; ++j)
+      for (int i = j + 1; i < m_; ++i) {
+        const S s = S(0.5) * (L_[j * m_ + i] + L_[i * m_ + j]);
+        L_[j * m_ + i] = L_[i * m_ + j] = s;
+      }
+    // The eigenvalues of S lie in [0, 1]; a pivot below kMinPivot means the active rows are
+    // (nearly) dependent on the equality rows.
+    int info = 0;
+    if (m_ > 0) Teuchos::LAPACK<int, S>().POTRF('L', m_, L_.data(), m_, &info);
+    valid_ = info == 0;
+    for (int j = 0; valid_ && j < m_; ++j)
+      if (!(L_[j * m_ + j] * L_[j * m_ + j] > kMinPivot)) valid_ = false;
+  }
+  // H = L T L^T (class comment): T from C C^T and the factor L of G G^T (one per solve, from
+  // the factors); valid_ unless a pivot of T is below kMinPivot.
   void buildCoarseSide() {
-    Teuchos::LAPACK<int, S> lapack;
     const int n = factors_->rows();
-    gramL_ = factors_->gramian();
-    // C C^T from the rows' columns of G (a few entries each).
-    std::vector<std::vector<std::pair<int, S>>> cols(static_cast<std::size_t>(m_));
-    for (int k = 0; k < m_; ++k) cols[k] = rowColumn(k);
+    gramL_ = &factors_->gramianFactor();
     gramT_.assign(static_cast<std::size_t>(n) * n, S(0));
-    for (const auto& c : cols)
+    for (int k = 0; k < m_; ++k) {
+      const std::vector<std::pair<int, S>> c = rowColumn(k);
       for (const auto& ei : c)
         for (const auto& ej : c) gramT_[ej.first * n + ei.first] += ei.second * ej.second;
-    int info = 0;
-    lapack.POTRF('L', n, gramL_.data(), n, &info);
-    valid_ = info == 0;
-    if (!valid_) return;
+    }
     // T = I - L^{-1} (C C^T) L^{-T}, symmetrized against rounding.
     Teuchos::BLAS<int, S> blas;
     blas.TRSM(Teuchos::LEFT_SIDE, Teuchos::LOWER_TRI, Teuchos::NO_TRANS, Teuchos::NON_UNIT_DIAG, n,
-              n, S(1), gramL_.data(), n, gramT_.data(), n);
+              n, S(1), gramL_->data(), n, gramT_.data(), n);
     blas.TRSM(Teuchos::RIGHT_SIDE, Teuchos::LOWER_TRI, Teuchos::TRANS, Teuchos::NON_UNIT_DIAG, n, n,
-              S(1), gramL_.data(), n, gramT_.data(), n);
+              S(1), gramL_->data(), n, gramT_.data(), n);
     for (int j = 0; j < n; ++j)
       for (int i = j; i < n; ++i) {
         const S t = (i == j ? S(1) : S(0)) - S(0.5) * (gramT_[j * n + i] + gramT_[i * n + j]);
         gramT_[j * n + i] = gramT_[i * n + j] = t;
       }
-    lapack.POTRF('L', n, gramT_.data(), n, &info);
+    int info = 0;
+    Teuchos::LAPACK<int, S>().POTRF('L', n, gramT_.data(), n, &info);
     valid_ = info == 0;
     for (int j = 0; valid_ && j < n; ++j)
       if (!(gramT_[j * n + j] * gramT_[j * n + j] > kMinPivot)) valid_ = false;
@@ -301,7 +302,7 @@ class FaceProjector {
     for (const auto& e : gColumns_[i + 1]) out.emplace_back(e.first, c.n1 * e.second);
     return out;
   }
-  // C r and C^T a on the coarse side.
+  // C r = G E_A^T r (G's rows), and G^T a at idx_ (E_A G^T a = combine of it).
   std::vector<S> rowsToCoarse(const std::vector<S>& r) const {
     std::vector<S> c(static_cast<std::size_t>(factors_->rows()), S(0));
     const std::vector<S> v = expandRows(r);
@@ -309,22 +310,23 @@ class FaceProjector {
       for (const auto& e : gColumns_[i]) c[e.first] += e.second * v[i];
     return c;
   }
-  std::vector<S> coarseToRows(const std::vector<S>& a) const {
+  std::vector<S> transposeAtIdx(const std::vector<S>& a) const {
     std::vector<S> at(idx_.size(), S(0));
     for (std::size_t i = 0; i < idx_.size(); ++i)
       for (const auto& e : gColumns_[i]) at[i] += e.second * a[e.first];
-    return combine(at);
+    return at;
   }
+  std::vector<S> coarseToRows(const std::vector<S>& a) const { return combine(transposeAtIdx(a)); }
   // b = H^{-1} b = L^{-T} T^{-1} L^{-1} b.
   void solveH(std::vector<S>& b) const {
     const int n = factors_->rows();
     Teuchos::BLAS<int, S> blas;
     blas.TRSM(Teuchos::LEFT_SIDE, Teuchos::LOWER_TRI, Teuchos::NO_TRANS, Teuchos::NON_UNIT_DIAG, n,
-              1, S(1), gramL_.data(), n, b.data(), n);
+              1, S(1), gramL_->data(), n, b.data(), n);
     int info = 0;
     Teuchos::LAPACK<int, S>().POTRS('L', n, 1, gramT_.data(), n, b.data(), n, &info);
     blas.TRSM(Teuchos::LEFT_SIDE, Teuchos::LOWER_TRI, Teuchos::TRANS, Teuchos::NON_UNIT_DIAG, n, 1,
-              S(1), gramL_.data(), n, b.data(), n);
+              S(1), gramL_->data(), n, b.data(), n);
   }
   // The coarse side's sigma = S^{-1} E_A P x and a = H^{-1} G Pi x (one pass over G).
   std::vector<S> coarseSideRows(const MV& x, std::vector<S>& a) const {
@@ -350,22 +352,19 @@ class FaceProjector {
     factors_->coefficients(x, a);
     ++qApplies_;
     std::vector<S> at = BT::gatherAt(x, idx_);
-    for (std::size_t i = 0; i < idx_.size(); ++i)
-      for (const auto& e : gColumns_[i]) at[i] -= e.second * a[e.first];
+    const std::vector<S> qx = transposeAtIdx(a);
+    for (std::size_t i = 0; i < idx_.size(); ++i) at[i] -= qx[i];
     std::vector<S> s = combine(at);
     solveS(s);
     return s;
   }
   // y = x - E_A^T s - G^T (a - (G G^T)^{-1} G E_A^T s) (one pass over G^T; y may be x).
   void subtractRowsAndRange(const MV& x, std::vector<S> a, const std::vector<S>& s, MV& y) const {
-    const std::vector<S> v = expandRows(s);
-    std::vector<S> c(a.size(), S(0));
-    for (std::size_t i = 0; i < idx_.size(); ++i)
-      for (const auto& e : gColumns_[i]) c[e.first] += e.second * v[i];
+    std::vector<S> c = rowsToCoarse(s);
     factors_->solve(c);
     for (std::size_t k = 0; k < a.size(); ++k) a[k] -= c[k];
     if (&x != &y) MVT::Assign(x, y);
-    BT::addAt(idx_, v, S(-1), y);
+    addRows(s, S(-1), y);
     factors_->addTranspose(a, S(-1), y);
   }
   // E_A^T s at idx_.
