@@ -994,6 +994,30 @@ def factorizations_reused(dirs):
                      "factorization", whole)
 
 
+def distribution_balance(dirs, contact_tol, dof_tol):
+    """Subdomains to ranks with the contact zone shared: on more than one rank the graph method
+    partitions with the contact rows as a second constraint (subdomain_distribution.partitioner
+    metis_two_constraints), the largest rank's share of the initial contact rows within contact_tol
+    of the mean and of the dofs within dof_tol; on one rank everything is balanced (1.0)."""
+    for d in dirs:
+        s = load(d)
+        dist = s["subdomain_distribution"]
+        if s["ranks"] == 1:
+            if dist["partitioner"] != "single" or dist["contact_imbalance"] != 1.0:
+                fail(f"{d}: one rank, but the distribution is {dist}")
+        else:
+            if dist["partitioner"] != "metis_two_constraints":
+                fail(f"{d}: partitioner {dist['partitioner']}, expected metis_two_constraints "
+                     "(the run has contact rows)")
+            if dist["contact_imbalance"] > contact_tol:
+                fail(f"{d}: contact imbalance {dist['contact_imbalance']:.4f} > {contact_tol}")
+            if dist["dof_imbalance"] > dof_tol:
+                fail(f"{d}: dof imbalance {dist['dof_imbalance']:.4f} > {dof_tol}")
+        print(f"OK: {d}: {s['ranks']} rank(s), {dist['partitioner']}, dof imbalance "
+              f"{dist['dof_imbalance']:.4f}, contact imbalance {dist['contact_imbalance']:.4f}, "
+              f"cut {dist['edge_cut']:g}")
+
+
 def tearings_reused(dirs):
     """A Newton run against a height-function obstacle in small strain: the contact rows keep
     their entries from one iteration to the next (only the gaps move), so the solver keeps its
@@ -1408,6 +1432,11 @@ if __name__ == "__main__":
         reference_force([a for i, a in enumerate(args) if a not in flags and
                          (i == 0 or args[i - 1] not in flags)],
                         option(args, "--expected", float("nan")), option(args, "--tol", 1e-4))
+    elif mode == "distribution_balance":
+        flags = {"--contact-tol", "--dof-tol"}
+        distribution_balance([a for i, a in enumerate(args) if a not in flags and
+                              (i == 0 or args[i - 1] not in flags)],
+                             option(args, "--contact-tol", 1.05), option(args, "--dof-tol", 1.10))
     elif mode == "plastic":
         plastic(args[0])
     elif mode == "plastic_vs_elastic":

@@ -23,6 +23,20 @@ using Teuchos::ParameterList;
 
 namespace {
 
+// The subdomains as the solver takes them: K moved out of the problem (which needs no stiffness
+// after setup; a copy would double the peak memory of the assembly), the rest copied.
+std::vector<tfeti::SubdomainData> handOverStiffness(std::vector<tfeti::SubdomainData>& local) {
+  std::vector<tfeti::SubdomainData> out;
+  out.reserve(local.size());
+  for (auto& sd : local) {
+    tfeti::CsrMatrix K = std::move(sd.K);
+    sd.K = tfeti::CsrMatrix();
+    out.push_back(sd);
+    out.back().K = std::move(K);
+  }
+  return out;
+}
+
 // The applied load's resultant and the direction the contact force is reported along: the
 // applied load's, else the obstacle's motion, else the sum of the prescribed displacements.
 void setLoadDirection(ContactRun& r, int dim) {
@@ -137,9 +151,8 @@ void ContactSolver::setup() {
 
   // K of the undeformed bodies, factorized once; loads and rows change per iteration.
   r.solver = std::make_unique<tfeti::FetiSolver>(
-      comm_, problem.numSubdomains(), problem.local, r.feti, problem.inequalities,
-      policy.initialEqualityRows(problem, r.history.loadFactor, model.u));
-  for (auto& sd : problem.local) sd.K = tfeti::CsrMatrix();  // the solver holds its own copy
+      comm_, problem.numSubdomains(), handOverStiffness(problem.local), r.feti,
+      problem.inequalities, policy.initialEqualityRows(problem, r.history.loadFactor, model.u));
   run_ = std::move(run);
 }
 
@@ -320,6 +333,7 @@ ContactResult ContactSolver::fillResult(const LoadSteps& s) const {
   res.problem = r.policy->name();
   res.ranks = comm_->getSize();
   res.subdomains = problem.numSubdomains();
+  res.distribution = problem.distribution;
   res.nodes = problem.mesh.numNodes();
   res.dimension = problem.dim();
   res.feti = fetiDimensions(solver, r.feti);

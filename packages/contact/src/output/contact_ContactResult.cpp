@@ -66,6 +66,12 @@ Json runHeader(const ContactResult& r) {
   s["subdomains"] = r.subdomains;
   s["nodes"] = r.nodes;
   s["dimension"] = r.dimension;
+  Json d = Json::object();
+  d["partitioner"] = r.distribution.partitioner;
+  d["dof_imbalance"] = r.distribution.dofImbalance;
+  d["contact_imbalance"] = r.distribution.contactImbalance;
+  d["edge_cut"] = r.distribution.edgeCut;
+  s["subdomain_distribution"] = std::move(d);
   return s;
 }
 

@@ -92,6 +92,7 @@ struct ContactResult {
   std::string message;  // why not converged (empty when converged)
 
   FetiDimensions feti;
+  ElasticContactProblem::Distribution distribution;  // subdomains to ranks, and its balance
   tfeti::DualResult qp;  // the (last) QP solve: counters, residual history, method, rho
   std::string contactType = "frictionless";  // elastic_contact: frictionless | tied | bonded
   std::string contactDiscretization = "node_to_segment";  // or mortar, or mixed (pairs differ)

@@ -177,8 +177,9 @@ void addElasticContactParameters(ParameterList& pl) {
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
              Teuchos::tuple<std::string>("auto", "line", "point"), "Contact zone")));
   cp.set("Subdomain distribution", "graph",
-         "graph: Zoltan2 (Scotch) on the subdomain adjacency, balancing dofs; block: contiguous "
-         "blocks of subdomain ids",
+         "graph: the subdomain adjacency partitioned to balance the dofs and the initial "
+         "contact rows (METIS with two constraints; Zoltan2's Scotch on the dofs alone when there "
+         "are no contact rows); block: contiguous blocks of subdomain ids",
          Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
              Teuchos::tuple<std::string>("graph", "block"), "Subdomain distribution")));
   addFrictionParameters(cp);

@@ -245,8 +245,26 @@ void addCouplings(const ElasticContactSpec& spec, const Supports& h, const tfeti
   if (comm.getRank() != 0) p.couplingRows.clear();  // each row is passed by one rank
 }
 
-// Subdomains to ranks: balance the dofs and keep neighbours together (Zoltan2 on the graph
-// whose edges join subdomains sharing interface nodes, weighted by their number).
+// Per subdomain, the initial contact rows that touch its nodes. Those subdomains carry the
+// contact zone's work: their preconditioners are rebuilt whenever the rows move, and in
+// plasticity their tangents change and are refactorized while the rest keep theirs.
+std::vector<double> contactWeights(const ElasticContactProblem& p,
+                                   const std::vector<std::vector<int>>& holders) {
+  std::vector<double> w(p.subdomains.size(), 0.0);
+  std::vector<int> touched;
+  for (const ContactRow& row : p.contact.rows) {
+    touched.clear();
+    for (const NodeEntry& e : row.entries)
+      touched.insert(touched.end(), holders[e.node].begin(), holders[e.node].end());
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (int s : touched) w[s] += 1.0;
+  }
+  return w;
+}
+
+// Subdomains to ranks: balance the dofs and the contact rows and keep neighbours together (the
+// graph whose edges join subdomains sharing interface nodes, weighted by their number).
 void distributeToRanks(const ElasticContactSpec& spec, const tfeti::Comm& comm,
                        ElasticContactProblem& p) {
   std::vector<std::vector<int>> holders(p.mesh.numNodes());
@@ -261,9 +279,15 @@ void distributeToRanks(const ElasticContactSpec& spec, const tfeti::Comm& comm,
   for (const auto& [ab, w] : shared) edges.push_back({ab.first, ab.second, w});
   std::vector<double> weights;
   for (const auto& s : p.subdomains) weights.push_back(static_cast<double>(p.dim()) * s.numNodes());
-  p.ownerOfSubdomain =
-      tfeti::distributeSubdomains(comm, tfeti::makeSubdomainGraph(weights, edges),
-                                  tfeti::distributionMethodFromString(spec.distribution));
+  tfeti::SubdomainGraph graph = tfeti::makeSubdomainGraph(weights, edges);
+  graph.contactWeights = contactWeights(p, holders);
+  const tfeti::DistributionMethod method = tfeti::distributionMethodFromString(spec.distribution);
+  p.ownerOfSubdomain = tfeti::distributeSubdomains(comm, graph, method);
+  const int ranks = comm.getSize();
+  p.distribution.partitioner = tfeti::partitionerUsed(graph, ranks, method);
+  p.distribution.dofImbalance = tfeti::weightImbalance(graph, p.ownerOfSubdomain, ranks);
+  p.distribution.contactImbalance = tfeti::contactImbalance(graph, p.ownerOfSubdomain, ranks);
+  p.distribution.edgeCut = tfeti::edgeCut(graph, p.ownerOfSubdomain);
 }
 
 // The areas of the bodies with a body load (every rank meshes all of them: no reduction).
@@ -379,7 +403,12 @@ void assembleLocalSubdomains(const ElasticContactSpec& spec, const Supports& h,
   const int dim = p.dim();
   const std::map<std::string, double> bodyArea = bodyLoadAreas(spec, p.mesh);
   LoadParts parts = rampedTractionParts(spec);
-  for (int sid : tfeti::subdomainsOfRank(p.ownerOfSubdomain, comm.getRank())) {
+  const std::vector<int> mine = tfeti::subdomainsOfRank(p.ownerOfSubdomain, comm.getRank());
+  // SubdomainData's move may throw (Teuchos::RCP's is not noexcept), so a growing vector would
+  // copy every K assembled so far.
+  p.local.reserve(p.local.size() + mine.size());
+  p.localElements.reserve(p.localElements.size() + mine.size());
+  for (int sid : mine) {
     const UnstructuredSubdomain& s = p.subdomains[sid];
     for (auto& r : parts.ramped)
       r.f.emplace_back(static_cast<std::size_t>(dim) * s.numNodes(), 0.0);
@@ -529,9 +558,10 @@ ElasticContactProblem buildElasticContactProblem(const ElasticContactSpec& spec,
   findFirstCopies(p);
   const Supports supports = dirichletConditions(spec, p);
   addCouplings(spec, supports, comm, p);
+  // The contact rows first: where they lie is part of the work the distribution balances.
+  setUpContact(spec, comm, p);
   distributeToRanks(spec, comm, p);
   assembleLocalSubdomains(spec, supports, comm, p);
-  setUpContact(spec, comm, p);
   return p;
 }
 

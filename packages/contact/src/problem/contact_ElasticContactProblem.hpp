@@ -70,6 +70,13 @@ struct ElasticContactProblem {
   int numSubdomains() const { return static_cast<int>(subdomains.size()); }
   std::vector<int> bodyOfSubdomain;
   std::vector<int> ownerOfSubdomain;  // the rank of every subdomain
+  // How ownerOfSubdomain balances the work (summary.json "subdomain_distribution"): the
+  // partitioner (tfeti::partitionerUsed), the largest rank's share of the dofs and of the initial
+  // contact rows over the mean (1 = even) and the interface nodes cut between ranks.
+  struct Distribution {
+    std::string partitioner;
+    double dofImbalance = 1.0, contactImbalance = 1.0, edgeCut = 0.0;
+  } distribution;
   // This rank's subdomains, their element meshes (local numbering) and materials.
   std::vector<tfeti::SubdomainData> local;
   std::vector<plasticity::ElementMesh> localElements;

@@ -20,6 +20,12 @@ struct SubdomainGraph {
   std::vector<int> offsets;     // size numSubdomains() + 1
   std::vector<int> adjacency;
   std::vector<double> edgeWeights;  // > 0, same size as adjacency
+  // Optional, empty or one per subdomain, >= 0: work that sits in a few subdomains and that the
+  // weights do not show, such as the contact rows a subdomain's nodes carry (every Newton
+  // iteration rebuilds those subdomains' preconditioners and, in plasticity, their tangents).
+  // When any is positive the graph method balances both (METIS' multi-constraint partitioning;
+  // Scotch balances one weight only), so that no rank is left with all of the contact zone.
+  std::vector<double> contactWeights;
 
   int numSubdomains() const { return static_cast<int>(weights.size()); }
 };
@@ -61,12 +67,21 @@ std::vector<int> distributeSubdomains(const Comm& comm, const SubdomainGraph& gr
 std::vector<int> partitionSubdomains(const SubdomainGraph& graph, int numRanks,
                                      DistributionMethod method = DistributionMethod::Graph);
 
+// Which partition partitionSubdomains returns for this graph, rank count and method: "block",
+// "single" (one rank, or no more subdomains than ranks: one each), "scotch" (or "zoltan" where
+// Trilinos has no Scotch) on the weights, or "metis_two_constraints" when there are contact
+// weights and a partition that balances them better costs little dof balance (the dof imbalance
+// below 1.05 or within 2 % of the one-weight partition's; else the one-weight partition).
+std::string partitionerUsed(const SubdomainGraph& graph, int numRanks, DistributionMethod method);
+
 // The subdomains owned by rank, in increasing id order.
 std::vector<int> subdomainsOfRank(const std::vector<int>& owners, int rank);
 
-// Quality of a distribution: the largest rank weight over the mean rank weight (1 = perfect), and
-// the total weight of edges whose ends are on different ranks (each undirected edge once).
+// Quality of a distribution: the largest rank weight over the mean rank weight (1 = perfect), the
+// same for the contact weights (1 when they are absent or all zero), and the total weight of edges
+// whose ends are on different ranks (each undirected edge once).
 double weightImbalance(const SubdomainGraph& graph, const std::vector<int>& owners, int numRanks);
+double contactImbalance(const SubdomainGraph& graph, const std::vector<int>& owners, int numRanks);
 double edgeCut(const SubdomainGraph& graph, const std::vector<int>& owners);
 
 namespace detail {
@@ -75,6 +90,11 @@ namespace detail {
 // and for comparing algorithms; throws std::runtime_error if Zoltan2 fails.
 std::vector<int> zoltan2Partition(const SubdomainGraph& graph, int numParts,
                                   const std::string& algorithm);
+// METIS with two constraints per subdomain, its weight (to within 2 %) and its contact weight (to
+// within contactTolerance), as far as the graph allows, the edge cut minimized; deterministic (a
+// fixed seed).
+std::vector<int> metisTwoConstraintPartition(const SubdomainGraph& graph, int numParts,
+                                             double contactTolerance);
 }  // namespace detail
 
 }  // namespace tfeti
