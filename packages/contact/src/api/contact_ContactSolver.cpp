@@ -24,7 +24,8 @@ using Teuchos::ParameterList;
 namespace {
 
 // The subdomains as the solver takes them: K moved out of the problem (which needs no stiffness
-// after setup; a copy would double the peak memory of the assembly), the rest copied.
+// after setup; a copy would hold every K twice until the solver had factorized it), the rest
+// copied.
 std::vector<tfeti::SubdomainData> handOverStiffness(std::vector<tfeti::SubdomainData>& local) {
   std::vector<tfeti::SubdomainData> out;
   out.reserve(local.size());

@@ -263,10 +263,9 @@ std::vector<double> contactWeights(const ElasticContactProblem& p,
   return w;
 }
 
-// Subdomains to ranks: balance the dofs and the contact rows and keep neighbours together (the
-// graph whose edges join subdomains sharing interface nodes, weighted by their number).
-void distributeToRanks(const ElasticContactSpec& spec, const tfeti::Comm& comm,
-                       ElasticContactProblem& p) {
+// The subdomain graph: edges join subdomains sharing interface nodes, weighted by their number;
+// the weights are the dofs, the contact weights the initial contact rows.
+tfeti::SubdomainGraph subdomainGraph(const ElasticContactProblem& p) {
   std::vector<std::vector<int>> holders(p.mesh.numNodes());
   for (const auto& s : p.subdomains)
     for (long long g : s.globalNode) holders[g].push_back(s.id);
@@ -281,12 +280,20 @@ void distributeToRanks(const ElasticContactSpec& spec, const tfeti::Comm& comm,
   for (const auto& s : p.subdomains) weights.push_back(static_cast<double>(p.dim()) * s.numNodes());
   tfeti::SubdomainGraph graph = tfeti::makeSubdomainGraph(weights, edges);
   graph.contactWeights = contactWeights(p, holders);
-  const tfeti::DistributionMethod method = tfeti::distributionMethodFromString(spec.distribution);
-  p.ownerOfSubdomain = tfeti::distributeSubdomains(comm, graph, method);
-  const int ranks = comm.getSize();
-  p.distribution.partitioner = tfeti::partitionerUsed(graph, ranks, method);
-  p.distribution.dofImbalance = tfeti::weightImbalance(graph, p.ownerOfSubdomain, ranks);
-  p.distribution.contactImbalance = tfeti::contactImbalance(graph, p.ownerOfSubdomain, ranks);
+  return graph;
+}
+
+// Subdomains to ranks: balance the dofs and the contact rows and keep neighbours together; the
+// balance reached is reported.
+void distributeToRanks(const ElasticContactSpec& spec, const tfeti::Comm& comm,
+                       ElasticContactProblem& p) {
+  const tfeti::SubdomainGraph graph = subdomainGraph(p);
+  p.ownerOfSubdomain = tfeti::distributeSubdomains(
+      comm, graph, tfeti::distributionMethodFromString(spec.distribution),
+      &p.distribution.partitioner);
+  p.distribution.dofImbalance = tfeti::weightImbalance(graph, p.ownerOfSubdomain, comm.getSize());
+  p.distribution.contactImbalance =
+      tfeti::contactImbalance(graph, p.ownerOfSubdomain, comm.getSize());
   p.distribution.edgeCut = tfeti::edgeCut(graph, p.ownerOfSubdomain);
 }
 

@@ -71,7 +71,7 @@ struct ElasticContactProblem {
   std::vector<int> bodyOfSubdomain;
   std::vector<int> ownerOfSubdomain;  // the rank of every subdomain
   // How ownerOfSubdomain balances the work (summary.json "subdomain_distribution"): the
-  // partitioner (tfeti::partitionerUsed), the largest rank's share of the dofs and of the initial
+  // partitioner (see tfeti::distributeSubdomains), the largest rank's share of the dofs and of the initial
   // contact rows over the mean (1 = even) and the interface nodes cut between ranks.
   struct Distribution {
     std::string partitioner;

@@ -369,6 +369,27 @@ namespace {
 // rank leave METIS little room for both) and it balances the contact rows better.
 constexpr double kDofImbalanceAllowed = 1.05, kDofImbalanceRatio = 1.02;
 
+// The contact rows balanced as well, by METIS, where that costs little dof balance: the best
+// contact balance among its partitions for several contact targets (METIS meets the dof target
+// of 1.02 only loosely once the contact one is tight) that keep the dofs acceptable and improve
+// on the one-weight partition `alone`; empty when none does.
+std::vector<int> bestTwoConstraintPartition(const SubdomainGraph& graph, int numRanks,
+                                            const std::vector<int>& alone) {
+  const double allowed =
+      std::max(kDofImbalanceAllowed, kDofImbalanceRatio * weightImbalance(graph, alone, numRanks));
+  std::vector<int> best;
+  double bestContact = contactImbalance(graph, alone, numRanks);
+  for (double tolerance : {1.05, 1.1, 1.2, 1.5}) {
+    std::vector<int> both = detail::metisTwoConstraintPartition(graph, numRanks, tolerance);
+    const double contact = contactImbalance(graph, both, numRanks);
+    if (weightImbalance(graph, both, numRanks) <= allowed && contact < bestContact) {
+      best = std::move(both);
+      bestContact = contact;
+    }
+  }
+  return best;
+}
+
 std::pair<std::string, std::vector<int>> choosePartition(const SubdomainGraph& graph, int numRanks,
                                                          DistributionMethod method) {
   const int n = graph.numSubdomains();
@@ -387,45 +408,30 @@ std::pair<std::string, std::vector<int>> choosePartition(const SubdomainGraph& g
   const bool contact = std::any_of(graph.contactWeights.begin(), graph.contactWeights.end(),
                                    [](double w) { return w > 0.0; });
   if (!contact) return {kGraphAlgorithm, owners};
-  // METIS meets the dof target of 1.02 only loosely once the contact one is tight: try tighter
-  // and looser contact targets and keep the best contact balance among the acceptable ones.
-  const double allowed =
-      std::max(kDofImbalanceAllowed, kDofImbalanceRatio * weightImbalance(graph, owners, numRanks));
-  std::vector<int> best;
-  double bestContact = contactImbalance(graph, owners, numRanks);
-  for (double tolerance : {1.05, 1.1, 1.2, 1.5}) {
-    std::vector<int> both = detail::metisTwoConstraintPartition(graph, numRanks, tolerance);
-    const double contact = contactImbalance(graph, both, numRanks);
-    if (weightImbalance(graph, both, numRanks) <= allowed && contact < bestContact) {
-      best = std::move(both);
-      bestContact = contact;
-    }
-  }
-  if (!best.empty()) return {"metis_two_constraints", best};
-  return {kGraphAlgorithm, owners};
+  std::vector<int> both = bestTwoConstraintPartition(graph, numRanks, owners);
+  if (both.empty()) return {kGraphAlgorithm, owners};
+  return {"metis_two_constraints", both};
 }
+
+// The partitioners' names, so that rank 0 can pass its choice on as an index.
+const char* const kPartitioners[] = {"block", "single", "scotch", "zoltan",
+                                     "metis_two_constraints"};
 
 }  // namespace
 
-std::string partitionerUsed(const SubdomainGraph& graph, int numRanks, DistributionMethod method) {
-  if (numRanks < 1)
-    throw std::invalid_argument("tfeti::partitionerUsed: numRanks must be >= 1, got " +
-                                std::to_string(numRanks));
-  validateSubdomainGraph(graph);
-  return choosePartition(graph, numRanks, method).first;
-}
-
 std::vector<int> partitionSubdomains(const SubdomainGraph& graph, int numRanks,
-                                     DistributionMethod method) {
+                                     DistributionMethod method, std::string* partitioner) {
   if (numRanks < 1)
     throw std::invalid_argument("tfeti::partitionSubdomains: numRanks must be >= 1, got " +
                                 std::to_string(numRanks));
   validateSubdomainGraph(graph);
-  return choosePartition(graph, numRanks, method).second;
+  auto [name, owners] = choosePartition(graph, numRanks, method);
+  if (partitioner) *partitioner = name;
+  return owners;
 }
 
 std::vector<int> distributeSubdomains(const Comm& comm, const SubdomainGraph& graph,
-                                      DistributionMethod method) {
+                                      DistributionMethod method, std::string* partitioner) {
   std::string error;
   try {
     validateSubdomainGraph(graph);
@@ -441,15 +447,24 @@ std::vector<int> distributeSubdomains(const Comm& comm, const SubdomainGraph& gr
   throwIfAnyFailed(comm, error);
 
   std::vector<int> owners(graph.numSubdomains(), 0);
+  int chosen = 0;
   if (comm.getRank() == 0) {
     try {
-      owners = partitionSubdomains(graph, comm.getSize(), method);
+      std::string name;
+      owners = partitionSubdomains(graph, comm.getSize(), method, &name);
+      const auto* end = std::end(kPartitioners);
+      chosen = static_cast<int>(std::find(std::begin(kPartitioners), end, name) -
+                                std::begin(kPartitioners));
+      if (chosen == static_cast<int>(end - std::begin(kPartitioners)))
+        error = "unknown partitioner " + name;
     } catch (const std::exception& e) {
       error = e.what();
     }
   }
   throwIfAnyFailed(comm, error);
   if (!owners.empty()) Teuchos::broadcast(comm, 0, static_cast<int>(owners.size()), owners.data());
+  Teuchos::broadcast(comm, 0, Teuchos::outArg(chosen));
+  if (partitioner) *partitioner = kPartitioners[chosen];
   return owners;
 }
 

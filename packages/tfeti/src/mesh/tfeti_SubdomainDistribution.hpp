@@ -57,22 +57,22 @@ std::string toString(DistributionMethod method);
 // Owning rank of every subdomain for comm.getSize() ranks, identical on every rank: rank 0
 // partitions and broadcasts, because a parallel partitioner's result would depend on how the
 // input was spread over the ranks. Depends only on the graph and the rank count. Collective.
+// partitioner, when given, receives which partition was returned (on every rank): "block",
+// "single" (one rank, or no more subdomains than ranks: one each), "scotch" (or "zoltan" where
+// Trilinos has no Scotch) on the weights, or "metis_two_constraints" when there are contact
+// weights and a partition that balances them better costs little dof balance (the dof imbalance
+// below 1.05 or within 2 % of the one-weight partition's; else the one-weight partition).
 std::vector<int> distributeSubdomains(const Comm& comm, const SubdomainGraph& graph,
-                                      DistributionMethod method = DistributionMethod::Graph);
+                                      DistributionMethod method = DistributionMethod::Graph,
+                                      std::string* partitioner = nullptr);
 
 // The same computation without communication (what rank 0 does). Needs MPI to be initialized
 // for DistributionMethod::Graph (Zoltan2 runs on MPI_COMM_SELF). Scotch is run single-threaded
 // for reproducibility: SCOTCH_PTHREAD_NUMBER is set to 1 during the call and then restored, so
 // do not call this while another thread reads or writes the environment.
 std::vector<int> partitionSubdomains(const SubdomainGraph& graph, int numRanks,
-                                     DistributionMethod method = DistributionMethod::Graph);
-
-// Which partition partitionSubdomains returns for this graph, rank count and method: "block",
-// "single" (one rank, or no more subdomains than ranks: one each), "scotch" (or "zoltan" where
-// Trilinos has no Scotch) on the weights, or "metis_two_constraints" when there are contact
-// weights and a partition that balances them better costs little dof balance (the dof imbalance
-// below 1.05 or within 2 % of the one-weight partition's; else the one-weight partition).
-std::string partitionerUsed(const SubdomainGraph& graph, int numRanks, DistributionMethod method);
+                                     DistributionMethod method = DistributionMethod::Graph,
+                                     std::string* partitioner = nullptr);
 
 // The subdomains owned by rank, in increasing id order.
 std::vector<int> subdomainsOfRank(const std::vector<int>& owners, int rank);
