@@ -994,6 +994,19 @@ def factorizations_reused(dirs):
                      "factorization", whole)
 
 
+def analyses_shared(dirs):
+    """Subdomains cut from a structured mesh repeat their sparsity patterns: the local factors
+    share the symbolic analysis of a live factor of the same pattern (timings symbolic_analyses
+    made, symbolic_analyses_shared > 0). The counts are per rank, so they depend on the rank
+    count; the factorizations made from them do not."""
+    for d in dirs:
+        t = load(d)["timings"]
+        made, shared = t["symbolic_analyses"], t["symbolic_analyses_shared"]
+        if not made > 0 or not shared > 0:
+            fail(f"{d}: {made} symbolic analyses made and {shared} shared: none shared")
+        print(f"OK: {d}: {made} symbolic analyses made, {shared} shared")
+
+
 def distribution_balance(dirs, contact_tol, dof_tol):
     """Subdomains to ranks with the contact zone shared: on more than one rank the graph method
     partitions with the contact rows as a second constraint (subdomain_distribution.partitioner
@@ -1377,6 +1390,8 @@ if __name__ == "__main__":
                             (i == 0 or args[i - 1] != "--tol")], option(args, "--tol", 1e-10))
     elif mode == "factorizations_reused":
         factorizations_reused(args)
+    elif mode == "analyses_shared":
+        analyses_shared(args)
     elif mode == "tearings_reused":
         tearings_reused(args)
     elif mode == "diverged":

@@ -246,3 +246,69 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodRejectsIndefiniteMatrixNamingItself) {
     TEST_COMPARE(solveAndMeasure(*s, B, 2, 9).residual, <, 1e-12);
   }
 }
+
+// ------------------------------------------------------------------------------------------
+// CHOLMOD's factors of one sparsity pattern share its symbolic analysis while any of them is
+// alive (subdomains of a structured mesh repeat a few patterns). Sharing must change nothing
+// but the work: the same solution, bitwise, as a factor that made its own analysis.
+
+namespace {
+
+std::vector<double> solveOnce(tfeti::LocalSolver& s, const tfeti::CsrMatrix& A, unsigned seed) {
+  const std::vector<double> b = randomVector(static_cast<std::size_t>(A.rows), seed);
+  std::vector<double> x(b.size());
+  s.solve(b.data(), x.data(), 1);
+  return x;
+}
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(LocalSolver, CholmodFactorsOfOnePatternShareTheAnalysis) {
+  for (const std::string type : {"cholmod", "cholmod-simplicial", "cholmod-supernodal"}) {
+    out << type << "\n";
+    const tfeti::CsrMatrix A1 = laplacian2d(24, 1.0), A2 = laplacian2d(24, 1e-2);
+    const tfeti::CsrMatrix other = laplacian2d(25, 1.0);
+    const tfeti::LocalAnalysisCounts start = tfeti::localAnalysisCounts();
+    std::vector<double> shared;
+    {
+      auto first = tfeti::createLocalSolver(type), second = tfeti::createLocalSolver(type);
+      first->factorize(A1);
+      second->factorize(A2);  // A1's pattern: analysed once, shared
+      tfeti::LocalAnalysisCounts c = tfeti::localAnalysisCounts();
+      TEST_EQUALITY(c.made - start.made, 1);
+      TEST_EQUALITY(c.shared - start.shared, 1);
+      TEST_COMPARE(solveAndMeasure(*first, A1, 2, 11).residual, <, 1e-12);
+      TEST_COMPARE(solveAndMeasure(*second, A2, 2, 12).residual, <, 1e-12);
+      shared = solveOnce(*second, A2, 13);
+      // Another pattern is analysed anew; refactorizing in place analyses nothing.
+      auto third = tfeti::createLocalSolver(type);
+      third->factorize(other);
+      first->factorize(A2);
+      c = tfeti::localAnalysisCounts();
+      TEST_EQUALITY(c.made - start.made, 2);
+      TEST_EQUALITY(c.shared - start.shared, 1);
+      TEST_COMPARE(solveAndMeasure(*third, other, 1, 14).residual, <, 1e-12);
+      TEST_COMPARE_FLOATING_ARRAYS(solveOnce(*first, A2, 13), shared, 0.0);
+      // A factor that moves to the other pattern leaves the first one's analysis to the others.
+      second->factorize(other);
+      TEST_EQUALITY(tfeti::localAnalysisCounts().shared - start.shared, 2);
+      TEST_COMPARE(solveAndMeasure(*second, other, 1, 15).residual, <, 1e-12);
+      TEST_COMPARE_FLOATING_ARRAYS(solveOnce(*first, A2, 13), shared, 0.0);
+    }
+    // Every factor gone: the analysis went with them, and a new factor makes its own, which
+    // solves bitwise as the shared one did.
+    auto alone = tfeti::createLocalSolver(type);
+    alone->factorize(A2);
+    TEST_EQUALITY(tfeti::localAnalysisCounts().made - start.made, 3);
+    TEST_COMPARE_FLOATING_ARRAYS(solveOnce(*alone, A2, 13), shared, 0.0);
+  }
+  // The kinds do not share: a simplicial analysis is no supernodal one.
+  const tfeti::CsrMatrix A = laplacian2d(24, 1.0);
+  const tfeti::LocalAnalysisCounts start = tfeti::localAnalysisCounts();
+  auto simplicial = tfeti::createLocalSolver("cholmod-simplicial");
+  auto supernodal = tfeti::createLocalSolver("cholmod-supernodal");
+  simplicial->factorize(A);
+  supernodal->factorize(A);
+  TEST_EQUALITY(tfeti::localAnalysisCounts().made - start.made, 2);
+  TEST_EQUALITY(tfeti::localAnalysisCounts().shared - start.shared, 0);
+}

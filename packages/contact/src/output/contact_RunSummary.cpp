@@ -28,6 +28,8 @@ Json timingsJson(const tfeti::FetiTimings& t, int iterations) {
   j["subdomain_factorizations_reused"] = t.factorizationsReused;
   j["tearings"] = t.tearings;
   j["tearings_reused"] = t.tearingsReused;
+  j["symbolic_analyses"] = t.symbolicAnalyses;
+  j["symbolic_analyses_shared"] = t.symbolicAnalysesShared;
   return j;
 }
 

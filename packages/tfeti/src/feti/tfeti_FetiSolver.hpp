@@ -37,6 +37,7 @@
 #include "tfeti_CoarseSpace.hpp"
 #include "tfeti_CollectiveError.hpp"
 #include "tfeti_DualOperators.hpp"
+#include "tfeti_LocalSolver.hpp"
 #include "tfeti_MemoryUsage.hpp"
 #include "tfeti_Pcpg.hpp"
 #include "tfeti_QpProblem.hpp"
@@ -97,6 +98,9 @@ struct FetiTimings {
   // Tearings (B with its maps and scaling) and coarse spaces built, and kept by an update whose
   // rows changed only their right-hand sides and bounds (the count is the same on every rank).
   long long tearings = 0, tearingsReused = 0;
+  // Symbolic analyses of the local factorizations (subdomains, Dirichlet interiors, coarse
+  // problem) over all ranks: made, and shared with a live factor of the same sparsity pattern.
+  long long symbolicAnalyses = 0, symbolicAnalysesShared = 0;
   double setup() const {
     return factorization + tearing + coarse + preconditioner + dualRhs + dualOperator;
   }
@@ -288,6 +292,9 @@ class FetiSolver {
   // must then be set up again.
   std::vector<char> stiffnessChanged_;
   void countFactorizations();  // collective: stiffnessChanged_ into timings_
+  // Collective: the local solvers' symbolic analyses since the last count into timings_.
+  void countAnalyses();
+  LocalAnalysisCounts analysesCounted_ = localAnalysisCounts();
   // updateStiffness's steps: whether the subdomains refactorize in place (collective), and its
   // arguments checked before anything changes (collective, throws naming the subdomain).
   bool sameKernelPositions(const std::vector<std::vector<double>>& coords) const;

@@ -140,6 +140,16 @@ void FetiSolver::countFactorizations() {
   timings_.factorizationsReused += global[1];
 }
 
+void FetiSolver::countAnalyses() {
+  const LocalAnalysisCounts now = localAnalysisCounts();
+  long long local[2] = {now.made - analysesCounted_.made, now.shared - analysesCounted_.shared};
+  long long global[2] = {0, 0};
+  analysesCounted_ = now;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, local, global);
+  timings_.symbolicAnalyses += global[0];
+  timings_.symbolicAnalysesShared += global[1];
+}
+
 void FetiSolver::refactorizeSubdomains() {
   PhaseTimer t(*comm_, timings_.factorization, &memory_, "factorization");
   stiffnessChanged_.assign(subdomains_.size(), 0);
@@ -208,6 +218,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
   }
   Kplus_ = Teuchos::rcp(new PseudoInverseOperator(tearing_.primalMap, subdomains_));
   buildDualOperator();
+  countAnalyses();
 }
 
 void FetiSolver::buildDualOperator() {

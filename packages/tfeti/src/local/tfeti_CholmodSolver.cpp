@@ -4,9 +4,13 @@
 #include <cholmod.h>
 #include <dlfcn.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
+#include <unordered_map>
+#include <vector>
 
 #include "tfeti_CholmodView.hpp"
 #include "tfeti_LocalSolver.hpp"
@@ -80,6 +84,90 @@ cholmod_common* common() {
 // time with this machine's reference BLAS (docs/benchmarks.md, "3D setup profile").
 enum class CholmodKind { Auto, Simplicial, Supernodal };
 
+// One sparsity pattern's symbolic analysis (the fill-reducing ordering and the symbolic factor),
+// shared by every live factor of that pattern and kind. Subdomains cut from a structured mesh
+// repeat a few patterns: step-42's 64^3 cube gives 526 factorizations per rank (subdomains and
+// Dirichlet interiors) of 42 patterns, and with both orderings tried the analyses took 2.8-3.0 s
+// of a 40 s run (docs/benchmarks.md, "Symbolic analyses shared"). The pattern is kept here once
+// instead of once per factor.
+struct SymbolicAnalysis {
+  CholmodKind kind;
+  int n;
+  std::vector<int> rowPtr, colInd;
+  cholmod_factor* symbolic = nullptr;  // as cholmod_analyze returned it: no numerical values
+  SymbolicAnalysis(CholmodKind k, const CsrMatrix& A)
+      : kind(k), n(A.rows), rowPtr(A.rowPtr), colInd(A.colInd) {}
+  ~SymbolicAnalysis() {
+    if (symbolic) cholmod_free_factor(&symbolic, common());
+  }
+  SymbolicAnalysis(const SymbolicAnalysis&) = delete;
+  SymbolicAnalysis& operator=(const SymbolicAnalysis&) = delete;
+  bool matches(CholmodKind k, const CsrMatrix& A) const {
+    return kind == k && n == A.rows && rowPtr == A.rowPtr && colInd == A.colInd;
+  }
+};
+
+// FNV-1a over the pattern: the key of the analyses' table (equal patterns are then compared).
+std::uint64_t patternHash(CholmodKind kind, const CsrMatrix& A) {
+  std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint64_t>(kind);
+  auto mix = [&h](const std::vector<int>& v) {
+    for (int x : v) h = (h ^ static_cast<std::uint32_t>(x)) * 1099511628211ull;
+  };
+  mix(A.rowPtr);
+  mix(A.colInd);
+  return h;
+}
+
+// The analyses of the live factors, by pattern. It holds them weakly: an analysis lives as long
+// as a factor uses it, so a process that solves one problem after another keeps none of the
+// earlier ones.
+class SymbolicAnalyses {
+ public:
+  std::shared_ptr<const SymbolicAnalysis> get(CholmodKind kind, const CsrMatrix& A) {
+    const std::uint64_t key = patternHash(kind, A);
+    auto range = table_.equal_range(key);
+    for (auto it = range.first; it != range.second;) {
+      if (auto live = it->second.lock()) {
+        if (live->matches(kind, A)) {
+          ++counts_.shared;
+          return live;
+        }
+        ++it;
+      } else {
+        it = table_.erase(it);
+      }
+    }
+    auto made = std::make_shared<SymbolicAnalysis>(kind, A);
+    made->symbolic = analyze(kind, A);
+    ++counts_.made;
+    table_.emplace(key, made);
+    return made;
+  }
+  LocalAnalysisCounts counts() const { return counts_; }
+
+ private:
+  static cholmod_factor* analyze(CholmodKind kind, const CsrMatrix& A) {
+    cholmod_sparse S;
+    cholmodUpperView(A, S);
+    cholmod_common* c = common();
+    // The workspace is shared by every factor: set the kind for this analysis only.
+    const int defaultKind = c->supernodal;
+    if (kind == CholmodKind::Simplicial) c->supernodal = CHOLMOD_SIMPLICIAL;
+    if (kind == CholmodKind::Supernodal) c->supernodal = CHOLMOD_SUPERNODAL;
+    cholmod_factor* L = cholmod_analyze(&S, c);
+    c->supernodal = defaultKind;
+    if (!L) throw std::runtime_error("cholmod: symbolic analysis failed");
+    return L;
+  }
+  std::unordered_multimap<std::uint64_t, std::weak_ptr<SymbolicAnalysis>> table_;
+  LocalAnalysisCounts counts_;
+};
+
+SymbolicAnalyses& analyses() {
+  static SymbolicAnalyses instance;
+  return instance;
+}
+
 class CholmodSolver final : public LocalSolver {
  public:
   explicit CholmodSolver(CholmodKind kind) : kind_(kind) {}
@@ -91,7 +179,7 @@ class CholmodSolver final : public LocalSolver {
     cholmod_common* c = common();
     // A new matrix with the pattern of the last one (a Newton method's next tangent): the
     // ordering and the symbolic factor are kept, only the numbers are factorized again.
-    if (L_ && A.rows == n_ && A.rowPtr == rowPtr_ && A.colInd == colInd_) {
+    if (L_ && analysis_->matches(kind_, A)) {
       if (!cholmod_factorize(&S, L_, c) || c->status != CHOLMOD_OK) {
         const long minor = static_cast<long>(L_->minor);
         release();
@@ -101,26 +189,20 @@ class CholmodSolver final : public LocalSolver {
       return;
     }
     release();
-    n_ = A.rows;
-    rowPtr_ = A.rowPtr;
-    colInd_ = A.colInd;
-    // The workspace is shared by every factor: set the kind for this analysis only.
-    const int defaultKind = c->supernodal;
-    if (kind_ == CholmodKind::Simplicial) c->supernodal = CHOLMOD_SIMPLICIAL;
-    if (kind_ == CholmodKind::Supernodal) c->supernodal = CHOLMOD_SUPERNODAL;
-    L_ = cholmod_analyze(&S, c);
-    c->supernodal = defaultKind;
-    if (!L_) throw std::runtime_error("cholmod: symbolic analysis failed");
+    analysis_ = analyses().get(kind_, A);
+    // The numerical factorization fills a copy of the shared symbolic factor.
+    L_ = cholmod_copy_factor(analysis_->symbolic, c);
+    if (!L_) throw std::runtime_error("cholmod: out of memory copying a symbolic factor");
     if (!cholmod_factorize(&S, L_, c) || c->status != CHOLMOD_OK)
       throw std::runtime_error("cholmod: the subdomain matrix is not positive definite (column " +
-                               std::to_string(L_->minor) + " of " + std::to_string(n_) + ")");
+                               std::to_string(L_->minor) + " of " + std::to_string(A.rows) + ")");
   }
 
   void solve(const double* b, double* x, int nrhs) override {
     CholmodCommon& w = shared();
     cholmod_dense B;
     std::memset(&B, 0, sizeof(B));
-    B.nrow = static_cast<size_t>(n_);
+    B.nrow = static_cast<size_t>(L_->n);
     B.ncol = static_cast<size_t>(nrhs);
     B.nzmax = B.nrow * B.ncol;
     B.d = B.nrow;
@@ -150,12 +232,10 @@ class CholmodSolver final : public LocalSolver {
   void release() {
     cholmod_common* c = common();
     if (L_) cholmod_free_factor(&L_, c);
-    rowPtr_.clear();
-    colInd_.clear();
+    analysis_.reset();
   }
   CholmodKind kind_;
-  int n_ = 0;
-  std::vector<int> rowPtr_, colInd_;  // the pattern L_'s analysis was made for
+  std::shared_ptr<const SymbolicAnalysis> analysis_;  // the pattern L_ was analysed for
   cholmod_factor* L_ = nullptr;
 };
 
@@ -166,6 +246,10 @@ std::unique_ptr<LocalSolver> createCholmodSolver(const std::string& kind) {
                         : kind == "supernodal" ? CholmodKind::Supernodal
                                                : CholmodKind::Auto;
   return std::make_unique<CholmodSolver>(k);
+}
+
+LocalAnalysisCounts cholmodAnalysisCounts() {
+  return analyses().counts();
 }
 
 }  // namespace tfeti

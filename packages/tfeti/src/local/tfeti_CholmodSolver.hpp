@@ -13,4 +13,8 @@ namespace tfeti {
 // CHOLMOD choose per matrix.
 std::unique_ptr<LocalSolver> createCholmodSolver(const std::string& kind);
 
+// The symbolic analyses the CHOLMOD factors of this process made, and the factorizations that
+// shared the analysis of a live factor of the same pattern and kind instead.
+LocalAnalysisCounts cholmodAnalysisCounts();
+
 }  // namespace tfeti

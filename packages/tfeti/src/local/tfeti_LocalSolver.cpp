@@ -13,6 +13,10 @@ const std::vector<std::string>& localSolverTypes() {
   return types;
 }
 
+LocalAnalysisCounts localAnalysisCounts() {
+  return cholmodAnalysisCounts();
+}
+
 std::unique_ptr<LocalSolver> createLocalSolver(const std::string& type) {
   if (type == "cholmod") return createCholmodSolver("auto");
   if (type == "cholmod-simplicial") return createCholmodSolver("simplicial");

@@ -24,6 +24,14 @@ class LocalSolver {
   virtual std::string name() const = 0;
 };
 
+// Symbolic analyses (fill-reducing orderings and symbolic factors) made by the local solvers of
+// this process, and factorizations that shared the analysis of a live factor with the same
+// sparsity pattern instead (CHOLMOD; Amesos2's solvers analyse every matrix and count nothing).
+struct LocalAnalysisCounts {
+  long long made = 0, shared = 0;
+};
+LocalAnalysisCounts localAnalysisCounts();
+
 // Local solver types this build offers: "cholmod" (CHOLMOD choosing simplicial or supernodal
 // per matrix), "cholmod-simplicial", "cholmod-supernodal" (the kind forced), "klu2", "tacho".
 const std::vector<std::string>& localSolverTypes();
