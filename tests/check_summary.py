@@ -1031,17 +1031,21 @@ def distribution_balance(dirs, contact_tol, dof_tol):
               f"cut {dist['edge_cut']:g}")
 
 
-def tearings_reused(dirs):
+def tearings_reused(dirs, expected_built=None):
     """A Newton run against a height-function obstacle in small strain: the contact rows keep
     their entries from one iteration to the next (only the gaps move), so the solver keeps its
     tearing and coarse space (timings tearings_reused > 0); every iteration's QP either kept or
     built them (tearings + tearings_reused = the Newton iterations + the first set-up), and the
-    counts do not depend on the rank count."""
+    counts do not depend on the rank count. With expected_built, exactly that many tearings are
+    built (1: the solver is built with the first increment's rows, and a rigid obstacle's rows
+    are kept through the step)."""
     def one_per_iteration(d, s, built, kept):
         iterations = s["nonlinear"]["total_iterations"]
         if built + kept != iterations + 1:
             fail(f"{d}: {built} tearings built and {kept} kept for {iterations} Newton "
                  f"iterations and the first set-up")
+        if expected_built is not None and built != expected_built:
+            fail(f"{d}: {built} tearings built, expected {expected_built}")
     built_and_reused(dirs, "tearings", "tearings_reused", "tearing", one_per_iteration)
 
 
@@ -1393,7 +1397,10 @@ if __name__ == "__main__":
     elif mode == "analyses_shared":
         analyses_shared(args)
     elif mode == "tearings_reused":
-        tearings_reused(args)
+        built = option(args, "--built", None)
+        tearings_reused([a for i, a in enumerate(args) if a != "--built" and
+                         (i == 0 or args[i - 1] != "--built")],
+                        None if built is None else int(built))
     elif mode == "diverged":
         diverged(args[0])
     elif mode == "prescribed":

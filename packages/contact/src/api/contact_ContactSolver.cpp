@@ -151,6 +151,8 @@ void ContactSolver::setup() {
     std::filesystem::create_directories(dir_ + "/restart");
 
   // K of the undeformed bodies, factorized once; loads and rows change per iteration.
+  policy.initialContact(*comm_, model, r.options,
+                        std::min(1.0, r.history.loadFactor + r.history.stepSize));
   r.solver = std::make_unique<tfeti::FetiSolver>(
       comm_, problem.numSubdomains(), handOverStiffness(problem.local), r.feti,
       problem.inequalities, policy.initialEqualityRows(problem, r.history.loadFactor, model.u));

@@ -68,6 +68,10 @@ class ElasticContactPolicy final : public RunPolicy {
     return globalNorm(comm, f);
   }
 
+  // The rows of the mesh's search: the only increment is solved as built.
+  void initialContact(const tfeti::Comm&, NonlinearModel&, const NonlinearOptions&,
+                      double) const override {}
+
   // The prescribed rows at their full value: the only increment is solved as built.
   std::vector<tfeti::EqualityRow> initialEqualityRows(const ElasticContactProblem& problem, double,
                                                       const Field&) const override {

@@ -68,6 +68,13 @@ class NonlinearContactPolicy final : public RunPolicy {
     return equalityRowsAt(problem, t, u);
   }
 
+  // The first increment's own contact update (a rigid obstacle moved to t): the solver is built
+  // with its rows, so that the first iteration keeps the tearing instead of building another.
+  void initialContact(const tfeti::Comm& comm, NonlinearModel& model,
+                      const NonlinearOptions& options, double t) const override {
+    searchContactAt(comm, model, options, t);
+  }
+
   bool printsIterations() const override { return true; }
   bool keepsUnconvergedStep() const override { return false; }
   bool savesSteps() const override { return true; }

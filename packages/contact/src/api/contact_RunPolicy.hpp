@@ -43,6 +43,10 @@ class RunPolicy {
   // The equality rows the FETI solver is built with, the run starting from u at load factor t.
   virtual std::vector<tfeti::EqualityRow> initialEqualityRows(const ElasticContactProblem& problem,
                                                               double t, const Field& u) const = 0;
+  // The contact rows (model.problem.inequalities) the FETI solver is built with, the run's first
+  // increment going from model.u to load factor t (collective).
+  virtual void initialContact(const tfeti::Comm& comm, NonlinearModel& model,
+                              const NonlinearOptions& options, double t) const = 0;
 
   // --- the load steps
   // Whether each iteration gets a progress line (Verbosity 2).

@@ -49,25 +49,74 @@ void LoadStepIteration::moveFrozenGaps(const std::vector<double>& current) const
   setInequalitiesFromRows(problem, comm_->getRank());
 }
 
+namespace {
+
+// Every rigid obstacle's master where its prescribed motion has taken it at load factor t (one
+// obstacle at most moves: checkNonlinearOptionsFor), searching radiusFactor times its radius.
+void placeObstacles(ElasticContactProblem& problem, const NonlinearOptions& options, double t,
+                    double radiusFactor) {
+  if (options.obstacleDisplacement.empty() && radiusFactor == 1.0) return;
+  for (auto& pair : problem.pairs) {
+    if (!pair.spec.obstacle) continue;
+    ContactPairSpec at = pair.spec;
+    if (!options.obstacleDisplacement.empty())
+      for (int c = 0; c < at.obstacle->dim; ++c)
+        at.obstacle->point[c] += t * options.obstacleDisplacement[c];
+    ContactSearchOptions search;
+    search.searchRadius = radiusFactor * pair.searchRadius;
+    pair.master = makePairMaster(problem.mesh, at, search);
+  }
+}
+
+}  // namespace
+
+void searchContactAt(const tfeti::Comm& comm, NonlinearModel& model,
+                     const NonlinearOptions& options, double t, double radiusFactor) {
+  placeObstacles(model.problem, options, t, radiusFactor);
+  contact::updateContact(model.problem, model.surfaceDisplacement(comm, model.u), comm.getRank());
+}
+
+bool LoadStepIteration::keepsRowsInStep() const {
+  const ElasticContactProblem& problem = model_.problem;
+  if (problem.pairs.size() != 1 || friction.active()) return false;
+  const ContactPairSpec& spec = problem.pairs.front().spec;
+  // Frictionless only: a tied or bonded row holds at any gap. Mortar rows integrate the gap over
+  // facets, where the radius does not only select rows.
+  return spec.obstacle && spec.contactType == "frictionless" &&
+         spec.discretization == "node_to_segment";
+}
+
+void LoadStepIteration::keepStepRows() const {
+  ElasticContactProblem& problem = model_.problem;
+  const double radius = problem.pairs.front().searchRadius;
+  std::vector<ContactRow> kept;
+  for (ContactRow& row : problem.contact.rows)
+    if (std::abs(row.gap) <= radius ||
+        std::binary_search(stepRowNodes_.begin(), stepRowNodes_.end(), row.slaveNode))
+      kept.push_back(std::move(row));
+    else
+      ++problem.contact.beyondRadius;
+  problem.contact.rows = std::move(kept);
+  problem.rowPair.assign(problem.contact.rows.size(), 0);
+  setInequalitiesFromRows(problem, comm_->getRank());
+}
+
 void LoadStepIteration::updateContact(const Field& u, double t) const {
   ElasticContactProblem& problem = model_.problem;
-  if (!options_.obstacleDisplacement.empty())
-    for (auto& pair : problem.pairs) {
-      if (!pair.spec.obstacle) continue;
-      // The obstacle (one at most: checkNonlinearOptionsFor) where its prescribed motion has
-      // taken it at load factor t.
-      ContactPairSpec at = pair.spec;
-      for (int c = 0; c < at.obstacle->dim; ++c)
-        at.obstacle->point[c] += t * options_.obstacleDisplacement[c];
-      ContactSearchOptions search;
-      search.searchRadius = pair.searchRadius;
-      pair.master = makePairMaster(problem.mesh, at, search);
-    }
+  const bool keepRows = !contactFrozen_ && keepsRowsInStep() && !stepRowNodes_.empty();
+  placeObstacles(problem, options_, t, keepRows ? kKeptRowRadius : 1.0);
   const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
-  if (contactFrozen_)
+  if (contactFrozen_) {
     moveFrozenGaps(current);
-  else
+  } else {
     contact::updateContact(problem, current, comm_->getRank());
+    if (keepRows) keepStepRows();
+    if (keepsRowsInStep()) {
+      stepRowNodes_.clear();
+      for (const ContactRow& row : problem.contact.rows) stepRowNodes_.push_back(row.slaveNode);
+      std::sort(stepRowNodes_.begin(), stepRowNodes_.end());
+    }
+  }
   contactAt_ = current;
   if (friction.active()) {
     const std::vector<tfeti::InequalityRow> rows =
@@ -198,6 +247,7 @@ void LoadStepIteration::freezeContact(int step, int iteration, double relativeIn
 
 StepOutcome LoadStepIteration::attempt(int step, double t) const {
   contactFrozen_ = false;
+  stepRowNodes_.clear();
   StepOutcome out;
   out.u = model_.u;
   Field& u = out.u;

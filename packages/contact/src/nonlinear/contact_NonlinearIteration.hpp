@@ -47,6 +47,14 @@ ResidualCheck checkResidual(const tfeti::Comm& comm, const Field& load,
                             const Field& multiplierForces, const Field& fint, const Field& u,
                             const Field& du, double loadNorm, const NonlinearOptions& options);
 
+// The contact update of an increment that starts from model.u and goes to load factor t, without
+// friction rows or a kept row set: every rigid obstacle where its prescribed motion has taken it,
+// searched with radiusFactor times its Search radius, then the rows from the surface displacement
+// (model.problem.contact and inequalities; collective). The run's solver is built with the
+// first increment's rows, which its first iteration then finds again.
+void searchContactAt(const tfeti::Comm& comm, NonlinearModel& model,
+                     const NonlinearOptions& options, double t, double radiusFactor = 1.0);
+
 class LoadStepIteration {
  public:
   // loadNorm: ||f|| at load factor 1 (0: no applied load). The contact pairs (their names for
@@ -105,6 +113,15 @@ class LoadStepIteration {
   mutable std::vector<double> contactAt_;   // the surface displacement the rows are at
   mutable std::vector<double> frozenAt_;    // ... when they were frozen
   mutable std::vector<double> frozenGaps_;  // their gaps then
+  // Within a step, a slave node of a rigid obstacle keeps its row while the iterations move its
+  // gap beyond the Search radius (out to kKeptRowRadius times it): such a row is inactive, and
+  // a row set that stays the same keeps the solver's tearing and coarse space instead of
+  // building them again (a node-wise obstacle of the only contact pair; the slave nodes of the
+  // step's last update, empty at its start; frictionless, node-wise rows, no friction).
+  static constexpr double kKeptRowRadius = 2.0;
+  mutable std::vector<int> stepRowNodes_;
+  bool keepsRowsInStep() const;
+  void keepStepRows() const;
   // Whether the last three iterations show the 2-cycle: u_k = u_(k-2) and |du_k| = |du_(k-1)|.
   static bool twoCycle(const std::vector<IterationRecord>& iterations);
   // Keeps the rows in force (their gaps at contactAt_) for the rest of the step, and says so.
