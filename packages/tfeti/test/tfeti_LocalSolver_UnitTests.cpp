@@ -312,3 +312,38 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodFactorsOfOnePatternShareTheAnalysis) {
   TEST_EQUALITY(tfeti::localAnalysisCounts().made - start.made, 2);
   TEST_EQUALITY(tfeti::localAnalysisCounts().shared - start.shared, 0);
 }
+
+// The Dirichlet preconditioner factorizes K(interior, interior) taken by CsrMatrix::submatrix:
+// every kept entry in its place, in the order of the rows, and nothing else.
+TEUCHOS_UNIT_TEST(CsrMatrix, SubmatrixKeepsTheChosenRowsAndColumns) {
+  const int g = 9;
+  const tfeti::CsrMatrix A = laplacian2d(g, 0.25);
+  std::vector<int> rows, cols;
+  for (int i = 0; i < A.rows; ++i) {
+    if (i % 3 != 1) rows.push_back(i);
+    if (i % 4 != 2) cols.push_back(i);
+  }
+  const tfeti::CsrMatrix S = A.submatrix(rows, cols);
+  TEST_EQUALITY(S.rows, static_cast<int>(rows.size()));
+  TEST_EQUALITY(S.cols, static_cast<int>(cols.size()));
+  TEST_EQUALITY(S.rowPtr.size(), rows.size() + 1);
+  TEST_EQUALITY(S.colInd.size(), S.values.size());
+  TEST_EQUALITY(static_cast<int>(S.colInd.size()), S.rowPtr.back());
+  std::size_t expected = 0;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    int last = -1;
+    for (int k = S.rowPtr[r]; k < S.rowPtr[r + 1]; ++k) {
+      TEST_COMPARE(S.colInd[k], >, last);  // increasing columns
+      last = S.colInd[k];
+      const long at = A.find(rows[r], cols[S.colInd[k]]);
+      TEST_COMPARE(at, >=, 0);
+      if (at >= 0) TEST_EQUALITY(S.values[k], A.values[at]);
+    }
+    for (int c : cols) expected += A.find(rows[r], c) >= 0;
+  }
+  TEST_EQUALITY(S.colInd.size(), expected);
+  const tfeti::CsrMatrix none = A.submatrix({}, cols);
+  TEST_EQUALITY(none.rows, 0);
+  TEST_EQUALITY(none.rowPtr.size(), std::size_t(1));
+  TEST_EQUALITY(none.colInd.size(), std::size_t(0));
+}

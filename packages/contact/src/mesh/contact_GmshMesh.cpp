@@ -422,24 +422,33 @@ void checkSolidElements(const std::string& path, const GmshBody& body, const Nam
   }
 }
 
-// Relates every boundary edge (face) to the body element having it as a facet.
+// Relates every boundary edge (face) to the body element having it as a facet; where two bodies
+// share a facet, the first body's element, and within a body the first element. Only the
+// boundaries' facets are indexed, and every element facet is looked up among them: indexing every
+// element facet instead (6 per hexahedron) took 2.4 % of a 1M step-42 run on each rank.
 void relateFacetsToElements(GmshMesh& mesh) {
   struct Side {
-    int body, element, facet;
+    int body = -1, element = -1, facet = -1;
   };
   std::unordered_map<FacetKey, Side, FacetKeyHash> sides;
-  for (int b = static_cast<int>(mesh.bodies.size()) - 1; b >= 0; --b) {
-    // Later bodies first, so that the first body wins where two bodies share a facet.
+  for (const GmshBoundary& g : mesh.boundaries) {
+    const int n = static_cast<int>(g.edges.size()) / g.nodesPerEdge;
+    const int fc = numCorners(g.type);
+    for (int i = 0; i < n; ++i)
+      sides.emplace(facetKey(&g.edges[static_cast<std::size_t>(i) * g.nodesPerEdge], fc), Side{});
+  }
+  for (int b = 0; b < static_cast<int>(mesh.bodies.size()) && !sides.empty(); ++b) {
     const GmshBody& body = mesh.bodies[b];
     const int npe = body.nodesPerElement(), nf = numFacets(body.type);
     const int fc = numCorners(facetType(body.type));
-    for (int e = body.numElements() - 1; e >= 0; --e) {
+    for (int e = 0; e < body.numElements(); ++e) {
       const int* el = &body.connectivity[static_cast<std::size_t>(e) * npe];
       for (int f = 0; f < nf; ++f) {
         const std::vector<int>& local = elementFacetNodes(body.type, f);
         int corners[4];
         for (int k = 0; k < fc; ++k) corners[k] = el[local[k]];
-        sides[facetKey(corners, fc)] = Side{b, e, f};
+        auto it = sides.find(facetKey(corners, fc));
+        if (it != sides.end() && it->second.body < 0) it->second = Side{b, e, f};
       }
     }
   }
@@ -450,11 +459,11 @@ void relateFacetsToElements(GmshMesh& mesh) {
     g.edgeElement.assign(n, -1);
     g.edgeLocalEdge.assign(n, -1);
     for (int i = 0; i < n; ++i) {
-      auto it = sides.find(facetKey(&g.edges[static_cast<std::size_t>(i) * g.nodesPerEdge], fc));
-      if (it == sides.end()) continue;
-      g.edgeBody[i] = it->second.body;
-      g.edgeElement[i] = it->second.element;
-      g.edgeLocalEdge[i] = it->second.facet;
+      const Side& side =
+          sides.at(facetKey(&g.edges[static_cast<std::size_t>(i) * g.nodesPerEdge], fc));
+      g.edgeBody[i] = side.body;
+      g.edgeElement[i] = side.element;
+      g.edgeLocalEdge[i] = side.facet;
     }
   }
 }

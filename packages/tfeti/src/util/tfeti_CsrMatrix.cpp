@@ -66,16 +66,27 @@ CsrMatrix CsrMatrix::submatrix(const std::vector<int>& rowsKept,
   CsrMatrix s;
   s.rows = static_cast<int>(rowsKept.size());
   s.cols = static_cast<int>(colsKept.size());
+  // Counted first, so that the arrays are allocated once at their size: grown entry by entry
+  // they were reallocated and first touched about twice over (the Dirichlet interiors of 3D
+  // subdomains, 2 % of a 1M step-42 run).
   s.rowPtr.assign(s.rows + 1, 0);
   for (int r = 0; r < s.rows; ++r) {
     const int i = rowsKept[r];
+    int kept = 0;
+    for (int k = rowPtr[i]; k < rowPtr[i + 1]; ++k) kept += newCol[colInd[k]] >= 0;
+    s.rowPtr[r + 1] = s.rowPtr[r] + kept;
+  }
+  s.colInd.resize(s.rowPtr[s.rows]);
+  s.values.resize(s.rowPtr[s.rows]);
+  for (int r = 0; r < s.rows; ++r) {
+    const int i = rowsKept[r];
+    int at = s.rowPtr[r];
     for (int k = rowPtr[i]; k < rowPtr[i + 1]; ++k) {
       const int c = newCol[colInd[k]];
       if (c < 0) continue;
-      s.colInd.push_back(c);
-      s.values.push_back(values[k]);
+      s.colInd[at] = c;
+      s.values[at++] = values[k];
     }
-    s.rowPtr[r + 1] = static_cast<int>(s.colInd.size());
   }
   return s;
 }
