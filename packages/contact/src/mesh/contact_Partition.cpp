@@ -55,30 +55,51 @@ DualGraph edgeDualGraph(const GmshBody& body) {
   if (static_cast<long long>(body.connectivity.size()) != static_cast<long long>(ne) * npe)
     throw std::invalid_argument("edgeDualGraph: body \"" + body.name +
                                 "\": connectivity size does not match its element count");
-  // Elements per facet; in a valid mesh at most two, but a third one is kept rather than
-  // dropped so that a non-manifold input cannot silently lose adjacency.
-  std::unordered_map<FacetKey, std::vector<int>, FacetKeyHash> byEdge;
-  byEdge.reserve(static_cast<std::size_t>(ne) * nf);
+  // Every element's facets, sorted by facet: the elements sharing a facet are then neighbours in
+  // the list. In a valid mesh a facet has at most two elements, but a third one is kept rather
+  // than dropped so that a non-manifold input cannot silently lose adjacency. (A hash map from
+  // facet to its elements, one small vector each, took 2.2 % of a 1M step-42 run per rank.)
+  struct ElementFacet {
+    FacetKey key;
+    int element;
+    bool operator<(const ElementFacet& o) const {
+      return key != o.key ? key < o.key : element < o.element;
+    }
+  };
+  std::vector<ElementFacet> facets;
+  facets.reserve(static_cast<std::size_t>(ne) * nf);
   for (int e = 0; e < ne; ++e)
     for (int f = 0; f < nf; ++f)
-      byEdge[facetKey(body.type, &body.connectivity[static_cast<std::size_t>(e) * npe], f)]
-          .push_back(e);
-  std::vector<std::vector<int>> adj(ne);
-  for (const auto& [key, els] : byEdge)
-    for (int a : els)
-      for (int b : els)
-        if (a != b) adj[a].push_back(b);
+      facets.push_back(
+          {facetKey(body.type, &body.connectivity[static_cast<std::size_t>(e) * npe], f), e});
+  std::sort(facets.begin(), facets.end());
+  // The runs of equal facets, twice: the neighbour counts, then the neighbours.
+  std::vector<int> start(static_cast<std::size_t>(ne) + 1, 0);
+  auto forEachPair = [&](auto&& visit) {
+    for (std::size_t i = 0, n = facets.size(); i < n;) {
+      std::size_t j = i + 1;
+      while (j < n && facets[j].key == facets[i].key) ++j;
+      for (std::size_t a = i; a < j; ++a)
+        for (std::size_t b = i; b < j; ++b)
+          if (facets[a].element != facets[b].element) visit(facets[a].element, facets[b].element);
+      i = j;
+    }
+  };
+  forEachPair([&](int a, int) { ++start[a + 1]; });
+  for (int e = 0; e < ne; ++e) start[e + 1] += start[e];
+  std::vector<int> all(start[ne]), fill(start.begin(), start.end() - 1);
+  forEachPair([&](int a, int b) { all[fill[a]++] = b; });
   DualGraph g;
   g.offsets.assign(ne + 1, 0);
+  g.neighbors.reserve(all.size());
   for (int e = 0; e < ne; ++e) {
-    // Sorted for a result independent of the hash map's iteration order (METIS sees the same
-    // graph on every rank).
-    std::sort(adj[e].begin(), adj[e].end());
-    adj[e].erase(std::unique(adj[e].begin(), adj[e].end()), adj[e].end());
-    g.offsets[e + 1] = g.offsets[e] + static_cast<int>(adj[e].size());
+    // Sorted and unique (two elements may share several facets): METIS sees the same graph on
+    // every rank.
+    auto first = all.begin() + start[e], last = all.begin() + start[e + 1];
+    std::sort(first, last);
+    g.neighbors.insert(g.neighbors.end(), first, std::unique(first, last));
+    g.offsets[e + 1] = static_cast<int>(g.neighbors.size());
   }
-  g.neighbors.reserve(g.offsets[ne]);
-  for (int e = 0; e < ne; ++e) g.neighbors.insert(g.neighbors.end(), adj[e].begin(), adj[e].end());
   return g;
 }
 

@@ -52,10 +52,11 @@ void LoadStepIteration::moveFrozenGaps(const std::vector<double>& current) const
 namespace {
 
 // Every rigid obstacle's master where its prescribed motion has taken it at load factor t (one
-// obstacle at most moves: checkNonlinearOptionsFor), searching radiusFactor times its radius.
+// obstacle at most moves: checkNonlinearOptionsFor), searching radiusFactor times its radius;
+// without a motion only when `always` (a master searching another radius is put back).
 void placeObstacles(ElasticContactProblem& problem, const NonlinearOptions& options, double t,
-                    double radiusFactor) {
-  if (options.obstacleDisplacement.empty() && radiusFactor == 1.0) return;
+                    double radiusFactor, bool always) {
+  if (options.obstacleDisplacement.empty() && !always) return;
   for (auto& pair : problem.pairs) {
     if (!pair.spec.obstacle) continue;
     ContactPairSpec at = pair.spec;
@@ -72,7 +73,7 @@ void placeObstacles(ElasticContactProblem& problem, const NonlinearOptions& opti
 
 void searchContactAt(const tfeti::Comm& comm, NonlinearModel& model,
                      const NonlinearOptions& options, double t, double radiusFactor) {
-  placeObstacles(model.problem, options, t, radiusFactor);
+  placeObstacles(model.problem, options, t, radiusFactor, radiusFactor != 1.0);
   contact::updateContact(model.problem, model.surfaceDisplacement(comm, model.u), comm.getRank());
 }
 
@@ -104,7 +105,7 @@ void LoadStepIteration::keepStepRows() const {
 void LoadStepIteration::updateContact(const Field& u, double t) const {
   ElasticContactProblem& problem = model_.problem;
   const bool keepRows = !contactFrozen_ && keepsRowsInStep() && !stepRowNodes_.empty();
-  placeObstacles(problem, options_, t, keepRows ? kKeptRowRadius : 1.0);
+  placeObstacles(problem, options_, t, keepRows ? kKeptRowRadius : 1.0, keepsRowsInStep());
   const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
   if (contactFrozen_) {
     moveFrozenGaps(current);
