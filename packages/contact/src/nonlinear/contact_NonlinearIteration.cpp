@@ -72,8 +72,8 @@ void placeObstacles(ElasticContactProblem& problem, const NonlinearOptions& opti
 }  // namespace
 
 void searchContactAt(const tfeti::Comm& comm, NonlinearModel& model,
-                     const NonlinearOptions& options, double t, double radiusFactor) {
-  placeObstacles(model.problem, options, t, radiusFactor, radiusFactor != 1.0);
+                     const NonlinearOptions& options, double t) {
+  placeObstacles(model.problem, options, t, 1.0, false);
   contact::updateContact(model.problem, model.surfaceDisplacement(comm, model.u), comm.getRank());
 }
 

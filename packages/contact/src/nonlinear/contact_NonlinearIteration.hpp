@@ -48,12 +48,12 @@ ResidualCheck checkResidual(const tfeti::Comm& comm, const Field& load,
                             const Field& du, double loadNorm, const NonlinearOptions& options);
 
 // The contact update of an increment that starts from model.u and goes to load factor t, without
-// friction rows or a kept row set: every rigid obstacle where its prescribed motion has taken it,
-// searched with radiusFactor times its Search radius, then the rows from the surface displacement
-// (model.problem.contact and inequalities; collective). The run's solver is built with the
-// first increment's rows, which its first iteration then finds again.
+// friction rows or kept rows: every rigid obstacle where its prescribed motion has taken it, then
+// the rows from the surface displacement (model.problem.contact and inequalities; collective).
+// The run's solver is built with the first increment's rows, which its first iteration then
+// finds again.
 void searchContactAt(const tfeti::Comm& comm, NonlinearModel& model,
-                     const NonlinearOptions& options, double t, double radiusFactor = 1.0);
+                     const NonlinearOptions& options, double t);
 
 class LoadStepIteration {
  public:
@@ -116,8 +116,9 @@ class LoadStepIteration {
   // Within a step, a slave node of a rigid obstacle keeps its row while the iterations move its
   // gap beyond the Search radius (out to kKeptRowRadius times it): such a row is inactive, and
   // a row set that stays the same keeps the solver's tearing and coarse space instead of
-  // building them again (a node-wise obstacle of the only contact pair; the slave nodes of the
-  // step's last update, empty at its start; frictionless, node-wise rows, no friction).
+  // building them again. For the only contact pair, a rigid obstacle with frictionless
+  // node-wise rows, without friction (keepsRowsInStep). stepRowNodes_: the slave nodes of the
+  // step's last update, empty at its start.
   static constexpr double kKeptRowRadius = 2.0;
   mutable std::vector<int> stepRowNodes_;
   bool keepsRowsInStep() const;
