@@ -102,21 +102,24 @@ void LoadStepIteration::keepStepRows() const {
   setInequalitiesFromRows(problem, comm_->getRank());
 }
 
+void LoadStepIteration::rememberStepRows() const {
+  stepRowNodes_.clear();
+  for (const ContactRow& row : model_.problem.contact.rows) stepRowNodes_.push_back(row.slaveNode);
+  std::sort(stepRowNodes_.begin(), stepRowNodes_.end());
+}
+
 void LoadStepIteration::updateContact(const Field& u, double t) const {
   ElasticContactProblem& problem = model_.problem;
-  const bool keepRows = !contactFrozen_ && keepsRowsInStep() && !stepRowNodes_.empty();
-  placeObstacles(problem, options_, t, keepRows ? kKeptRowRadius : 1.0, keepsRowsInStep());
+  const bool keeps = keepsRowsInStep();
+  const bool keepRows = keeps && !contactFrozen_ && !stepRowNodes_.empty();
+  placeObstacles(problem, options_, t, keepRows ? kKeptRowRadius : 1.0, keeps);
   const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
   if (contactFrozen_) {
     moveFrozenGaps(current);
   } else {
     contact::updateContact(problem, current, comm_->getRank());
     if (keepRows) keepStepRows();
-    if (keepsRowsInStep()) {
-      stepRowNodes_.clear();
-      for (const ContactRow& row : problem.contact.rows) stepRowNodes_.push_back(row.slaveNode);
-      std::sort(stepRowNodes_.begin(), stepRowNodes_.end());
-    }
+    if (keeps) rememberStepRows();
   }
   contactAt_ = current;
   if (friction.active()) {

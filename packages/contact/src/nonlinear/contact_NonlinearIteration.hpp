@@ -122,7 +122,8 @@ class LoadStepIteration {
   static constexpr double kKeptRowRadius = 2.0;
   mutable std::vector<int> stepRowNodes_;
   bool keepsRowsInStep() const;
-  void keepStepRows() const;
+  void keepStepRows() const;      // the new rows within the radius, and the step's kept ones
+  void rememberStepRows() const;  // stepRowNodes_ from the rows in force
   // Whether the last three iterations show the 2-cycle: u_k = u_(k-2) and |du_k| = |du_(k-1)|.
   static bool twoCycle(const std::vector<IterationRecord>& iterations);
   // Keeps the rows in force (their gaps at contactAt_) for the rest of the step, and says so.
