@@ -313,6 +313,43 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodFactorsOfOnePatternShareTheAnalysis) {
   TEST_EQUALITY(tfeti::localAnalysisCounts().shared - start.shared, 0);
 }
 
+// ------------------------------------------------------------------------------------------
+// Supernodal factors are kept packed for one right-hand side at a time
+// (tfeti_PackedSupernodal.hpp); more than eight go through CHOLMOD's own solve on its own layout,
+// the factor unpacked for it and packed again after. Both must give the same solution to
+// rounding, and a round trip through CHOLMOD's layout must leave the packed values as they were.
+TEUCHOS_UNIT_TEST(LocalSolver, CholmodPackedSolvesAgreeWithCholmodsOwn) {
+  for (const double shift : {1.0, 1e-3}) {
+    // 55 x 55: supernodes of many widths, most not a multiple of the four-column panels.
+    const tfeti::CsrMatrix A = laplacian2d(55, shift);
+    const int n = A.rows, many = 9;
+    auto s = tfeti::createLocalSolver("cholmod-supernodal");
+    s->factorize(A);
+    const std::vector<double> b = randomVector(static_cast<std::size_t>(n) * many, 21);
+    std::vector<double> one(static_cast<std::size_t>(n) * many), all(one.size());
+    for (int j = 0; j < many; ++j) s->solve(&b[std::size_t(j) * n], &one[std::size_t(j) * n], 1);
+    s->solve(b.data(), all.data(), many);  // CHOLMOD's layout and solve
+    double diff = 0.0, size = 0.0;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      diff = std::max(diff, std::abs(one[i] - all[i]));
+      size = std::max(size, std::abs(all[i]));
+    }
+    out << "shift " << shift << ": packed against CHOLMOD's solve, max difference " << diff
+        << " of " << size << "\n";
+    TEST_COMPARE(diff, <=, 1e-13 * size);
+    // Packed again after CHOLMOD's solve: bitwise the same single solves.
+    std::vector<double> again(static_cast<std::size_t>(n));
+    s->solve(b.data(), again.data(), 1);
+    TEST_COMPARE_FLOATING_ARRAYS(again, std::vector<double>(one.begin(), one.begin() + n), 0.0);
+    TEST_COMPARE(solveAndMeasure(*s, A, many, 22).residual, <, 1e-12);
+    TEST_COMPARE(solveAndMeasure(*s, A, 1, 23).residual, <, 1e-12);
+    // A refactorization writes over the packed values.
+    s->factorize(laplacian2d(55, 10 * shift));
+    TEST_COMPARE(solveAndMeasure(*s, laplacian2d(55, 10 * shift), 1, 24).residual, <, 1e-12);
+    TEST_COMPARE(solveAndMeasure(*s, laplacian2d(55, 10 * shift), many, 25).residual, <, 1e-12);
+  }
+}
+
 // The Dirichlet preconditioner factorizes K(interior, interior) taken by CsrMatrix::submatrix:
 // every kept entry in its place, in the order of the rows, and nothing else.
 TEUCHOS_UNIT_TEST(CsrMatrix, SubmatrixKeepsTheChosenRowsAndColumns) {

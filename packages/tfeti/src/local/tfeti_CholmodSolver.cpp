@@ -14,6 +14,7 @@
 
 #include "tfeti_CholmodView.hpp"
 #include "tfeti_LocalSolver.hpp"
+#include "tfeti_PackedSupernodal.hpp"
 
 namespace tfeti {
 namespace {
@@ -43,6 +44,8 @@ struct CholmodCommon {
   cholmod_dense* X = nullptr;
   cholmod_dense* Y = nullptr;
   cholmod_dense* E = nullptr;
+  // The packed solves' permuted vector and workspace, and one supernode while (un)packing.
+  std::vector<double> y, w, scratch;
   CholmodCommon() {
     keepCholmodSerial();
     cholmod_start(&c);
@@ -95,6 +98,7 @@ struct SymbolicAnalysis {
   int n;
   std::vector<int> rowPtr, colInd;
   cholmod_factor* symbolic = nullptr;  // as cholmod_analyze returned it: no numerical values
+  PackedLayout packed;                 // supernodal analyses: where the packed values go
   SymbolicAnalysis(CholmodKind k, const CsrMatrix& A)
       : kind(k), n(A.rows), rowPtr(A.rowPtr), colInd(A.colInd) {}
   ~SymbolicAnalysis() {
@@ -139,6 +143,7 @@ class SymbolicAnalyses {
     }
     auto made = std::make_shared<SymbolicAnalysis>(kind, A);
     made->symbolic = analyze(kind, A);
+    if (made->symbolic->is_super) made->packed = packedLayout(*made->symbolic);
     ++counts_.made;
     table_.emplace(key, made);
     return made;
@@ -179,13 +184,16 @@ class CholmodSolver final : public LocalSolver {
     cholmod_common* c = common();
     // A new matrix with the pattern of the last one (a Newton method's next tangent): the
     // ordering and the symbolic factor are kept, only the numbers are factorized again.
+    // The factorization overwrites every value, packed or not.
     if (L_ && analysis_->matches(kind_, A)) {
+      packed_ = false;
       if (!cholmod_factorize(&S, L_, c) || c->status != CHOLMOD_OK) {
         const long minor = static_cast<long>(L_->minor);
         release();
         throw std::runtime_error("cholmod: the subdomain matrix is not positive definite (column " +
                                  std::to_string(minor) + " of " + std::to_string(A.rows) + ")");
       }
+      pack();
       return;
     }
     release();
@@ -196,10 +204,33 @@ class CholmodSolver final : public LocalSolver {
     if (!cholmod_factorize(&S, L_, c) || c->status != CHOLMOD_OK)
       throw std::runtime_error("cholmod: the subdomain matrix is not positive definite (column " +
                                std::to_string(L_->minor) + " of " + std::to_string(A.rows) + ")");
+    pack();
   }
 
   void solve(const double* b, double* x, int nrhs) override {
     CholmodCommon& w = shared();
+    if (packed_ && nrhs <= kPackedMaxRhs) {
+      const std::size_t n = L_->n;
+      const int* perm = static_cast<const int*>(L_->Perm);
+      w.y.resize(n);
+      w.w.resize(static_cast<std::size_t>(analysis_->packed.maxRows));
+      for (int j = 0; j < nrhs; ++j) {
+        const double* bj = b + j * n;
+        double* xj = x + j * n;
+        for (std::size_t i = 0; i < n; ++i) w.y[i] = bj[perm[i]];
+        packedForwardSolve(*L_, analysis_->packed, w.y.data(), w.w.data());
+        packedBackwardSolve(*L_, analysis_->packed, w.y.data(), w.w.data());
+        for (std::size_t i = 0; i < n; ++i) xj[perm[i]] = w.y[i];
+      }
+      return;
+    }
+    // Many right-hand sides (the explicit dual operator's assembly, block coarse solves): CHOLMOD's
+    // BLAS-3 solve on its own layout, the factor packed again afterwards.
+    const bool repack = packed_;
+    if (repack) {
+      unpackSupernodal(*L_, analysis_->packed, w.scratch);
+      packed_ = false;
+    }
     cholmod_dense B;
     std::memset(&B, 0, sizeof(B));
     B.nrow = static_cast<size_t>(L_->n);
@@ -213,12 +244,14 @@ class CholmodSolver final : public LocalSolver {
     if (!cholmod_solve2(CHOLMOD_A, L_, &B, nullptr, &w.X, nullptr, &w.Y, &w.E, &w.c))
       throw std::runtime_error("cholmod: solve failed");
     std::memcpy(x, w.X->x, sizeof(double) * B.nzmax);
+    if (repack) pack();
   }
 
   std::size_t factorBytes() const override {
     if (!L_) return 0;
     if (L_->is_super)
-      return L_->xsize * sizeof(double) + L_->ssize * sizeof(int) + L_->nsuper * 4 * sizeof(int);
+      return analysis_->packed.offsets.back() * sizeof(double) + L_->ssize * sizeof(int) +
+             L_->nsuper * 4 * sizeof(int);
     return L_->nzmax * (sizeof(double) + sizeof(int)) + 2 * (L_->n + 1) * sizeof(int);
   }
 
@@ -229,11 +262,23 @@ class CholmodSolver final : public LocalSolver {
   }
 
  private:
+  // One right-hand side (or a few, one after the other) takes the packed solves
+  // (tfeti_PackedSupernodal.hpp); more take CHOLMOD's BLAS-3 solve.
+  static constexpr int kPackedMaxRhs = 8;
+
+  // Supernodal factors are kept packed between solves.
+  void pack() {
+    if (!L_->is_super) return;
+    packSupernodal(*L_, analysis_->packed, shared().scratch);
+    packed_ = true;
+  }
   void release() {
     cholmod_common* c = common();
     if (L_) cholmod_free_factor(&L_, c);
     analysis_.reset();
+    packed_ = false;
   }
+  bool packed_ = false;  // L_'s values are in the packed order
   CholmodKind kind_;
   std::shared_ptr<const SymbolicAnalysis> analysis_;  // the pattern L_ was analysed for
   cholmod_factor* L_ = nullptr;
