@@ -83,11 +83,16 @@ std::vector<GO> coarseBlockOffsets(const Comm& comm, const std::vector<GO>& firs
 }
 
 CsrMatrix assembleGramian(const CrsMatrix& G, const std::vector<GO>& offset) {
-  const int N = static_cast<int>(offset.size()) - 1;
-  const int nc = static_cast<int>(offset[N]);
   // G^T distributed by the multiplier map: every column of G whole on one rank.
   Tpetra::RowMatrixTransposer<Scalar, LO, GO, Node> transposer(Teuchos::rcpFromRef(G));
-  const Teuchos::RCP<CrsMatrix> Gt = transposer.createTranspose();
+  return assembleGramianFromTranspose(*transposer.createTranspose(), offset);
+}
+
+CsrMatrix assembleGramianFromTranspose(const CrsMatrix& transposed, const std::vector<GO>& offset,
+                                       const double* rowMask) {
+  const int N = static_cast<int>(offset.size()) - 1;
+  const int nc = static_cast<int>(offset[N]);
+  const CrsMatrix* Gt = &transposed;
   const auto& colMap = *Gt->getColMap();
   std::vector<Term> of(colMap.getNodeNumElements());
   for (std::size_t l = 0; l < of.size(); ++l) {
@@ -98,19 +103,21 @@ CsrMatrix assembleGramian(const CrsMatrix& G, const std::vector<GO>& offset) {
   BlockSums local(offset);
   std::vector<Term> terms;
   for (std::size_t r = 0; r < Gt->getNodeNumRows(); ++r) {
+    if (rowMask != nullptr && rowMask[r] == 0.0) continue;
+    const double m = rowMask != nullptr ? rowMask[r] : 1.0;
     Teuchos::ArrayView<const LO> cols;
     Teuchos::ArrayView<const double> v;
     Gt->getLocalRowView(static_cast<LO>(r), cols, v);
     terms.clear();
     for (LO j = 0; j < cols.size(); ++j)
-      if (v[j] != 0.0) terms.push_back({of[cols[j]].s, of[cols[j]].k, v[j]});
+      if (v[j] != 0.0) terms.push_back({of[cols[j]].s, of[cols[j]].k, m * v[j]});
     std::sort(terms.begin(), terms.end(),
               [](const Term& a, const Term& b) { return a.s != b.s ? a.s < b.s : a.k < b.k; });
     addOuterProducts(terms, local);
   }
 
   // Every rank's blocks on every rank, summed (a pair's rows may be owned by several ranks).
-  const auto comm = G.getRowMap()->getComm();
+  const auto comm = Gt->getRowMap()->getComm();
   const std::vector<long long> keys = allGather(*comm, local.keys());
   const std::vector<double> values = allGather(*comm, local.values());
   BlockSums all(offset);

@@ -26,5 +26,10 @@ std::vector<GO> coarseBlockOffsets(const Comm& comm, const std::vector<GO>& firs
 // subdomain's ids, consecutive), the same on every rank; G's row map holds the coarse ids of the
 // local subdomains, its domain map is the multiplier map.
 CsrMatrix assembleGramian(const CrsMatrix& G, const std::vector<GO>& offset);
+// The same from G^T distributed by the multiplier map (Tpetra::RowMatrixTransposer's, built once
+// and kept by CoarseSpace), with the columns of G weighted by rowMask: G diag(m) G^T, m the local
+// values of a vector on G^T's row map (nullptr: all ones).
+CsrMatrix assembleGramianFromTranspose(const CrsMatrix& Gt, const std::vector<GO>& offset,
+                                       const double* rowMask = nullptr);
 
 }  // namespace tfeti

@@ -1,6 +1,7 @@
 #include "tfeti_CoarseSpace.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
+#include <Tpetra_RowMatrixTransposer.hpp>
 
 #include <algorithm>
 #include <stdexcept>
@@ -13,15 +14,23 @@
 
 namespace tfeti {
 
-std::unique_ptr<LocalSolver> CoarseSpace::factorizeGramian(const CrsMatrix& G,
+std::unique_ptr<LocalSolver> CoarseSpace::factorizeGramian(const Vector* rowMask,
                                                            const std::string& localSolver,
                                                            CsrMatrix* keep) const {
   // G G^T assembled from its subdomain-pair blocks and replicated on every rank, which factorizes
   // it there: the coarse problem is small, and a replicated factor makes every coarse solve
   // communication-free after one Import.
   const std::vector<GO> offset =
-      coarseBlockOffsets(*G.getRowMap()->getComm(), coarseOffset_, dimension_);
-  const CsrMatrix GGt = assembleGramian(G, offset);
+      coarseBlockOffsets(*G_->getRowMap()->getComm(), coarseOffset_, dimension_);
+  const double* mask = nullptr;
+  Teuchos::ArrayRCP<const double> maskData;
+  if (rowMask != nullptr) {
+    if (!rowMask->getMap()->isSameAs(*Gt_->getRowMap()))
+      throw std::logic_error("CoarseSpace: a row mask on another map than the multipliers'");
+    maskData = rowMask->getData();
+    mask = maskData.getRawPtr();
+  }
+  const CsrMatrix GGt = assembleGramianFromTranspose(*Gt_, offset, mask);
   auto factor = createLocalSolver(localSolver);
   factor->factorize(GGt);
   if (keep != nullptr) *keep = GGt;
@@ -32,18 +41,18 @@ void CoarseSpace::leastSquaresOnRows(const Vector& x, const Vector& rowMask, Vec
                                      const std::string& localSolver) const {
   if (dimension_ == 0) return;
   // G_A = G diag(mask): the kernel coefficients that satisfy the selected rows best.
-  CrsMatrix GA(*G_, Teuchos::Copy);
-  GA.rightScale(rowMask);
   std::unique_ptr<LocalSolver> factor;
   try {
-    factor = factorizeGramian(GA, localSolver);
+    factor = factorizeGramian(&rowMask, localSolver);
   } catch (const std::exception& e) {
     throw std::runtime_error(
         std::string("the active constraints do not fix every rigid body mode (G_A G_A^T is "
                     "singular): a body held only by contact has no active contact (") +
         e.what() + ")");
   }
-  GA.apply(x, *c_);
+  Vector masked(x, Teuchos::Copy);
+  masked.elementWiseMultiply(1.0, rowMask, x, 0.0);
+  G_->apply(masked, *c_);
   solveReplicated(*factor, *c_, alpha);
 }
 
@@ -101,10 +110,12 @@ CoarseSpace::CoarseSpace(const Tearing& tearing, const SubdomainList& subdomains
   }
   G_->fillComplete(tearing.multiplierMap, coarseMap_);
   if (dimension_ == 0) return;
+  // G^T distributed by the multiplier map: every column of G whole on one rank.
+  Gt_ = Tpetra::RowMatrixTransposer<Scalar, LO, GO, Node>(G_).createTranspose();
 
   try {
     // G G^T is kept for SMALBE's faces with more rows than G, which use it densely.
-    factor_ = factorizeGramian(*G_, localSolver,
+    factor_ = factorizeGramian(nullptr, localSolver,
                                dimension_ <= kDenseGramianMaxRows ? &gramian_ : nullptr);
   } catch (const std::exception& e) {
     throw std::runtime_error(

@@ -62,7 +62,9 @@ class CoarseSpace {
   // alpha = factor^{-1} c with c brought to every rank (the factor is replicated).
   void solveReplicated(LocalSolver& factor, const Vector& c, Vector& alpha) const;
   // keep (optional): receives the assembled G G^T.
-  std::unique_ptr<LocalSolver> factorizeGramian(const CrsMatrix& G, const std::string& localSolver,
+  // G diag(rowMask) G^T (rowMask nullptr: G G^T) factorized.
+  std::unique_ptr<LocalSolver> factorizeGramian(const Vector* rowMask,
+                                                const std::string& localSolver,
                                                 CsrMatrix* keep = nullptr) const;
   GO dimension_ = 0;
   SubdomainList subdomains_;
@@ -70,6 +72,10 @@ class CoarseSpace {
   Teuchos::RCP<const Map> coarseMap_, replicatedMap_;
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> replicate_;
   Teuchos::RCP<CrsMatrix> G_;
+  // G^T by the multiplier map, made once for the Gramians: least squares on rows asks for one
+  // per primal recovery, and Tpetra's transpose took most of their time (docs/benchmarks.md,
+  // "Packed supernodal solves").
+  Teuchos::RCP<const CrsMatrix> Gt_;
   std::unique_ptr<LocalSolver> factor_;
   CsrMatrix gramian_;  // G G^T as factorized, replicated
   mutable Teuchos::RCP<Vector> c_, alpha_;
