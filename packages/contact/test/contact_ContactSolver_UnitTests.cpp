@@ -4,6 +4,7 @@
 // tfeti_contact run of that input on the same rank count (CONTACT_EXE_SUMMARY_DIR: every figure
 // equal but timings, memory and file paths); a nonlinear run through the object (per-step
 // history); non-convergence and bad parameters reported as the executable reports them.
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultComm.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
 
@@ -228,7 +229,18 @@ TEUCHOS_UNIT_TEST(ContactSolver, NonlinearStepsThroughTheObject) {
   TEST_ASSERT(c.forceRelativeError < 1e-6);
   TEST_ASSERT(c.supportRelativeError < 1e-6);
   TEST_ASSERT(c.hertz.has_value());
+  // The final state's stresses, computed when asked for: the last step's largest von Mises
+  // stress, which its output took from the trial state.
   TEST_EQUALITY(solver.stresses().size(), solver.problem().local.size());
+  double vm = 0.0;
+  for (const auto& st : solver.stresses())
+    for (std::size_t k = plasticity::kVonMises; k < st.gauss.size();
+         k += plasticity::kNumStressComponents)
+      vm = std::max(vm, st.gauss[k]);
+  Teuchos::reduceAll(*comm(), Teuchos::REDUCE_MAX, vm, Teuchos::outArg(vm));
+  out << "max von Mises of the final stresses " << vm << ", of the last step "
+      << r.history.steps.back().maxVonMises << "\n";
+  TEST_FLOATING_EQUALITY(vm, r.history.steps.back().maxVonMises, 1e-10);
 
   // The one-step elastic run of the same problem. The nonlinear loop searches the contact on the
   // current geometry and reports the nodes at their current positions (the elastic run: the

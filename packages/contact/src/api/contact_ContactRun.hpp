@@ -45,6 +45,9 @@ struct ContactRun {
   // The final state, once the policy has evaluated it: its stresses and contact nodes.
   bool evaluated = false;
   std::vector<plasticity::StressField> stresses;
+  // The stresses are not computed yet: ContactSolver::stresses() asks the policy for them (the
+  // nonlinear runs' own output uses its step's stresses, not these).
+  bool stressesPending = false;
   std::vector<ContactNode> nodes;
 
   std::string elapsed() const {

@@ -171,6 +171,11 @@ const std::vector<std::vector<double>>& ContactSolver::displacement() const {
 
 const std::vector<plasticity::StressField>& ContactSolver::stresses() const {
   if (!run_ || !run_->solved) throw std::logic_error("ContactSolver::stresses: solve first");
+  // Computed at the first request (the model keeps its final state after solve()).
+  if (run_->stressesPending) {
+    run_->policy->finalStresses(*run_);
+    run_->stressesPending = false;
+  }
   return run_->stresses;
 }
 

@@ -60,6 +60,9 @@ class RunPolicy {
   virtual void evaluateStep(ContactRun& r, LoadSteps& s, const Field& u, StepRecord& rec) const = 0;
   // The final state's stresses and contact nodes in r (r.evaluated when they are known).
   virtual void evaluateFinalState(ContactRun& r, LoadSteps& s) const = 0;
+  // The final state's Cauchy stresses in r.stresses, for a policy whose evaluateFinalState
+  // leaves them to be computed when the C++ API asks for them (r.stressesPending).
+  virtual void finalStresses(ContactRun& /*r*/) const {}
 
   // --- the result
   // The applied load's resultant at the final load factor.
