@@ -2,7 +2,8 @@
 """deal.II's tutorial step-42 (3D elasto-plastic indentation by a rigid sphere) and tfeti_contact
 on the same meshes, in the same run, 2 MPI ranks each.
 
-  python3 bench/step42_bench.py [SIZES ...] [--variants plastic,elastic] [--ranks 2]
+  python3 bench/step42_bench.py [SIZES ...] [--variants plastic,elastic,elastic_linear]
+                                [--ranks 2]
                                 [--build build] [--out bench-out/step42]
 
 SIZES: elements per side, powers of two (default 32 64); step-42 refines its unit cube globally
@@ -17,7 +18,10 @@ iteration). It runs one refinement cycle ("number of cycles" = 1, global refinem
 obstacle) and prints its contact force, its Newton iterations, its timer table and its memory.
 
 tfeti_contact runs examples/indentation_step42.xml (Newton, inexact QPs, line search) with the
-mesh's N and subdomain count substituted, the yield stress 1e10 for the elastic variant.
+mesh's N and subdomain count substituted, the yield stress 1e10 for the elastic variant. The
+elastic_linear variant is the same elastic problem with the settings an elastic-only run would
+take (exact QPs: `Inexact QP factor` 1; `Preconditioner` lumped), against step-42's elastic
+variant run again in its row.
 
 Prints a markdown table (docs/benchmarks.md, "deal.II step-42 against tfeti_contact") and writes
 both codes' logs and tfeti_contact's summary.json under --out.
@@ -44,6 +48,7 @@ def log(msg):
 
 def build_step42(out, variant):
     """step-42 built into out/step42-<variant> (once); returns the executable."""
+    variant = "elastic" if variant == "elastic_linear" else variant
     src = os.path.join(STEP42_SRC, "step-42.cc")
     if not os.path.exists(src) or not os.path.exists("/usr/share/cmake/deal.II"):
         sys.exit("step-42 needs deal.II: apt-get install libdeal.ii-dev libdeal.ii-doc")
@@ -66,11 +71,11 @@ def build_step42(out, variant):
     return exe
 
 
-def run_step42(exe, n, ranks, out):
+def run_step42(exe, n, ranks, out, variant):
     refinements = int(round(math.log2(n)))
     if 2 ** refinements != n:
         sys.exit(f"step-42 refines globally: N = {n} is not a power of two")
-    d = os.path.join(out, f"step42_{os.path.basename(os.path.dirname(exe))[7:]}_{n}")
+    d = os.path.join(out, f"step42_{variant}_{n}")
     os.makedirs(d, exist_ok=True)
     prm = os.path.join(d, "run.prm")
     with open(prm, "w") as f:
@@ -113,9 +118,20 @@ def run_tfeti(exe, n, ranks, variant, out):
     subdomains = max(1, (n // 8) ** 3)
     xml = re.sub(r'(name="Subdomains per body" type="Array\(int\)" value=)"\{\d+\}"',
                  rf'\1"{{{subdomains}}}"', xml)
-    if variant == "elastic":
+    if variant in ("elastic", "elastic_linear"):
         xml = xml.replace('name="Yield stress" type="double" value="489.898"',
                           'name="Yield stress" type="double" value="1e10"')
+    if variant == "elastic_linear":
+        # What an elastic-only run would set: exact QPs (no loose first QP to tighten in a
+        # second Newton iteration) and the lumped preconditioner (no interior factorizations).
+        for old, new in (('name="Inexact QP factor" type="double" value="1e6"',
+                          'name="Inexact QP factor" type="double" value="1"'),
+                         ('<Parameter name="Dual solver" type="string" value="SMALBE"/>',
+                          '<Parameter name="Dual solver" type="string" value="SMALBE"/>\n'
+                          '    <Parameter name="Preconditioner" type="string" value="lumped"/>')):
+            if xml.count(old) != 1:
+                sys.exit(f"examples/indentation_step42.xml: expected one '{old}' to substitute")
+            xml = xml.replace(old, new)
     open(os.path.join(d, "input.xml"), "w").write(xml)
     t0 = time.time()
     p = subprocess.run(["mpiexec", "-n", str(ranks), "--oversubscribe", exe, "--input=input.xml",
@@ -138,7 +154,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("sizes", nargs="*", type=int, default=[32, 64])
-    ap.add_argument("--variants", default="plastic,elastic")
+    ap.add_argument("--variants", default="plastic,elastic,elastic_linear")
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--out", default=os.path.join(ROOT, "bench-out", "step42"))
@@ -153,7 +169,7 @@ def main():
         step42 = build_step42(out, variant)
         for n in a.sizes:
             log(f"N = {n}, {variant}: step-42")
-            r42 = run_step42(step42, n, a.ranks, out)
+            r42 = run_step42(step42, n, a.ranks, out, variant)
             log(f"  step-42: {r42['wall']:.1f} s, {r42['newton']} Newton iterations, force "
                 f"{r42['force']}")
             log(f"N = {n}, {variant}: tfeti_contact")
