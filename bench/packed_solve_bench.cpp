@@ -23,6 +23,7 @@
 #include "plasticity_ElasticLaw.hpp"
 #include "plasticity_Q1Assembly.hpp"
 #include "tfeti_PackedSupernodal.hpp"
+#include "tfeti_StructuredMesh.hpp"
 
 namespace {
 
@@ -39,14 +40,7 @@ cholmod_sparse* subdomainMatrix(int cells, cholmod_common* c) {
     for (int j = 0; j < m; ++j)
       for (int i = 0; i < m; ++i)
         mesh.coords.insert(mesh.coords.end(), {1.0 * i, 1.0 * j, 1.0 * k});
-  auto node = [m](int i, int j, int k) { return (k * m + j) * m + i; };
-  for (int k = 0; k < cells; ++k)
-    for (int j = 0; j < cells; ++j)
-      for (int i = 0; i < cells; ++i)
-        mesh.cells.insert(mesh.cells.end(),
-                          {node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k),
-                           node(i, j + 1, k), node(i, j, k + 1), node(i + 1, j, k + 1),
-                           node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)});
+  mesh.cells = tfeti::StructuredMesh::cells({cells, cells, cells});  // x fastest, as coords
   const tfeti::CsrMatrix K = plasticity::assembleStiffness(mesh, plasticity::Field::Elasticity,
                                                            plasticity::ElasticLaw(1.0, 0.3));
   const int fixed = 3 * m * m, n = K.rows - fixed;  // the z = 0 nodes come first

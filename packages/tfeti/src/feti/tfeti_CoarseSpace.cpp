@@ -50,7 +50,7 @@ void CoarseSpace::leastSquaresOnRows(const Vector& x, const Vector& rowMask, Vec
                     "singular): a body held only by contact has no active contact (") +
         e.what() + ")");
   }
-  Vector masked(x, Teuchos::Copy);
+  Vector masked(x.getMap());
   masked.elementWiseMultiply(1.0, rowMask, x, 0.0);
   G_->apply(masked, *c_);
   solveReplicated(*factor, *c_, alpha);

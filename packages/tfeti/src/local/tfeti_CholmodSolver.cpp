@@ -208,22 +208,8 @@ class CholmodSolver final : public LocalSolver {
   }
 
   void solve(const double* b, double* x, int nrhs) override {
+    if (packed_ && nrhs <= kPackedMaxRhs) return solvePacked(b, x, nrhs);
     CholmodCommon& w = shared();
-    if (packed_ && nrhs <= kPackedMaxRhs) {
-      const std::size_t n = L_->n;
-      const int* perm = static_cast<const int*>(L_->Perm);
-      w.y.resize(n);
-      w.w.resize(static_cast<std::size_t>(analysis_->packed.maxRows));
-      for (int j = 0; j < nrhs; ++j) {
-        const double* bj = b + j * n;
-        double* xj = x + j * n;
-        for (std::size_t i = 0; i < n; ++i) w.y[i] = bj[perm[i]];
-        packedForwardSolve(*L_, analysis_->packed, w.y.data(), w.w.data());
-        packedBackwardSolve(*L_, analysis_->packed, w.y.data(), w.w.data());
-        for (std::size_t i = 0; i < n; ++i) xj[perm[i]] = w.y[i];
-      }
-      return;
-    }
     // Many right-hand sides (the explicit dual operator's assembly, block coarse solves): CHOLMOD's
     // BLAS-3 solve on its own layout, the factor packed again afterwards.
     const bool repack = packed_;
@@ -265,6 +251,24 @@ class CholmodSolver final : public LocalSolver {
   // One right-hand side (or a few, one after the other) takes the packed solves
   // (tfeti_PackedSupernodal.hpp); more take CHOLMOD's BLAS-3 solve.
   static constexpr int kPackedMaxRhs = 8;
+
+  // x = A^{-1} b column by column with the packed factor: b permuted, L^{-1}, L^{-T}, permuted
+  // back.
+  void solvePacked(const double* b, double* x, int nrhs) {
+    CholmodCommon& w = shared();
+    const std::size_t n = L_->n;
+    const int* perm = static_cast<const int*>(L_->Perm);
+    w.y.resize(n);
+    w.w.resize(static_cast<std::size_t>(analysis_->packed.maxRows));
+    for (int j = 0; j < nrhs; ++j) {
+      const double* bj = b + j * n;
+      double* xj = x + j * n;
+      for (std::size_t i = 0; i < n; ++i) w.y[i] = bj[perm[i]];
+      packedForwardSolve(*L_, analysis_->packed, w.y.data(), w.w.data());
+      packedBackwardSolve(*L_, analysis_->packed, w.y.data(), w.w.data());
+      for (std::size_t i = 0; i < n; ++i) xj[perm[i]] = w.y[i];
+    }
+  }
 
   // Supernodal factors are kept packed between solves.
   void pack() {

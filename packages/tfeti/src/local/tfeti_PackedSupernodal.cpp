@@ -33,6 +33,19 @@ int triangleColumn(int k, int b) {
   return k * b - k * (k - 1) / 2;
 }
 
+// visit(i, c) for the entries (row i, column c) of supernode sn in the packed order, the layout
+// both directions of the repacking follow.
+template <class Visit>
+void forEachPackedEntry(const Supernode& sn, Visit&& visit) {
+  for (int j = 0; j < sn.columns; j += kPanel) {
+    const int b = std::min(kPanel, sn.columns - j);
+    for (int k = 0; k < b; ++k)
+      for (int r = k; r < b; ++r) visit(j + r, j + k);
+    for (int i = j + b; i < sn.rows; ++i)
+      for (int k = 0; k < b; ++k) visit(i, j + k);
+  }
+}
+
 }  // namespace
 
 PackedLayout packedLayout(const cholmod_factor& L) {
@@ -58,17 +71,9 @@ void packSupernodal(cholmod_factor& L, const PackedLayout& layout, std::vector<d
     const Supernode sn = supernode(L, s);
     const std::size_t n = static_cast<std::size_t>(sn.columns) * sn.rows;
     scratch.assign(x + px[s], x + px[s] + n);
-    const auto at = [&](int i, int c) {
-      return scratch[static_cast<std::size_t>(c) * sn.rows + i];
-    };
     double* out = x + layout.offsets[s];
-    for (int j = 0; j < sn.columns; j += kPanel) {
-      const int b = std::min(kPanel, sn.columns - j);
-      for (int k = 0; k < b; ++k)
-        for (int r = k; r < b; ++r) *out++ = at(j + r, j + k);
-      for (int i = j + b; i < sn.rows; ++i)
-        for (int k = 0; k < b; ++k) *out++ = at(i, j + k);
-    }
+    forEachPackedEntry(
+        sn, [&](int i, int c) { *out++ = scratch[static_cast<std::size_t>(c) * sn.rows + i]; });
   }
 }
 
@@ -81,17 +86,9 @@ void unpackSupernodal(cholmod_factor& L, const PackedLayout& layout, std::vector
     const Supernode sn = supernode(L, s);
     scratch.assign(x + layout.offsets[s], x + layout.offsets[s + 1]);
     double* block = x + px[s];
-    const auto at = [&](int i, int c) -> double& {
-      return block[static_cast<std::size_t>(c) * sn.rows + i];
-    };
     const double* in = scratch.data();
-    for (int j = 0; j < sn.columns; j += kPanel) {
-      const int b = std::min(kPanel, sn.columns - j);
-      for (int k = 0; k < b; ++k)
-        for (int r = k; r < b; ++r) at(j + r, j + k) = *in++;
-      for (int i = j + b; i < sn.rows; ++i)
-        for (int k = 0; k < b; ++k) at(i, j + k) = *in++;
-    }
+    forEachPackedEntry(
+        sn, [&](int i, int c) { block[static_cast<std::size_t>(c) * sn.rows + i] = *in++; });
   }
 }
 
