@@ -304,6 +304,40 @@ TEUCHOS_UNIT_TEST(TangentialRows, FrictionLeavesOutHeldDirections) {
       1u);
 }
 
+// A dual mortar row of a slave node on the symmetry plane y = 0 (the 0.1M Cattaneo sphere's,
+// rounded): the master's weight on the plane nodes 1, 2 and, with both signs, 5.6 % of the row's
+// weight on the off-plane nodes 3 to 6. The 5 % rule keeps both tangents, and the one along y
+// is then within 5 % of the symmetry rows' span. With the symmetry plane named (mirrored) the
+// tangent along y goes whatever the master's weights; a slave node held in y by a Fixed or
+// Prescribed boundary (held, not mirrored) keeps the rule.
+TEUCHOS_UNIT_TEST(TangentialRows, SymmetryPlaneLeavesOutItsNormalWhateverTheMortarWeights) {
+  const std::array<double, 3> n{0.0089, -0.0004, 1.0};
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const std::array<double, 3> unitN{n[0] / len, n[1] / len, n[2] / len};
+  const std::vector<double> w{-1.0, 0.955, 0.008, -0.028, 0.021, 0.056, -0.0062};
+  ContactRow row;
+  row.slaveNode = 0;
+  row.normal = unitN;
+  for (int node = 0; node < static_cast<int>(w.size()); ++node)
+    for (int c = 0; c < 3; ++c)
+      row.entries.push_back(
+          {node, c, w[static_cast<std::size_t>(node)] * unitN[static_cast<std::size_t>(c)]});
+  const auto onPlane = [](int node, int c) { return c == 1 && node <= 2; };
+  TEST_EQUALITY(contact::frictionTangentialRows(row, 3, onPlane).size(), 2u);
+  const auto t = contact::frictionTangentialRows(row, 3, onPlane, onPlane);
+  TEST_EQUALITY(t.size(), 1u);
+  if (t.size() == 1u) TEST_EQUALITY(t[0].normal[1], 0.0);
+  // Mirrored elsewhere only (another node, another component): the rule as before.
+  TEST_EQUALITY(contact::frictionTangentialRows(row, 3, onPlane,
+                                                [](int node, int c) { return c == 1 && node == 1; })
+                    .size(),
+                2u);
+  TEST_EQUALITY(contact::frictionTangentialRows(row, 3, onPlane,
+                                                [](int node, int c) { return c == 0 && node == 0; })
+                    .size(),
+                2u);
+}
+
 TEUCHOS_UNIT_TEST(TangentialRows, RowsWithoutAllComponentsRefused) {
   ContactRow row;
   row.slaveNode = 7;

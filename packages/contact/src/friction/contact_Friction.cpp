@@ -184,9 +184,14 @@ std::pair<int, int> dofOfNode(const ElasticContactProblem& p, int node, int comp
 
 // The tangential rows friction adds beside contact row k (frictionTangentialRows).
 std::vector<ContactRow> frictionTangents(const ElasticContactProblem& p, std::size_t k) {
-  return frictionTangentialRows(p.contact.rows[k], p.dim(), [&](int node, int c) {
-    return p.heldComponents.count({node, c}) > 0;
-  });
+  return frictionTangentialRows(
+      p.contact.rows[k], p.dim(),
+      [&](int node, int c) {
+        return p.heldComponents.count({node, c}) > 0;
+      },
+      [&](int node, int c) {
+        return p.mirroredComponents.count({node, c}) > 0;
+      });
 }
 
 std::vector<double> difference(const std::vector<double>& a, const std::vector<double>& b) {

@@ -49,8 +49,16 @@ using HeldComponent = std::function<bool(int node, int component)>;
 // orthogonalized against the others) removes one tangent: 3D keeps t = n x e_c / |n x e_c|
 // (one row, a box) or none; 2D keeps its tangent or none. Where nothing is held, the rows are
 // tangentialRows' bit for bit.
+// mirrored (optional): the components a Symmetry boundary holds. A slave node on a symmetry
+// plane normal to e_c loses the tangent along e_c whatever the master's weights: by symmetry the
+// friction traction normal to the plane vanishes there, and the master side lies on the plane
+// too. Dual mortar rows put 5-6 % of their weight on off-plane master nodes (signed dual-basis
+// weights), above the 5 % rule, and the row left was within 5 % of the symmetry rows' span: its
+// scaling group of B B^T nearly singular, the preconditioner's eigenvalue there 100 times the
+// others' (docs/friction.md, "Directions held on both sides").
 std::vector<ContactRow> frictionTangentialRows(const ContactRow& normalRow, int dim,
-                                               const HeldComponent& held);
+                                               const HeldComponent& held,
+                                               const HeldComponent& mirrored = nullptr);
 
 // Sum of the row's coefficients times the displacement (dim per mesh node): B_T,i u.
 double applyRow(const ContactRow& row, int dim, const std::vector<double>& displacement);

@@ -203,8 +203,10 @@ Supports dirichletConditions(const ElasticContactSpec& spec, ElasticContactProbl
                                   name + "\" is not " +
                                   (dim == 3 ? "0 (x), 1 (y) or 2 (z)" : "0 (x) or 1 (y)") + " (a " +
                                   std::to_string(dim) + "D mesh)");
-    for (int n : nodesOf(boundaryNamed(mesh, name, "Symmetry boundaries")))
+    for (int n : nodesOf(boundaryNamed(mesh, name, "Symmetry boundaries"))) {
       h.fixedComponents.insert({n, c});
+      p.mirroredComponents.insert({n, c});
+    }
   }
   p.prescribed = prescribedValues(
       spec.prescribed, dim,

@@ -71,8 +71,8 @@ struct ElasticContactProblem {
   std::vector<int> bodyOfSubdomain;
   std::vector<int> ownerOfSubdomain;  // the rank of every subdomain
   // How ownerOfSubdomain balances the work (summary.json "subdomain_distribution"): the
-  // partitioner (see tfeti::distributeSubdomains), the largest rank's share of the dofs and of the initial
-  // contact rows over the mean (1 = even) and the interface nodes cut between ranks.
+  // partitioner (see tfeti::distributeSubdomains), the largest rank's share of the dofs and of the
+  // initial contact rows over the mean (1 = even) and the interface nodes cut between ranks.
   struct Distribution {
     std::string partitioner;
     double dofImbalance = 1.0, contactImbalance = 1.0, edgeCut = 0.0;
@@ -91,6 +91,9 @@ struct ElasticContactProblem {
   // components), the Symmetry boundaries' and the prescribed ones. Friction leaves out the
   // tangents in which both sides of a contact row are held (frictionTangentialRows).
   std::set<std::pair<int, int>> heldComponents;
+  // The (mesh node, component) pairs a Symmetry boundary holds: friction leaves out the tangent
+  // normal to a symmetry plane at a slave node on it, whatever the master's weights.
+  std::set<std::pair<int, int>> mirroredComponents;
   std::vector<tfeti::EqualityRow> equalities;
   // The kinematic couplings' rows (rank 0 holds them; included in `equalities`).
   std::vector<tfeti::EqualityRow> couplingRows;
