@@ -987,3 +987,32 @@ TEUCHOS_UNIT_TEST(FetiSolver, UpdateStiffnessRefactorizesOnlyTheChangedSubdomain
   out << released << "\n";
   TEST_ASSERT(tfeti_test::contains(released, "Keep subdomain matrices") || mixed.empty());
 }
+
+// The preconditioners take a block of columns at once (one interior solve per subdomain with
+// every column as a right-hand side: SMALBE's stiff circles ask for hundreds of columns M e_j);
+// each column must be what a one-column application gives.
+TEUCHOS_UNIT_TEST(FetiSolver, PreconditionerAppliesABlockOfColumnsAsOneByOne) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti::StructuredRectangle rect = square();
+  for (const std::string prec : {"lumped", "dirichlet"}) {
+    Options o;
+    o.preconditioner = prec;
+    tfeti::FetiSolver solver(comm, rect.numSubdomains(),
+                             tfeti_test::localSubdomains(rect, *comm, tfeti_test::elasticity()),
+                             solverParameters(o));
+    const tfeti::DualPreconditioner M(solver.tearing(), solver.subdomains());
+    const auto& map = solver.tearing().multiplierMap;
+    tfeti::MultiVector X(map, 5), Y(map, 5);
+    X.randomize();
+    M.apply(X, Y);
+    double worst = 0.0;
+    for (std::size_t j = 0; j < X.getNumVectors(); ++j) {
+      tfeti::Vector y(map);
+      M.apply(*X.getVector(j), y);
+      y.update(-1.0, *Y.getVector(j), 1.0);
+      worst = std::max(worst, y.norm2() / Y.getVector(j)->norm2());
+    }
+    out << prec << ": max ||M x_j - (M X)_j|| / ||(M X)_j|| = " << worst << "\n";
+    TEST_COMPARE(worst, <, 1e-14);
+  }
+}

@@ -71,21 +71,26 @@ void DualPreconditioner::apply(const MultiVector& X, MultiVector& Y,
   scale(*q_);
   B_->apply(*q_, *p1_, Teuchos::TRANS);
   // In place, one primal work vector: a subdomain's interface values are read before its block
-  // is overwritten (zero off the interface).
-  for (std::size_t j = 0; j < nv; ++j) {
-    auto y = p1_->getDataNonConst(j);
-    std::size_t offset = 0;
-    for (const auto& s : subdomains_) {
-      const auto& b = s->interfaceDofs();
-      vb_.resize(b.size());
-      yb_.resize(b.size());
-      for (std::size_t k = 0; k < b.size(); ++k) vb_[k] = y[offset + b[k]];
-      s->applyPreconditionerBlock(vb_.data(), yb_.data());
-      std::fill(y.getRawPtr() + offset, y.getRawPtr() + offset + s->numDofs(), 0.0);
-      for (std::size_t k = 0; k < b.size(); ++k) y[offset + b[k]] = yb_[k];
-      offset += s->numDofs();
+  // is overwritten (zero off the interface). The columns of a subdomain go through its block
+  // together (one interior solve with nv right-hand sides).
+  std::vector<Teuchos::ArrayRCP<Scalar>> y(nv);
+  for (std::size_t j = 0; j < nv; ++j) y[j] = p1_->getDataNonConst(j);
+  std::size_t offset = 0;
+  for (const auto& s : subdomains_) {
+    const auto& b = s->interfaceDofs();
+    const std::size_t nb = b.size();
+    vb_.resize(nb * nv);
+    yb_.resize(nb * nv);
+    for (std::size_t j = 0; j < nv; ++j)
+      for (std::size_t k = 0; k < nb; ++k) vb_[j * nb + k] = y[j][offset + b[k]];
+    s->applyPreconditionerBlock(vb_.data(), yb_.data(), static_cast<int>(nv));
+    for (std::size_t j = 0; j < nv; ++j) {
+      std::fill(y[j].getRawPtr() + offset, y[j].getRawPtr() + offset + s->numDofs(), 0.0);
+      for (std::size_t k = 0; k < nb; ++k) y[j][offset + b[k]] = yb_[j * nb + k];
     }
+    offset += s->numDofs();
   }
+  y.clear();
   B_->apply(*p1_, *q_);
   scale(*q_);
   Y.update(alpha, *q_, beta);

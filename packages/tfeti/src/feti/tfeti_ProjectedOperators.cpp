@@ -51,18 +51,20 @@ void ComplementProjector::apply(const MultiVector& X, MultiVector& Y,
 void ProjectedPlusComplement::apply(const MultiVector& X, MultiVector& Y,
                                     Teuchos::ETransp /*mode: symmetric*/, Scalar alpha,
                                     Scalar beta) const {
-  ensureColumns(px_, X.getMap(), 1);
-  ensureColumns(apx_, X.getMap(), 1);
-  for (std::size_t j = 0; j < X.getNumVectors(); ++j) {
-    auto px = px_->getVectorNonConst(0);
-    auto apx = apx_->getVectorNonConst(0);
-    const auto x = X.getVector(j);
-    coarse_.project(*x, *px);
-    A_->apply(*px, *apx);
+  // A applies to every column at once (the Dirichlet preconditioner solves a subdomain's
+  // columns together: the stiff circles' columns of M, tfeti_SmalbeFacePhase_def.hpp).
+  const std::size_t nv = X.getNumVectors();
+  ensureColumns(px_, X.getMap(), nv);
+  ensureColumns(apx_, X.getMap(), nv);
+  for (std::size_t j = 0; j < nv; ++j) coarse_.project(*X.getVector(j), *px_->getVectorNonConst(j));
+  A_->apply(*px_, *apx_);
+  for (std::size_t j = 0; j < nv; ++j) {
+    auto px = px_->getVector(j);
+    auto apx = apx_->getVectorNonConst(j);
     coarse_.project(*apx, *apx);
     // y = alpha (P A P x + c (x - P x)) + beta y
     auto y = Y.getVectorNonConst(j);
-    y->update(alpha, *apx, alpha * c_, *x, beta);
+    y->update(alpha, *apx, alpha * c_, *X.getVector(j), beta);
     y->update(-alpha * c_, *px, 1.0);
   }
 }

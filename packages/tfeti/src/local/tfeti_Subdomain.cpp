@@ -318,23 +318,32 @@ void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs, Preco
   }
 }
 
-void Subdomain::applyPreconditionerBlock(const double* vb, double* yb) {
-  Kbb_.multiply(vb, yb);
+void Subdomain::applyPreconditionerBlock(const double* vb, double* yb, int nrhs) {
+  const std::size_t nb = interface_.size(), ni = interior_.size();
+  for (int j = 0; j < nrhs; ++j) Kbb_.multiply(vb + j * nb, yb + j * nb);
   if (precType_ != PreconditionerType::Dirichlet || interior_.empty()) return;
   // S v = K_bb v - K_bi K_ii^{-1} K_ib v, K_ib v = K_bi^T v: every w_i sums over the interface
   // rows in increasing order, as a row of K_ib would.
-  std::vector<double>& wi = scratch(0, interior_.size());
-  std::vector<double>& zi = scratch(1, interior_.size());
+  std::vector<double>& wi = scratch(0, ni * nrhs);
+  std::vector<double>& zi = scratch(1, ni * nrhs);
   std::fill(wi.begin(), wi.end(), 0.0);
-  for (int r = 0; r < Kbi_.rows; ++r)
-    for (int k = Kbi_.rowPtr[r]; k < Kbi_.rowPtr[r + 1]; ++k)
-      wi[Kbi_.colInd[k]] += Kbi_.values[k] * vb[r];
-  interiorFactor_->solve(wi.data(), zi.data());
-  for (int r = 0; r < Kbi_.rows; ++r) {
-    double s = 0.0;
-    for (int k = Kbi_.rowPtr[r]; k < Kbi_.rowPtr[r + 1]; ++k)
-      s += Kbi_.values[k] * zi[Kbi_.colInd[k]];
-    yb[r] -= s;
+  for (int j = 0; j < nrhs; ++j) {
+    const double* v = vb + j * nb;
+    double* w = wi.data() + j * ni;
+    for (int r = 0; r < Kbi_.rows; ++r)
+      for (int k = Kbi_.rowPtr[r]; k < Kbi_.rowPtr[r + 1]; ++k)
+        w[Kbi_.colInd[k]] += Kbi_.values[k] * v[r];
+  }
+  interiorFactor_->solve(wi.data(), zi.data(), nrhs);
+  for (int j = 0; j < nrhs; ++j) {
+    const double* z = zi.data() + j * ni;
+    double* y = yb + j * nb;
+    for (int r = 0; r < Kbi_.rows; ++r) {
+      double s = 0.0;
+      for (int k = Kbi_.rowPtr[r]; k < Kbi_.rowPtr[r + 1]; ++k)
+        s += Kbi_.values[k] * z[Kbi_.colInd[k]];
+      y[r] -= s;
+    }
   }
 }
 

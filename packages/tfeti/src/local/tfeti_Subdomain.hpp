@@ -91,8 +91,10 @@ class Subdomain {
                            const std::string& localSolver);
   const std::vector<int>& interfaceDofs() const { return interface_; }
   // Throws std::logic_error after releaseStiffness() (type None excepted).
-  // y_b = S v_b (Dirichlet: Schur complement on the interface) or K_bb v_b (lumped).
-  void applyPreconditionerBlock(const double* vb, double* yb);
+  // y_b = S v_b (Dirichlet: Schur complement on the interface) or K_bb v_b (lumped), for nrhs
+  // columns (leading dimension interfaceDofs().size()): one interior solve with nrhs right-hand
+  // sides.
+  void applyPreconditionerBlock(const double* vb, double* yb, int nrhs = 1);
 
   std::size_t factorBytes() const;
   std::size_t preconditionerFactorBytes() const;

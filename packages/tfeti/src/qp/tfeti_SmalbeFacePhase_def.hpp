@@ -243,24 +243,39 @@ void SmalbeSolMgr<S, MV, OP>::setStiffCircles(FaceRun& run, const std::vector<S>
     for (int k = 0; k < s; ++k) C[k * s + k] = S(normA_) / curvature[k] + S(1);
   } else {
     st.ME = MVT::Clone(*run.x, s);
-    auto e = MVT::Clone(*run.x, 1);
+    // The columns not computed yet in this face phase, kStiffColumnBlock at a time: M applies to
+    // them together (one interior solve per subdomain with that many right-hand sides instead
+    // of one each).
+    std::vector<long long> missing;
+    for (long long j : st.components)
+      if (run.mColumns.find(j) == run.mColumns.end()) missing.push_back(j);
+    std::sort(missing.begin(), missing.end());
+    missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
+    for (std::size_t first = 0; first < missing.size(); first += kStiffColumnBlock) {
+      const std::size_t n = std::min(missing.size() - first, kStiffColumnBlock);
+      auto E = MVT::Clone(*run.x, static_cast<int>(n));
+      auto ME = MVT::Clone(*run.x, static_cast<int>(n));
+      MVT::MvInit(*E, S(0));
+      std::vector<int> col(1);
+      for (std::size_t c = 0; c < n; ++c) {
+        col[0] = static_cast<int>(c);
+        BT::setAt({missing[first + c]}, {S(1)}, *MVT::CloneViewNonConst(*E, col));
+      }
+      OPT::Apply(*run.M, *E, *ME);
+      face_.stiffPreconditionerApplications += static_cast<int>(n);
+      for (std::size_t c = 0; c < n; ++c) {
+        col[0] = static_cast<int>(c);
+        run.mColumns.emplace(missing[first + c], MVT::CloneCopy(*ME, col));
+      }
+    }
     std::vector<int> col(1);
     for (int k = 0; k < s; ++k) {
       col[0] = k;
       auto mk = MVT::CloneViewNonConst(*st.ME, col);
       MVT::MvInit(*mk, S(0));
       for (int c = 0; c < 2; ++c) {
-        const long long j = st.components[2 * k + c];
-        auto it = run.mColumns.find(j);
-        if (it == run.mColumns.end()) {
-          MVT::MvInit(*e, S(0));
-          BT::setAt({j}, {S(1)}, *e);
-          auto mj = MVT::Clone(*run.x, 1);
-          OPT::Apply(*run.M, *e, *mj);
-          ++face_.stiffPreconditionerApplications;
-          it = run.mColumns.emplace(j, mj).first;
-        }
-        MVT::MvAddMv(S(1), *mk, c == 0 ? st.t0[k] : st.t1[k], *it->second, *mk);
+        const auto& mj = run.mColumns.at(st.components[2 * k + c]);
+        MVT::MvAddMv(S(1), *mk, c == 0 ? st.t0[k] : st.t1[k], *mj, *mk);
       }
       const std::vector<S> at = BT::gatherAt(*mk, st.components);
       for (int l = 0; l < s; ++l) C[k * s + l] = st.t0[l] * at[2 * l] + st.t1[l] * at[2 * l + 1];

@@ -321,6 +321,10 @@ class SmalbeSolMgr {
   // The tolerance (times SMALBE's) of a face with circles' last linearization before its tight
   // solve (docs/qp_solvers.md, "Newton steps on the circles").
   static constexpr double kCircleRelinearization = 10;
+  // The stiff circles' columns M e_j are computed this many at a time: M's interior solves take
+  // them as one block of right-hand sides; the block's work vectors (a primal and two dual
+  // vectors per column) bound it.
+  static constexpr std::size_t kStiffColumnBlock = 32;
   // A circle whose curvature nu / r in the face's Hessian exceeds this times ||A|| updates the
   // face's preconditioner (tfeti_FacePcpg.hpp; docs/qp_solvers.md, "Stiff circles"). Measured
   // with the first version (the stiff components scaled by 1 / (nu / r) alone) on the 0.1M
