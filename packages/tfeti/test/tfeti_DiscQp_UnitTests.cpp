@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -342,6 +344,73 @@ TEUCHOS_UNIT_TEST(DiscQp, SmalbeWithEqualityAndDiscs) {
     TEST_COMPARE(maxAbsDiff(*p.x, reference), <=, 1e-7 * std::max(1.0, reference.normInf()));
     if (initial == "start") TEST_EQUALITY(c.outerIterations, 0);  // the first face holds
   }
+}
+
+// A warm start from another load (a nonlinear method's first QP of a load step): the face
+// phase's loose verdicts release no circle while rows join (setWarmStartFromOtherLoad). From a
+// start where every free disc sits outside its circle (on it after the projection: circles to
+// release) and every binding disc inside (rows to join), the first verdicts join and hold the
+// releases (the first verdict's next face keeps every circle: checked against the run without
+// the hold, whose first next face drops some); the face phase must still end in an accepted
+// face at SMALBE's answer, as it does without the hold.
+TEUCHOS_UNIT_TEST(DiscQp, WarmStartFromAnotherLoadHoldsReleasesWhileRowsJoin) {
+  auto p = knownDiscProblem(world(), 40);
+  auto Q = rcp(new SpanProjector(*vectorOf(p.x->getMap(), [](GO) { return 1.0; })));
+  Smalbe alone(p.qp(), Q, smalbeParams(1e-10));
+  {
+    const Belos::ReturnType ret = alone.solve();  // once: TEST_EQUALITY evaluates twice
+    TEST_EQUALITY(ret, Belos::Converged);
+  }
+  const Vector reference(*p.x, Teuchos::Copy);
+  const auto exact = gatherAll(*p.exact);
+  auto start = vectorOf(p.x->getMap(), [&](GO i) {
+    const GO k = i / 2;
+    const int kind = pairKind(k);
+    if (kind == kDiscFree) return 2.0 * radiusOf(kind, k) * exact[i] / 0.4;  // outside
+    if (kind == kDiscOn || kind == kDiscOnToo) return 0.5 * exact[i];        // inside
+    return exact[i];
+  });
+  // The first loose verdict's next face: with the hold it keeps the first face's circles and
+  // adds the joining rows (here 40 -> 58 active rows), without it it also drops the released
+  // circles (40 -> 46).
+  long long firstNext[2] = {-1, -1}, firstRows[2] = {-1, -1};
+  for (const bool other : {false, true}) {
+    Teuchos::ParameterList face = smalbeParams(1e-10);
+    face.set("Face solve", "pcpg");
+    face.set("Initial face", "start");
+    face.set("Verbosity", 2);
+    p.x->putScalar(0.0);
+    Smalbe s(p.qp(), Q, face);
+    auto log = rcp(new std::ostringstream);
+    s.setOutputStream(log);
+    s.setFaceStart(start);
+    s.setWarmStartFromOtherLoad(other);
+    {
+      const Belos::ReturnType ret = s.solve();  // once: TEST_EQUALITY evaluates twice
+      TEST_EQUALITY(ret, Belos::Converged);
+    }
+    const auto& f = s.faceCounters();
+    out << (other ? "another load" : "the same load") << ": " << f.solves << " face solves, "
+        << f.activeSetChanges << " active-set changes, " << f.iterations << " face CG steps; "
+        << s.counters().message << "\n"
+        << log->str();
+    TEST_ASSERT(f.accepted);
+    checkSmalbeSolution(p, s, *Q, out, success);
+    TEST_COMPARE(maxAbsDiff(*p.x, reference), <=, 1e-7 * std::max(1.0, reference.normInf()));
+    std::smatch m;
+    const std::string text = log->str();
+    if (std::regex_search(text, m,
+                          std::regex("face 1: (\\d+) active rows[^\\n]*next face (\\d+)"))) {
+      firstRows[other] = std::stoll(m[1]);
+      firstNext[other] = std::stoll(m[2]);
+    }
+  }
+  // Printed on rank 0 only.
+  Teuchos::broadcast<int, long long>(*world(), 0, 2, firstNext);
+  Teuchos::broadcast<int, long long>(*world(), 0, 2, firstRows);
+  TEST_ASSERT(firstNext[0] > 0 && firstNext[1] > 0);  // the first verdicts were printed
+  TEST_COMPARE(firstNext[1], >, firstRows[1]);        // rows joined, no circle left
+  TEST_COMPARE(firstNext[1], >, firstNext[0]);        // ... which the other run released
 }
 
 // Sliding discs whose curvature nu / r dwarfs A (3D friction's nodes at the edge of the contact

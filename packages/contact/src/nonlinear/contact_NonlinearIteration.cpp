@@ -266,7 +266,10 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
     for (int it = 1; it <= options_.maxIterations; ++it) {
       if (!(options_.solveAsBuilt && it == 1)) updateContact(u, t);
       solver_.setToleranceFactor(factor);
+      // The step's first QP starts from the last step's solution, under another load.
+      solver_.setLoadStepStart(it == 1);
       out.qp = solveIncrement(u, fint, t, it);
+      solver_.setLoadStepStart(false);
       const tfeti::DualResult& qp = out.qp;
       IterationRecord rec;
       rec.step = step;

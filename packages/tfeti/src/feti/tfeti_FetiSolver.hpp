@@ -164,6 +164,11 @@ class FetiSolver {
   // equality tolerances, MPRGP's); 1, the default, solves as configured.
   void setToleranceFactor(double factor);
   double toleranceFactor() const { return toleranceFactor_; }
+  // The next solve() calls start a load step: their warm start (the previous solution) is the
+  // last step's, under another load. SMALBE's face phase then lets the slip zone grow before it
+  // releases circles (SmalbeSolMgr::setWarmStartFromOtherLoad). False (default): a warm start
+  // from the same load (a Newton iteration's previous QP).
+  void setLoadStepStart(bool start) { loadStepStart_ = start; }
   // For increments du of a nonlinear method from the state u (per local subdomain, as the loads):
   // from the next update() or updateStiffness() on, the rows the solver owns (gluing and zero
   // Dirichlet rows) read B du = -B u, so that each increment also closes the jumps and the
@@ -363,6 +368,7 @@ class FetiSolver {
   MemoryLog memory_;
   Teuchos::RCP<std::ostream> out_;
   double toleranceFactor_ = 1.0;
+  bool loadStepStart_ = false;
   std::vector<std::vector<double>> incrementOrigin_;
   void shiftOwnRowsByOrigin();  // c -= B u on the solver's own rows (setIncrementOrigin)
 };

@@ -252,6 +252,7 @@ Belos::ReturnType FetiSolver::solveSmalbe(DualQp& dual, QpCounters& counters) {
   SmalbeSolMgr<Scalar, MultiVector, Operator> solver(dual.qp, dual.Q, sp, dual.prec);
   solver.setOutputStream(out_);
   solver.setAugmentedHessian(dual.H);
+  solver.setWarmStartFromOtherLoad(dual.warm && loadStepStart_);
   // The face solves' columns of Q from G's entries: step-42 at 64^3 elastic asked for about 800
   // per QP at 7 ms each as applications of Q; the solve fell from 75-78 s to 55-57 s.
   solver.setComplementColumns(Teuchos::rcp(new CoarseComplementColumns(*coarse_)));

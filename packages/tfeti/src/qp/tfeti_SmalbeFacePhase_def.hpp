@@ -342,7 +342,7 @@ bool SmalbeSolMgr<S, MV, OP>::looseVerdictMoves(const FaceProjector<S, MV, OP>& 
   // The verdict on the rows by the problem's own gradient (without the circles' curvature).
   auto g = MVT::CloneCopy(*run.g);
   if (!run.circles.empty()) addCurvatureGradient(run, *run.x, S(-1), *g);
-  std::vector<long long> next = activeSetStep(*xp, face, face.activeMultipliers(*g));
+  std::vector<long long> next = activeSetStep(*xp, face, face.activeMultipliers(*g), otherLoad_);
   const bool seen = std::find(run.visited.begin(), run.visited.end(), next) != run.visited.end();
   // An unconverged loose solve gives no verdict; the tight one judges the face. Nor does one that
   // took no step (its entry point already met the loose tolerance, as in an inexact Newton QP
@@ -454,7 +454,8 @@ void SmalbeSolMgr<S, MV, OP>::reportFaceSolve(const FaceRun& run, std::size_t ac
 template <class S, class MV, class OP>
 std::vector<long long> SmalbeSolMgr<S, MV, OP>::activeSetStep(const MV& xp,
                                                               const FaceProjector<S, MV, OP>& rows,
-                                                              const std::vector<S>& sigma) const {
+                                                              const std::vector<S>& sigma,
+                                                              bool holdCircles) const {
   using BT = BoundTraits<S, MV>;
   const MV* upper = qp_.upper.get();
   const std::vector<long long>& face = rows.active();
@@ -463,10 +464,21 @@ std::vector<long long> SmalbeSolMgr<S, MV, OP>::activeSetStep(const MV& xp,
   std::vector<S> un(now.size(), std::numeric_limits<S>::infinity());
   if (upper != nullptr) un = BT::gatherAt(*upper, now);
   // A circle whose multiplier sigma = n . g is positive pulls x into its disc: released (both
-  // components). The components of a disc of radius 0 are never released.
+  // components), unless holdCircles and a row joins (a component at a bound that is neither
+  // the face's nor one of its circles'). The components of a disc of radius 0 are never
+  // released.
   std::vector<long long> released;
   const auto& circles = rows.circles();
-  for (std::size_t k = 0; k < circles.size(); ++k)
+  if (holdCircles) {
+    std::vector<long long> onCircles;
+    for (const auto& c : circles) onCircles.push_back(c.index), onCircles.push_back(c.index + 1);
+    std::sort(onCircles.begin(), onCircles.end());
+    holdCircles = std::any_of(now.begin(), now.end(), [&](long long i) {
+      return !std::binary_search(face.begin(), face.end(), i) &&
+             !std::binary_search(onCircles.begin(), onCircles.end(), i);
+    });
+  }
+  for (std::size_t k = 0; k < circles.size() && !holdCircles; ++k)
     if (sigma[face.size() + k] > S(0))
       released.push_back(circles[k].index), released.push_back(circles[k].index + 1);
   std::vector<long long> next;

@@ -138,6 +138,12 @@ class SmalbeSolMgr {
   // solve uses, getPenalty(): the "Penalty" parameter times ||A||, so give "Norm of A" (the
   // power-iteration estimate is not known beforehand).
   void setAugmentedHessian(Teuchos::RCP<const OP> H) { augmented_ = std::move(H); }
+  // The warm start comes from another load (a nonlinear method's first QP of a load step): its
+  // circles (discs at their bound) slid under that load. The loose face verdicts then release no
+  // circle while rows join the face: the slip zone grows first, and a circle whose multiplier
+  // is still of the wrong sign is released once the face stops growing (docs/friction.md,
+  // "Releases after a new load"). False (default): every verdict releases at once.
+  void setWarmStartFromOtherLoad(bool other) { otherLoad_ = other; }
   // Starting multiplier (in range(Q); default zero).
   void setInitialMultiplier(Teuchos::RCP<const MV> mu0) { mu0_ = std::move(mu0); }
   // Levels of the lower-bounded components for "Initial face" = levels (FETI: the contact rows'
@@ -196,6 +202,7 @@ class SmalbeSolMgr {
  private:
   BoundConstrainedQp<S, MV, OP> qp_;
   Teuchos::RCP<const OP> Q_, P_, augmented_;
+  bool otherLoad_ = false;
   Teuchos::ParameterList params_;
   Teuchos::RCP<const MV> mu0_;
   Teuchos::RCP<MV> mu_;
@@ -261,8 +268,9 @@ class SmalbeSolMgr {
   void reportFaceSolve(const FaceRun& run, std::size_t activeRows, int steps, bool cgConverged,
                        const FaceOutcome& out, bool passed, std::size_t nextRows);
   // The primal-dual active-set step from the projected iterate xp on `face`.
+  // holdCircles: while a row joins, no circle is released (setWarmStartFromOtherLoad).
   std::vector<long long> activeSetStep(const MV& xp, const FaceProjector<S, MV, OP>& rows,
-                                       const std::vector<S>& sigma) const;
+                                       const std::vector<S>& sigma, bool holdCircles = false) const;
   // "Initial face" = levels: a search over the level sets (bisection, or with "Level search
   // start" = half lowest count steps from Hertz's zone) for the face on which neither a free
   // component leaves the box nor an active one has a multiplier of the wrong sign, each face
