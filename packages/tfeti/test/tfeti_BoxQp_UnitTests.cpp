@@ -529,11 +529,11 @@ TEUCHOS_UNIT_TEST(BoxQp, BadBoundsAreReported) {
 // SMALBE on the known problem with sum x = 0 and the box, with the face solve.
 struct FaceRun {
   BoxProblem p;
-  RCP<SpanProjector> Q;
-  Belos::ReturnType result;
-  tfeti::QpCounters c;
-  tfeti::FaceCounters face;
-  RCP<Vector> mu;
+  RCP<SpanProjector> Q{};
+  Belos::ReturnType result = Belos::Unconverged;
+  tfeti::QpCounters c{};
+  tfeti::FaceCounters face{};
+  RCP<Vector> mu{};
   double normA = 0;
 };
 

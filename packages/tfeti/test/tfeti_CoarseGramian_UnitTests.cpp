@@ -104,7 +104,7 @@ void checkGramian(const std::string& formulation, int subdomainsPerSide, int ele
   {
     tfeti::Vector mask(coarse.G()->getDomainMap());
     auto m = mask.getDataNonConst();
-    for (std::size_t l = 0; l < m.size(); ++l)
+    for (std::size_t l = 0; l < static_cast<std::size_t>(m.size()); ++l)
       m[l] = mask.getMap()->getGlobalElement(static_cast<tfeti::LO>(l)) % 3 == 0 ? 0.0 : 1.0;
     m = Teuchos::null;
     tfeti::CrsMatrix GA(*coarse.G(), Teuchos::Copy);

@@ -32,7 +32,7 @@ std::vector<LoadRamp> loadRamps(const Teuchos::ParameterList& list, const std::s
   std::vector<LoadRamp> ramps(entries);
   if (values.empty()) return ramps;
   const std::string path = where + "/" + name;
-  if (values.size() != 2 * entries)
+  if (static_cast<std::size_t>(values.size()) != 2 * entries)
     throw std::invalid_argument(path + ": " + std::to_string(values.size()) +
                                 " values; it needs {start, end} for each of the " +
                                 std::to_string(entries) + " entries (" +
