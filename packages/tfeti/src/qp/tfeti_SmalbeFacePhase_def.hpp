@@ -22,6 +22,24 @@
 
 namespace tfeti {
 
+namespace face_phase_detail {
+
+// Whether a component of `now` (at a bound after the step) is neither on the face (sorted) nor
+// one of its circles' two components: a row joins the face.
+template <class S>
+bool rowJoins(const std::vector<long long>& now, const std::vector<long long>& face,
+              const std::vector<FaceCircle<S>>& circles) {
+  std::vector<long long> onCircles;
+  for (const auto& c : circles) onCircles.push_back(c.index), onCircles.push_back(c.index + 1);
+  std::sort(onCircles.begin(), onCircles.end());
+  return std::any_of(now.begin(), now.end(), [&](long long i) {
+    return !std::binary_search(face.begin(), face.end(), i) &&
+           !std::binary_search(onCircles.begin(), onCircles.end(), i);
+  });
+}
+
+}  // namespace face_phase_detail
+
 // What the faces of one face phase share: the operators, the work vectors and the tolerances.
 template <class S, class MV, class OP>
 struct SmalbeSolMgr<S, MV, OP>::FaceRun {
@@ -469,16 +487,8 @@ std::vector<long long> SmalbeSolMgr<S, MV, OP>::activeSetStep(const MV& xp,
   // released.
   std::vector<long long> released;
   const auto& circles = rows.circles();
-  if (holdCircles) {
-    std::vector<long long> onCircles;
-    for (const auto& c : circles) onCircles.push_back(c.index), onCircles.push_back(c.index + 1);
-    std::sort(onCircles.begin(), onCircles.end());
-    holdCircles = std::any_of(now.begin(), now.end(), [&](long long i) {
-      return !std::binary_search(face.begin(), face.end(), i) &&
-             !std::binary_search(onCircles.begin(), onCircles.end(), i);
-    });
-  }
-  for (std::size_t k = 0; k < circles.size() && !holdCircles; ++k)
+  const bool hold = holdCircles && face_phase_detail::rowJoins(now, face, circles);
+  for (std::size_t k = 0; k < circles.size() && !hold; ++k)
     if (sigma[face.size() + k] > S(0))
       released.push_back(circles[k].index), released.push_back(circles[k].index + 1);
   std::vector<long long> next;
