@@ -80,6 +80,10 @@
                                           B u = c on the gluing and tied rows to 1e-6 of
                                           max|u|, at most N iterations, and the same count and
                                           max|u| (1e-6) in every DIR (other rank counts)
+  check_summary.py bounded_multiplications --max N DIR1 [DIR2 ...]
+                                          a nonlinear run: converged, at most N Hessian
+                                          multiplications over all its QPs, the same count in
+                                          every DIR (other rank counts)
   check_summary.py same_nonlinear DIR1 DIR2 ...
                                           the same load steps and, per step, p_max, contact
                                           extent and max von Mises to 1e-5, max plastic strain
@@ -671,6 +675,25 @@ def bounded_iterations(dirs, max_iterations):
             fail(f"{d}: max|u| {u} differs from {ref['max_abs_u']} ({dirs[0]})")
         print(f"OK: {d}: {s['subdomains']} subdomains, {s['ranks']} ranks: {s['iterations']} "
               f"iterations (at most {max_iterations}), max|B u - c| {c['equality_residual']:.1e}")
+
+
+def bounded_multiplications(dirs, max_mults):
+    """A nonlinear run's QPs together take at most max_mults Hessian multiplications, the same
+    on every rank count (a face phase that falls back to SMALBE's outer iterations costs
+    thousands: the Tresca block's second QP of step 2 took 9,034 before 2026-12-06)."""
+    ref = load(dirs[0])
+    for d in dirs:
+        s = load(d)
+        if not s["converged"]:
+            fail(f"{d}: did not converge")
+        n = s["nonlinear"]["total_hessian_multiplications"]
+        per_step = [x["hessian_multiplications"] for x in s["steps"]]
+        if n > max_mults:
+            fail(f"{d}: {n} Hessian multiplications > {max_mults} (per step: {per_step})")
+        if n != ref["nonlinear"]["total_hessian_multiplications"]:
+            fail(f"{d}: {n} Hessian multiplications, "
+                 f"{ref['nonlinear']['total_hessian_multiplications']} in {dirs[0]}")
+        print(f"OK: {d}: {s['ranks']} ranks: {n} Hessian multiplications (at most {max_mults})")
 
 
 def zero_load(dirs):
@@ -1433,6 +1456,9 @@ if __name__ == "__main__":
         tiny_load(args[0], option(args, "--full-load", 0.0))
     elif mode == "tied":
         tied(args)
+    elif mode == "bounded_multiplications":
+        bounded_multiplications([a for i, a in enumerate(args) if a != "--max" and
+                                 (i == 0 or args[i - 1] != "--max")], int(option(args, "--max", 0)))
     elif mode == "bounded_iterations":
         bounded_iterations([a for i, a in enumerate(args) if a != "--max" and
                             (i == 0 or args[i - 1] != "--max")], int(option(args, "--max", 0)))

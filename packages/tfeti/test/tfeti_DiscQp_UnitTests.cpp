@@ -346,14 +346,14 @@ TEUCHOS_UNIT_TEST(DiscQp, SmalbeWithEqualityAndDiscs) {
   }
 }
 
-// A warm start from another load (a nonlinear method's first QP of a load step): the face
-// phase's loose verdicts release no circle while rows join (setWarmStartFromOtherLoad). From a
-// start where every free disc sits outside its circle (on it after the projection: circles to
-// release) and every binding disc inside (rows to join), the first verdicts join and hold the
-// releases (the first verdict's next face keeps every circle: checked against the run without
-// the hold, whose first next face drops some); the face phase must still end in an accepted
-// face at SMALBE's answer, as it does without the hold.
-TEUCHOS_UNIT_TEST(DiscQp, WarmStartFromAnotherLoadHoldsReleasesWhileRowsJoin) {
+// A warm start with circles (the Newton loop's previous QP) or from another load (a nonlinear
+// method's first QP of a load step): the face phase's loose verdicts release no circle while rows
+// join ("Circle releases" = held while rows join, the default). From a start where every free
+// disc sits outside its circle (on it after the projection: circles to release) and every binding
+// disc inside (rows to join), the first verdicts join and hold the releases: the first verdict's
+// next face keeps every circle, in both held runs, against the run that releases at once, whose
+// first next face drops some. Every run must still end in an accepted face at SMALBE's answer.
+TEUCHOS_UNIT_TEST(DiscQp, WarmStartWithCirclesHoldsReleasesWhileRowsJoin) {
   auto p = knownDiscProblem(world(), 40);
   auto Q = rcp(new SpanProjector(*vectorOf(p.x->getMap(), [](GO) { return 1.0; })));
   Smalbe alone(p.qp(), Q, smalbeParams(1e-10));
@@ -370,29 +370,39 @@ TEUCHOS_UNIT_TEST(DiscQp, WarmStartFromAnotherLoadHoldsReleasesWhileRowsJoin) {
     if (kind == kDiscOn || kind == kDiscOnToo) return 0.5 * exact[i];        // inside
     return exact[i];
   });
-  // The first loose verdict's next face: with the hold it keeps the first face's circles and
-  // adds the joining rows (here 40 -> 58 active rows), without it it also drops the released
-  // circles (40 -> 46).
-  long long firstNext[2] = {-1, -1}, firstRows[2] = {-1, -1};
-  for (const bool other : {false, true}) {
+  // The first loose verdict's next face: held, it keeps the first face's circles and adds the
+  // joining rows (here 40 -> 58 active rows); released at once, it also drops the released
+  // circles (40 -> 46). Runs: at once; held, the same load (the start has circles); held,
+  // another load.
+  struct Run {
+    const char* name;
+    const char* releases;
+    bool otherLoad;
+  };
+  const Run runs[3] = {{"at once", "at once", false},
+                       {"held, the same load", "held while rows join", false},
+                       {"held, another load", "held while rows join", true}};
+  long long firstNext[3] = {-1, -1, -1}, firstRows[3] = {-1, -1, -1};
+  for (int r = 0; r < 3; ++r) {
     Teuchos::ParameterList face = smalbeParams(1e-10);
     face.set("Face solve", "pcpg");
     face.set("Initial face", "start");
+    face.set("Circle releases", runs[r].releases);
     face.set("Verbosity", 2);
     p.x->putScalar(0.0);
     Smalbe s(p.qp(), Q, face);
     auto log = rcp(new std::ostringstream);
     s.setOutputStream(log);
     s.setFaceStart(start);
-    s.setWarmStartFromOtherLoad(other);
+    s.setWarmStartFromOtherLoad(runs[r].otherLoad);
     {
       const Belos::ReturnType ret = s.solve();  // once: TEST_EQUALITY evaluates twice
       TEST_EQUALITY(ret, Belos::Converged);
     }
     const auto& f = s.faceCounters();
-    out << (other ? "another load" : "the same load") << ": " << f.solves << " face solves, "
-        << f.activeSetChanges << " active-set changes, " << f.iterations << " face CG steps; "
-        << s.counters().message << "\n"
+    out << runs[r].name << ": " << f.solves << " face solves, " << f.activeSetChanges
+        << " active-set changes, " << f.iterations << " face CG steps; " << s.counters().message
+        << "\n"
         << log->str();
     TEST_ASSERT(f.accepted);
     checkSmalbeSolution(p, s, *Q, out, success);
@@ -401,19 +411,23 @@ TEUCHOS_UNIT_TEST(DiscQp, WarmStartFromAnotherLoadHoldsReleasesWhileRowsJoin) {
     const std::string text = log->str();
     if (std::regex_search(text, m,
                           std::regex("face 1: (\\d+) active rows[^\\n]*next face (\\d+)"))) {
-      firstRows[other] = std::stoll(m[1]);
-      firstNext[other] = std::stoll(m[2]);
+      firstRows[r] = std::stoll(m[1]);
+      firstNext[r] = std::stoll(m[2]);
     }
   }
   // Printed on rank 0 only.
-  Teuchos::broadcast<int, long long>(*world(), 0, 2, firstNext);
-  Teuchos::broadcast<int, long long>(*world(), 0, 2, firstRows);
-  TEST_ASSERT(firstNext[0] > 0 && firstNext[1] > 0);  // the first verdicts were printed
-  // Both runs solve the same first face; its verdict joins the same rows, so the difference of
-  // the next faces is the circles the run without the hold released.
-  TEST_EQUALITY(firstRows[0], firstRows[1]);
-  TEST_COMPARE(firstNext[1], >, firstRows[1]);  // rows joined
-  TEST_COMPARE(firstNext[1], >, firstNext[0]);  // and the circles the other run released stayed
+  Teuchos::broadcast<int, long long>(*world(), 0, 3, firstNext);
+  Teuchos::broadcast<int, long long>(*world(), 0, 3, firstRows);
+  for (int r = 0; r < 3; ++r) {
+    TEST_ASSERT(firstNext[r] > 0);  // the first verdicts were printed
+    // Every run solves the same first face; its verdict joins the same rows, so the difference
+    // of the next faces is the circles the run without the hold released.
+    TEST_EQUALITY(firstRows[r], firstRows[0]);
+  }
+  for (int r = 1; r < 3; ++r) {
+    TEST_COMPARE(firstNext[r], >, firstRows[r]);  // rows joined
+    TEST_COMPARE(firstNext[r], >, firstNext[0]);  // and the circles released at once stayed
+  }
 }
 
 // Sliding discs whose curvature nu / r dwarfs A (3D friction's nodes at the edge of the contact

@@ -360,17 +360,19 @@ bool SmalbeSolMgr<S, MV, OP>::looseVerdictMoves(const FaceProjector<S, MV, OP>& 
   // The verdict on the rows by the problem's own gradient (without the circles' curvature).
   auto g = MVT::CloneCopy(*run.g);
   if (!run.circles.empty()) addCurvatureGradient(run, *run.x, S(-1), *g);
-  std::vector<long long> next = activeSetStep(*xp, face, face.activeMultipliers(*g), otherLoad_);
+  std::vector<long long> next =
+      activeSetStep(*xp, face, face.activeMultipliers(*g), holdsCircleReleases());
   const bool seen = std::find(run.visited.begin(), run.visited.end(), next) != run.visited.end();
   // An unconverged loose solve gives no verdict; the tight one judges the face. Nor does one that
   // took no step (its entry point already met the loose tolerance, as in an inexact Newton QP
   // whose tolerance is loose) and would move the face: that verdict judges the warm start, not
   // the face, and such verdicts wandered between faces (the elasto-plastic Hertz sphere at 0.54M:
   // ten faces of 1954-1986 rows without a CG step, then SMALBE's outer iterations).
-  if (!lr.converged || seen || (lr.iterations == 0 && next != active)) return false;
-  if (next == active) {
-    // A face with circles that holds is solved once more from its retracted result, loosely,
-    // then again to circleTol: the tight solve that follows is then the last Newton step on the
+  if (!lr.converged || (lr.iterations == 0 && next != active)) return false;
+  if (next == active || seen) {
+    // A face with circles that holds, or whose verdict leads back to a face already left (the
+    // tight solve settles it), is solved once more from its retracted result, loosely, then
+    // again to circleTol: the tight solve that follows is then the last Newton step on the
     // circles instead of the one before it (their linearization's error is quadratic in the
     // distance to the answer: from the loose tolerance it left the tight solve's result just
     // above SMALBE's tolerance, and a second tight solve followed).

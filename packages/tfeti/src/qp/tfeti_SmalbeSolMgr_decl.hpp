@@ -142,7 +142,8 @@ class SmalbeSolMgr {
   // circles (discs at their bound) slid under that load. The loose face verdicts then release no
   // circle while rows join the face: the slip zone grows first, and a circle whose multiplier
   // is still of the wrong sign is released once the face stops growing (docs/friction.md,
-  // "Releases after a new load"). False (default): every verdict releases at once.
+  // "Releases after a new load"). A start from the same load holds them only if it has circles
+  // ("Circle releases"; a start without circles, false, releases at once).
   void setWarmStartFromOtherLoad(bool other) { otherLoad_ = other; }
   // Starting multiplier (in range(Q); default zero).
   void setInitialMultiplier(Teuchos::RCP<const MV> mu0) { mu0_ = std::move(mu0); }
@@ -203,6 +204,7 @@ class SmalbeSolMgr {
   BoundConstrainedQp<S, MV, OP> qp_;
   Teuchos::RCP<const OP> Q_, P_, augmented_;
   bool otherLoad_ = false;
+  bool startOnCircles_ = false;  // this solve's face phase started from circles
   Teuchos::ParameterList params_;
   Teuchos::RCP<const MV> mu0_;
   Teuchos::RCP<MV> mu_;
@@ -268,9 +270,18 @@ class SmalbeSolMgr {
   void reportFaceSolve(const FaceRun& run, std::size_t activeRows, int steps, bool cgConverged,
                        const FaceOutcome& out, bool passed, std::size_t nextRows);
   // The primal-dual active-set step from the projected iterate xp on `face`.
-  // holdCircles: while a row joins, no circle is released (setWarmStartFromOtherLoad).
+  // holdCircles: while a row joins, no circle is released (holdsCircleReleases).
   std::vector<long long> activeSetStep(const MV& xp, const FaceProjector<S, MV, OP>& rows,
                                        const std::vector<S>& sigma, bool holdCircles = false) const;
+  // Whether this solve's loose verdicts hold their circle releases while rows join ("Circle
+  // releases"): after another load's solution, or from a start with circles. A start without
+  // them (the normal step's first frictional QP, from a frictionless solution) releases at once:
+  // the circles its own verdicts add are often wrong (the 0.1M Cattaneo sphere's step 1: 101 ->
+  // 141 multiplications with them held).
+  bool holdsCircleReleases() const {
+    return params_.get<std::string>("Circle releases") == "held while rows join" &&
+           (otherLoad_ || startOnCircles_);
+  }
   // "Initial face" = levels: a search over the level sets (bisection, or with "Level search
   // start" = half lowest count steps from Hertz's zone) for the face on which neither a free
   // component leaves the box nor an active one has a multiplier of the wrong sign, each face

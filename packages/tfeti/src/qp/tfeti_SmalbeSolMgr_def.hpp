@@ -89,6 +89,15 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
             "falling back to bisection when two such steps land on one side (middle otherwise)",
             Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
                 Teuchos::tuple<std::string>("middle", "half lowest"), "Level search start")));
+    pl->set(
+        "Circle releases", "held while rows join",
+        "with discs (3D friction) and Face solve = pcpg: held while rows join: a face phase "
+        "that starts from circles (a warm start whose discs slide, the Newton loop's previous "
+        "QP) or from another load's solution releases no circle in a loose verdict that also "
+        "joins rows to the face; the circles whose multiplier pulls inward are released once "
+        "the face stops growing; at once: every verdict releases them",
+        Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
+            Teuchos::tuple<std::string>("held while rows join", "at once"), "Circle releases")));
     pl->set("Maximum face solves", 10,
             "limit on face solves (active-set corrections included) in one SMALBE solve",
             strict::count());
@@ -212,6 +221,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
   counters_ = QpCounters{};
   face_ = FaceCounters{};
   qApplies_ = 0;
+  startOnCircles_ = false;
   checkQpMaps(qp_, "SMALBE", Q_.get());
   MprgpIteration<S, MV, OP>::checkProblemData(qp_);
   SolveState s;
@@ -350,6 +360,9 @@ void SmalbeSolMgr<S, MV, OP>::startFromInitialFace(SolveState& s) {
   }
   auto y = MVT::CloneCopy(faceStart_.is_null() ? *qp_.x : *faceStart_);
   set.project(*y);
+  // A start with circles (discs at their bound: the previous QP's slip set) holds the releases of
+  // its loose verdicts while rows join (holdsCircleReleases).
+  startOnCircles_ = !qp_.discs.is_null() && !set.circles(*y, set.activeIndices(*y)).empty();
   s.converged = faceSolve(set.activeIndices(*y), s.gTol, s.eTol, s.scale, s.gp, s.qxNorm, y.get());
 }
 
