@@ -3,7 +3,8 @@
 Hertz's sphere on unstructured Tet4/Tet10 meshes (examples/hertz_sphere_tet4.geo), the 2D
 cylinders on Quad9 (examples/two_cylinders.geo) and the contact patch tests
 (tests/inputs/patch_mortar_*.xml). Prints a Markdown table: unknowns, p_max, contact radius
-(half-width) and max von Mises errors against Hertz, the RMS and largest deviation of the nodal
+(half-width) and max von Mises errors against Hertz (p_max raw and recovered, von Mises at the
+Gauss points and of the nodal averages), the RMS and largest deviation of the nodal
 pressures from Hertz's profile inside 0.8 a (3D), the patch tests' pressure spread, Hessian
 multiplications and wall time.
 
@@ -89,9 +90,10 @@ def main():
     for fac in (1.0,) if args.quick else (1.0, 0.5):
         cases.append(("cylinders", "Quad9", fac,
                       with_params(cyl, Element_order=2, Mesh_size_factor=fac)))
-    print("| problem | elements | size factor | unknowns | discretization | p_max | extent | "
-          "max von Mises | profile RMS / max | rows | Hessian mults | wall s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| problem | elements | size factor | unknowns | discretization | p_max | "
+          "p_max recovered | extent | max von Mises | nodal von Mises | profile RMS / max | "
+          "rows | Hessian mults | wall s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for kind, elements, fac, text in cases:
         for disc in ("node_to_segment", "mortar"):
             out = os.path.join(work, "%s_%s_%g_%s" % (kind, elements, fac, disc))
@@ -105,12 +107,15 @@ def main():
                                                c["hertz"]["p_max"])
                 prof = "%.1f %% / %.1f %%" % (100 * rms, 100 * worst)
             vm = s["max_von_mises"] / c["hertz"]["max_von_mises"] - 1.0
+            vmn = s["max_von_mises_nodal"] / c["hertz"]["max_von_mises"] - 1.0
+            epr = c["p_max_recovered"] / c["hertz"]["p_max"] - 1.0
             # Signed errors (summary.json's relative_error holds magnitudes).
             ep = c["p_max"] / c["hertz"]["p_max"] - 1.0
             ee = c[extent] / c["hertz"][extent] - 1.0
-            print("| %s | %s | %g | %d | %s | %+.2f %% | %+.2f %% | %+.2f %% | %s | %d | %d | %.1f |"
-                  % (kind, elements, fac, s["primal_dim"], disc, 100 * ep,
-                     100 * ee, 100 * vm, prof, c["rows"],
+            print("| %s | %s | %g | %d | %s | %+.2f %% | %+.2f %% | %+.2f %% | %+.2f %% | %+.2f %% "
+                  "| %s | %d | %d | %.1f |"
+                  % (kind, elements, fac, s["primal_dim"], disc, 100 * ep, 100 * epr,
+                     100 * ee, 100 * vm, 100 * vmn, prof, c["rows"],
                      s["qp"]["hessian_multiplications"], wall), flush=True)
     for case in ("patch_mortar_2d", "patch_mortar_2d_quadratic", "patch_mortar_3d",
                  "patch_mortar_3d_quadratic"):
@@ -121,7 +126,7 @@ def main():
             s, rows, wall = run(exe, args.ranks, with_params(text, Contact_discretization=disc),
                                 out)
             p = [float(r["pressure"]) / 1e7 - 1.0 for r in rows]
-            print("| %s | patch | — | %d | %s | pressure %+.1e .. %+.1e | | | | %d | %d | %.1f |"
+            print("| %s | patch | — | %d | %s | pressure %+.1e .. %+.1e | | | | | | %d | %d | %.1f |"
                   % (case, s["primal_dim"], disc, min(p), max(p), len(rows),
                      s["qp"]["hessian_multiplications"], wall), flush=True)
     print("\noutputs in " + work, file=sys.stderr)

@@ -6,8 +6,9 @@
 writes OUTPUT_DIR/contact_pressure.png, the computed nodal contact pressure against Hertz's
 p(r) = p_max sqrt(1 - r^2/a^2) when the run compared with Hertz: in 2D along the contact surface
 (r = x, the two cylinders), in 3D against the radius from the contact axis (the Hertz sphere,
-docs/hertz_sphere.md: every slave node, so the scatter around a ring shows); and in 2D
-OUTPUT_DIR/von_mises.png (the von Mises stress near the contact, from the VTU pieces). Reads
+docs/hertz_sphere.md: every slave node, so the scatter around a ring shows, and the recovered
+pressure); and in 2D OUTPUT_DIR/von_mises.png (the von Mises stress near the contact, from the
+VTU pieces). Reads
 summary.json, contact_pressure.csv and, in 2D, solution_*.vtu (ASCII) in OUTPUT_DIR.
 """
 import argparse
@@ -42,6 +43,10 @@ def pressure_plot(d, summary):
     else:
         ax.plot([v * 1e3 for v in x], [v / 1e6 for v in p], "o", ms=3,
                 label="TFETI (every slave node)")
+        # The recovered pressure (a least-squares fit over each node's facet neighbours).
+        if rows and "pressure_recovered" in rows[0]:
+            ax.plot([v * 1e3 for v in x], [float(r["pressure_recovered"]) / 1e6 for r in rows],
+                    "x", ms=3, label="TFETI (recovered)")
     if "hertz" in c:
         a, p0 = c["hertz"][extent], c["hertz"]["p_max"]
         xs = [a * i / 200 for i in range(201)]
@@ -51,7 +56,9 @@ def pressure_plot(d, summary):
     ax.set_xlabel(f"{'radius r' if extent == 'contact_radius' else 'x'} [mm]")
     ax.set_ylabel("contact pressure [MPa]")
     label = "contact radius" if extent == "contact_radius" else "half-width"
-    ax.set_title(f"p_max {c['p_max'] / 1e6:.0f} MPa, {label} {c[extent] * 1e3:.2f} mm")
+    recovered = (f" (recovered {c['p_max_recovered'] / 1e6:.0f})" if "p_max_recovered" in c
+                 else "")
+    ax.set_title(f"p_max {c['p_max'] / 1e6:.0f} MPa{recovered}, {label} {c[extent] * 1e3:.2f} mm")
     ax.legend()
     fig.tight_layout()
     out = os.path.join(d, "contact_pressure.png")

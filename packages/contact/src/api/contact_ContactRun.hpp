@@ -49,6 +49,8 @@ struct ContactRun {
   // nonlinear runs' own output uses its step's stresses, not these).
   bool stressesPending = false;
   std::vector<ContactNode> nodes;
+  // The largest von Mises stress of the nodal averages over all subdomains (maxNodalVonMises).
+  double maxVonMisesNodal = 0.0;
 
   std::string elapsed() const {
     std::ostringstream s;

@@ -14,6 +14,7 @@
 #include "contact_Driver.hpp"
 #include "contact_FrictionStep.hpp"
 #include "contact_NonlinearSetup.hpp"
+#include "contact_RecoveredFields.hpp"
 #include "contact_RunPolicy.hpp"
 #include "contact_RunSummary.hpp"
 
@@ -396,8 +397,12 @@ void ContactSolver::measureContact(ContactResult& res) const {
     // Hertz is of the full load (the one-step case's only step is at load factor 1).
     if (history.loadFactor > 1.0 - 1e-12)
       c.hertz = hertzReference(params_, c.pMax, c.extent, dim, contactBodyLaws(r.spec, problem));
-    r.policy->addContactMeasures(c, r);
+    c.pMaxRecovered = maxRecoveredPressure(r.nodes);
     res.maxVonMises = last.maxVonMises;
+    res.maxVonMisesNodal = r.maxVonMisesNodal;
+    if (c.hertz)
+      addRecoveredErrors(*c.hertz, c.pMaxRecovered, res.maxVonMises, res.maxVonMisesNodal);
+    r.policy->addContactMeasures(c, r);
     res.maxPlasticStrain = last.maxPlasticStrain;
   }
   res.contactNodes = r.nodes;

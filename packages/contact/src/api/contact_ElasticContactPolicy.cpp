@@ -10,6 +10,7 @@
 
 #include "contact_ContactParameters.hpp"
 #include "contact_ContactRun.hpp"
+#include "contact_RecoveredFields.hpp"
 #include "contact_RunPolicy.hpp"
 #include "contact_VtuWriter.hpp"
 
@@ -104,6 +105,7 @@ class ElasticContactPolicy final : public RunPolicy {
         for (int q = 0; q < st.gaussPointsPerElement; ++q)
           vm = std::max(vm, st.atGaussPoint(e, q, plasticity::kVonMises));
     }
+    r.maxVonMisesNodal = maxNodalVonMises(comm, problem, r.stresses);
     r.evaluated = true;
     rec.pMax = maxPressure(r.nodes);
     rec.contactExtent = contactExtent(r.nodes, r.options.rule, problem.dim());
@@ -153,7 +155,7 @@ class ElasticContactPolicy final : public RunPolicy {
               << res.feti.primal << ", dual " << res.feti.dual << " (" << res.feti.contactRows
               << " contact rows), " << res.qp.method << ": " << res.qp.qp.hessianMultiplications
               << " Hessian multiplications (" << (res.converged ? "converged" : "NOT CONVERGED")
-              << "); p_max " << c.pMax
+              << "); p_max " << c.pMax << " (recovered " << c.pMaxRecovered << ")"
               << (r.options.rule.line ? ", half-width " : ", contact radius ") << c.extent
               << ", force " << c.force << " (applied " << c.appliedForce << "), max von Mises "
               << res.maxVonMises << "\n";

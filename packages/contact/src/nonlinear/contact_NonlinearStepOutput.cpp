@@ -7,6 +7,8 @@
 #include <sstream>
 #include <utility>
 
+#include "contact_RecoveredFields.hpp"
+
 namespace contact {
 
 std::string stepBaseName(int step) {
@@ -36,6 +38,7 @@ void NonlinearStepOutput::evaluate(const Field& u) {
     ep = std::max(ep, plasticStrain(model_.plastic[i], em, plasticNodal_[i]));
   }
   maxVonMises_ = globalMax(*comm_, vm);
+  maxVonMisesNodal_ = maxNodalVonMises(*comm_, problem, stresses_);
   maxPlasticStrain_ = globalMax(*comm_, ep);
   // The gaps each row keeps after the last increment du (the solver's solution).
   Field du;

@@ -30,6 +30,8 @@ class NonlinearStepOutput {
   bool evaluated() const { return !nodes_.empty(); }
   const std::vector<ContactNode>& nodes() const { return nodes_; }
   double maxVonMises() const { return maxVonMises_; }
+  // Of the nodal averages over all subdomains (maxNodalVonMises).
+  double maxVonMisesNodal() const { return maxVonMisesNodal_; }
   double maxPlasticStrain() const { return maxPlasticStrain_; }
 
   // Friction on the contact pair: evaluate adds each contact node's friction results (the
@@ -58,7 +60,7 @@ class NonlinearStepOutput {
   std::vector<plasticity::StressField> stresses_;
   std::vector<std::vector<double>> plasticNodal_;
   std::vector<ContactNode> nodes_;
-  double maxVonMises_ = 0.0, maxPlasticStrain_ = 0.0;
+  double maxVonMises_ = 0.0, maxPlasticStrain_ = 0.0, maxVonMisesNodal_ = 0.0;
 };
 
 // The ParaView collection of the converged steps' VTU files, the load factor as time (a

@@ -10,6 +10,7 @@
 
 #include "contact_Friction.hpp"
 #include "contact_Materials.hpp"
+#include "contact_RecoveredFields.hpp"
 
 namespace contact {
 
@@ -35,6 +36,7 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
     return std::make_pair(problem.copyOf[n].first, dim * problem.copyOf[n].second + c);
   };
   std::vector<ContactNode> nodes;
+  std::vector<int> pairOf;
   for (std::size_t k = 0; k < problem.contact.rows.size(); ++k) {
     const ContactRow& row = problem.contact.rows[k];
     const double lambda = byRow.at(key(toInequalityRow(row, dofOf)));
@@ -73,7 +75,9 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                      gap});
     nodes.back().slaveNode = row.slaveNode;
     if (problem.namedPairs) nodes.back().pair = problem.rowPair[k];
+    pairOf.push_back(problem.rowPair[k]);
   }
+  recoverContactPressures(nodes, pairOf, problem);
   std::sort(nodes.begin(), nodes.end(), [&](const ContactNode& a, const ContactNode& b) {
     if (dim == 3) return a.radius < b.radius;
     return rule.angle ? a.angle < b.angle : a.x < b.x;
@@ -163,7 +167,8 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
       << (friction ? ",tangential_force,tangential_traction,slip_increment,state,accumulated_slip,"
                      "net_slip,node,force_x,force_y"
                    : "")
-      << (friction && dim == 3 ? ",force_z" : "") << (pairs ? ",pair\n" : "\n")
+      << (friction && dim == 3 ? ",force_z" : "") << (pairs ? ",pair" : "")
+      << ",pressure_recovered\n"
       << std::setprecision(12);
   for (const auto& n : nodes) {
     csv << n.x << "," << n.y << ",";
@@ -176,7 +181,7 @@ void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
     if (friction)
       for (int c = 0; c < dim; ++c) csv << "," << n.force[c];
     if (pairs) csv << "," << n.pair;
-    csv << "\n";
+    csv << "," << n.pressureRecovered << "\n";
   }
 }
 
@@ -244,6 +249,13 @@ std::optional<HertzReference> hertzReference(
   return h;
 }
 
+void addRecoveredErrors(HertzReference& hertz, double pMaxRecovered, double maxVonMises,
+                        double maxVonMisesNodal) {
+  hertz.pMaxRecoveredError = std::abs(pMaxRecovered - hertz.pMax) / hertz.pMax;
+  hertz.maxVonMisesError = std::abs(maxVonMises - hertz.maxVonMises) / hertz.maxVonMises;
+  hertz.maxVonMisesNodalError = std::abs(maxVonMisesNodal - hertz.maxVonMises) / hertz.maxVonMises;
+}
+
 void addHertzComparison(Json& c, const HertzReference& hertz) {
   const char* extent = hertz.line ? "half_width" : "contact_radius";
   Json h = Json::object();
@@ -254,6 +266,9 @@ void addHertzComparison(Json& c, const HertzReference& hertz) {
   Json err = Json::object();
   err["p_max"] = hertz.pMaxError;
   err[extent] = hertz.extentError;
+  err["p_max_recovered"] = hertz.pMaxRecoveredError;
+  err["max_von_mises"] = hertz.maxVonMisesError;
+  err["max_von_mises_nodal"] = hertz.maxVonMisesNodalError;
   c["relative_error"] = std::move(err);
 }
 

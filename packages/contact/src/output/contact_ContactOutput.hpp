@@ -43,6 +43,9 @@ struct ContactNode {
   // tangentialForce it does not depend on the frame: a slave node on a master node where the
   // master kinks takes either segment's normal, as rounding decides (docs/friction.md).
   double force[3] = {0.0, 0.0, 0.0};
+  // The pressure smoothed over the node's facet neighbours (contact_RecoveredFields.hpp): a
+  // linear least-squares fit of their pressures, evaluated at the node; zero where pressure is.
+  double pressureRecovered = 0.0;
 };
 
 // How the contact zone's extent is measured. 2D: the half-width along x (a contact centred at
@@ -65,9 +68,10 @@ struct ContactExtentRule {
 bool lineContact(const Teuchos::ParameterList& params, int dim);
 
 // The multiplier of every row of the last solve at its slave node, sorted by x (or angle; the
-// radius in 3D). surfaceDisplacement: dim per mesh node (only surface nodes read) or empty for
-// the reference. surfaceSolution: the solve's primal solution (the increment of a nonlinear
-// iteration) in the same layout, for the gaps it leaves; empty: the rows' gaps.
+// radius in 3D), with its recovered pressure (recoverContactPressures). surfaceDisplacement: dim
+// per mesh node (only surface nodes read) or empty for the reference. surfaceSolution: the solve's
+// primal solution (the increment of a nonlinear iteration) in the same layout, for the gaps it
+// leaves; empty: the rows' gaps.
 std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                                       const tfeti::FetiSolver& solver,
                                       const ContactExtentRule& rule,
@@ -98,7 +102,8 @@ std::vector<PlaneHalfWidth> halfWidthPerPlane(const std::vector<ContactNode>& no
 // Rank 0 writes the nodes as CSV: x,y,lambda,pressure,angle (2D) or x,y,z,lambda,pressure,radius
 // (3D), with friction then tangential_force,tangential_traction,slip_increment,state,
 // accumulated_slip,net_slip,node (the slave node's global id), with Contact pairs then pair (the
-// row's pair index, in the order of Contact pairs); throws naming the file.
+// row's pair index, in the order of Contact pairs), and last pressure_recovered; throws naming
+// the file.
 void writeContactCsv(const tfeti::Comm& comm, const std::string& path,
                      const std::vector<ContactNode>& nodes, int dim = 2);
 
@@ -114,13 +119,19 @@ struct HertzReference {
   double maxVonMises = 0.0;  // the largest von Mises stress below the surface
   double pMaxError = 0.0;    // |p_max - p0| / p0 of the run's p_max
   double extentError = 0.0;  // |extent - a| / a of the run's extent
+  // The same for the recovered p_max and the largest von Mises stresses (Gauss points and
+  // averaged nodes), set by addRecoveredErrors.
+  double pMaxRecoveredError = 0.0, maxVonMisesError = 0.0, maxVonMisesNodalError = 0.0;
 };
 // Empty when Hertz/Compare is not set.
 std::optional<HertzReference> hertzReference(
     const Teuchos::ParameterList& params, double pMax, double extent, int dim,
     const std::vector<plasticity::ElasticLaw>& contactLaws);
+// The relative errors of the recovered p_max and of the largest von Mises stresses.
+void addRecoveredErrors(HertzReference& hertz, double pMaxRecovered, double maxVonMises,
+                        double maxVonMisesNodal);
 // c["hertz"] = {p_max, half_width | contact_radius, max_von_mises} and c["relative_error"] =
-// {p_max, half_width | contact_radius}.
+// {p_max, half_width | contact_radius, p_max_recovered, max_von_mises, max_von_mises_nodal}.
 void addHertzComparison(Json& c, const HertzReference& hertz);
 
 // One VTU piece for this rank's subdomains (cells of the catalogue's VTK type, nodes in its VTK

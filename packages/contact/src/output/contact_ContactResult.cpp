@@ -14,6 +14,7 @@ bool nonlinearRun(const ContactResult& r) {
 // The keys of the elastic run's "contact" object after the constraint report.
 void addElasticContact(Json& c, const ContactMeasures& m) {
   c["p_max"] = m.pMax;
+  c["p_max_recovered"] = m.pMaxRecovered;
   c[m.extentKey] = m.extent;
   c["force"] = m.force;
   c["applied_force"] = m.appliedForce;
@@ -30,6 +31,7 @@ void addElasticContact(Json& c, const ContactMeasures& m) {
 
 void addNonlinearContact(Json& c, const ContactMeasures& m) {
   c["p_max"] = m.pMax;
+  c["p_max_recovered"] = m.pMaxRecovered;
   c["extent_measure"] = m.extentKey;
   c["contact_extent"] = m.extent;
   if (m.extentKey != "angle") c[m.extentKey] = m.extent;
@@ -103,6 +105,7 @@ Json elasticSummary(const ContactResult& r) {
   s["qp"] = qpJson(r.qp);
   s["contact"] = contactJson(r);
   s["max_von_mises"] = r.maxVonMises;
+  s["max_von_mises_nodal"] = r.maxVonMisesNodal;
   s["max_abs_u"] = r.maxAbsU;
   addConstraintRecords(s, r);
   s["timings"] = timingsJson(r.timings, r.qp.iterations);
@@ -154,6 +157,7 @@ Json nonlinearSummary(const ContactResult& r) {
   if (r.haveContact) {
     s["contact"] = contactJson(r);
     s["max_von_mises"] = r.maxVonMises;
+    s["max_von_mises_nodal"] = r.maxVonMisesNodal;
     s["max_plastic_strain"] = r.maxPlasticStrain;
   }
   s["max_abs_u"] = r.maxAbsU;

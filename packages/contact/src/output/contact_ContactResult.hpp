@@ -37,6 +37,7 @@ struct SlabContact {
 struct ContactMeasures {
   tfeti::ConstraintReport constraints;  // of the (last) QP solve: rows B_I u <= c_I
   double pMax = 0.0;
+  double pMaxRecovered = 0.0;  // the largest recovered pressure (contact_RecoveredFields.hpp)
   // The contact zone's extent: a half-width along x (metres), a half-angle (degrees) or a
   // contact radius (metres), as extentKey says.
   double extent = 0.0;
@@ -111,6 +112,7 @@ struct ContactResult {
   std::vector<PairForce> pairs;
 
   double maxVonMises = 0.0, maxPlasticStrain = 0.0, maxAbsU = 0.0;
+  double maxVonMisesNodal = 0.0;  // of the nodal averages over all subdomains
 
   // Prescribed displacements: the rows and the record per entry (boundary, component, value,
   // reaction) as prescribedSummary writes it.
