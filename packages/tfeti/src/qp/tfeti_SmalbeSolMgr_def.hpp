@@ -362,8 +362,9 @@ void SmalbeSolMgr<S, MV, OP>::startFromInitialFace(SolveState& s) {
   set.project(*y);
   // A start with circles (discs at their bound: the previous QP's slip set) holds the releases of
   // its loose verdicts while rows join (holdsCircleReleases).
-  startOnCircles_ = !qp_.discs.is_null() && !set.circles(*y, set.activeIndices(*y)).empty();
-  s.converged = faceSolve(set.activeIndices(*y), s.gTol, s.eTol, s.scale, s.gp, s.qxNorm, y.get());
+  const std::vector<long long> active = set.activeIndices(*y);
+  startOnCircles_ = !qp_.discs.is_null() && !set.circles(*y, active).empty();
+  s.converged = faceSolve(active, s.gTol, s.eTol, s.scale, s.gp, s.qxNorm, y.get());
 }
 
 template <class S, class MV, class OP>
