@@ -3,12 +3,15 @@
 // quadratic one with degree 2, is
 // the patch mean on a patch symmetric about its node, and leaves a node whose patch cannot
 // determine a slope (all points on one line in 3D, a single point) at its own value. The mirror
-// images across symmetry planes, and a half ring with its images fitted as the whole ring.
+// images across symmetry planes, and a half ring with its images fitted as the whole ring. The
+// nodal von Mises stresses averaged per body.
 #include <Teuchos_UnitTestHarness.hpp>
 
 #include <array>
 #include <cmath>
 #include <vector>
+
+#include <Teuchos_DefaultComm.hpp>
 
 #include "contact_RecoveredFields.hpp"
 
@@ -187,6 +190,50 @@ TEUCHOS_UNIT_TEST(RecoveredFields, HalfRingWithImagesIsTheWholeRing) {
   const double mean = (1.00 + 1.02 + 2 * 0.97 + 2 * 1.05 + 0.99) / 7.0;
   TEST_FLOATING_EQUALITY(whole, mean, 1e-14);
   TEST_ASSERT(std::abs(half - mean) > 1e-3);
+}
+
+// The nodal von Mises stresses average each body's elements apart: a Tri3 of body 0 (stress
+// A, von Mises 1) whose three nodes all belong to the three Tri3 of body 1 around it (stress
+// 0) keeps A at its nodes. Averaged across the bodies its nodes would hold A / 3.
+TEUCHOS_UNIT_TEST(RecoveredFields, NodalVonMisesAveragesEachBodyApart) {
+  // Nodes 0-2: the inner triangle; 3-5: the outer triangles' tips. One subdomain per triangle.
+  const std::vector<double> xy{0, 0, 1, 0, 0, 1, 0.5, -1, 1.2, 1.2, -1, 0.5};
+  const std::vector<std::vector<int>> tri{{0, 1, 2}, {1, 0, 3}, {2, 1, 4}, {0, 2, 5}};
+  contact::ElasticContactProblem problem;
+  problem.mesh.dim = 2;
+  problem.mesh.coords = xy;
+  problem.mesh.gmshNodes.resize(6);
+  std::vector<plasticity::StressField> stresses;
+  for (int k = 0; k < 4; ++k) {
+    contact::UnstructuredSubdomain sub;
+    sub.id = k;
+    sub.globalNode.assign(tri[k].begin(), tri[k].end());
+    problem.subdomains.push_back(sub);
+    problem.bodyOfSubdomain.push_back(k == 0 ? 0 : 1);
+    plasticity::ElementMesh em;
+    em.type = plasticity::ElementType::Tri3;
+    for (int g : tri[k]) em.coords.insert(em.coords.end(), {xy[2 * g], xy[2 * g + 1]});
+    em.connectivity = {0, 1, 2};
+    problem.localElements.push_back(em);
+    tfeti::SubdomainData d;
+    d.mesh.id = k;
+    d.mesh.globalNode.assign(tri[k].begin(), tri[k].end());
+    problem.local.push_back(d);
+    problem.localBody.push_back(k == 0 ? 0 : 1);
+    plasticity::StressField st;
+    st.nodal.assign(3 * plasticity::kNumStressComponents, 0.0);
+    if (k == 0)
+      for (int a = 0; a < 3; ++a)
+        st.nodal[a * plasticity::kNumStressComponents + plasticity::kSxx] = 1.0;
+    stresses.push_back(st);
+  }
+  const auto comm = Teuchos::DefaultComm<int>::getComm();
+  if (comm->getSize() != 1) return;  // the subdomains are all this rank's
+  TEST_FLOATING_EQUALITY(contact::maxNodalVonMises(*comm, problem, stresses), 1.0, 1e-14);
+  // One body: the inner nodes average A with the two outer triangles at each.
+  problem.bodyOfSubdomain.assign(4, 0);
+  problem.localBody.assign(4, 0);
+  TEST_FLOATING_EQUALITY(contact::maxNodalVonMises(*comm, problem, stresses), 1.0 / 3.0, 1e-14);
 }
 
 }  // namespace

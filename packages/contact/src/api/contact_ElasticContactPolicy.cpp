@@ -95,6 +95,7 @@ class ElasticContactPolicy final : public RunPolicy {
     for (std::size_t i = 0; i < problem.local.size(); ++i) solution.push_back(solver.solution(i));
     r.nodes = contactNodes(problem, solver, r.options.rule, {},
                            model.surfaceDisplacement(comm, solution));
+    recoverContactPressures(r.nodes, problem);
     double vm = 0.0;
     r.stresses.clear();
     for (std::size_t i = 0; i < problem.local.size(); ++i) {

@@ -46,6 +46,7 @@ void NonlinearStepOutput::evaluate(const Field& u) {
   const std::vector<double> current = model_.surfaceDisplacement(*comm_, u);
   nodes_ = contactNodes(problem, solver_, options_.rule, current,
                         model_.surfaceDisplacement(*comm_, du));
+  recoverContactPressures(nodes_, problem);
   if (friction.active()) {
     addFrictionResults(nodes_, problem, solver_, friction,
                        model_.surfaceDisplacement(*comm_, model_.u), current);

@@ -10,7 +10,6 @@
 
 #include "contact_Friction.hpp"
 #include "contact_Materials.hpp"
-#include "contact_RecoveredFields.hpp"
 
 namespace contact {
 
@@ -36,7 +35,6 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
     return std::make_pair(problem.copyOf[n].first, dim * problem.copyOf[n].second + c);
   };
   std::vector<ContactNode> nodes;
-  std::vector<int> pairOf;
   for (std::size_t k = 0; k < problem.contact.rows.size(); ++k) {
     const ContactRow& row = problem.contact.rows[k];
     const double lambda = byRow.at(key(toInequalityRow(row, dofOf)));
@@ -75,9 +73,7 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                      gap});
     nodes.back().slaveNode = row.slaveNode;
     if (problem.namedPairs) nodes.back().pair = problem.rowPair[k];
-    pairOf.push_back(problem.rowPair[k]);
   }
-  recoverContactPressures(nodes, pairOf, problem);
   std::sort(nodes.begin(), nodes.end(), [&](const ContactNode& a, const ContactNode& b) {
     if (dim == 3) return a.radius < b.radius;
     return rule.angle ? a.angle < b.angle : a.x < b.x;

@@ -43,8 +43,9 @@ struct ContactNode {
   // tangentialForce it does not depend on the frame: a slave node on a master node where the
   // master kinks takes either segment's normal, as rounding decides (docs/friction.md).
   double force[3] = {0.0, 0.0, 0.0};
-  // The pressure smoothed over the node's facet neighbours (contact_RecoveredFields.hpp): a
-  // linear least-squares fit of their pressures, evaluated at the node; zero where pressure is.
+  // The pressure smoothed over the node's facet neighbours (recoverContactPressures in
+  // contact_RecoveredFields.hpp): a least-squares fit of their pressures, evaluated at the node;
+  // zero where pressure is.
   double pressureRecovered = 0.0;
 };
 
@@ -68,10 +69,10 @@ struct ContactExtentRule {
 bool lineContact(const Teuchos::ParameterList& params, int dim);
 
 // The multiplier of every row of the last solve at its slave node, sorted by x (or angle; the
-// radius in 3D), with its recovered pressure (recoverContactPressures). surfaceDisplacement: dim
-// per mesh node (only surface nodes read) or empty for the reference. surfaceSolution: the solve's
-// primal solution (the increment of a nonlinear iteration) in the same layout, for the gaps it
-// leaves; empty: the rows' gaps.
+// radius in 3D). surfaceDisplacement: dim per mesh node (only surface nodes read) or empty for
+// the reference. surfaceSolution: the solve's primal solution (the increment of a nonlinear
+// iteration) in the same layout, for the gaps it leaves; empty: the rows' gaps. The recovered
+// pressures are left at zero (recoverContactPressures sets them where a run reports them).
 std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                                       const tfeti::FetiSolver& solver,
                                       const ContactExtentRule& rule,

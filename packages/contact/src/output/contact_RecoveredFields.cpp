@@ -7,29 +7,9 @@
 #include <map>
 #include <set>
 
+#include "contact_TangentialRows.hpp"
+
 namespace contact {
-
-namespace {
-
-// Two unit tangents orthogonal to n (a unit vector): the second is n x t1.
-void tangentFrame(const std::array<double, 3>& n, double t1[3], double t2[3]) {
-  // The axis least aligned with n keeps the cross product well away from zero.
-  int axis = 0;
-  for (int c = 1; c < 3; ++c)
-    if (std::abs(n[c]) < std::abs(n[axis])) axis = c;
-  double e[3] = {0.0, 0.0, 0.0};
-  e[axis] = 1.0;
-  t1[0] = n[1] * e[2] - n[2] * e[1];
-  t1[1] = n[2] * e[0] - n[0] * e[2];
-  t1[2] = n[0] * e[1] - n[1] * e[0];
-  const double l = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
-  for (int c = 0; c < 3; ++c) t1[c] /= l;
-  t2[0] = n[1] * t1[2] - n[2] * t1[1];
-  t2[1] = n[2] * t1[0] - n[0] * t1[2];
-  t2[2] = n[0] * t1[1] - n[1] * t1[0];
-}
-
-}  // namespace
 
 namespace {
 
@@ -98,13 +78,7 @@ std::vector<double> patchRecovery(const std::vector<std::array<double, 3>>& x,
   for (std::size_t i = 0; i < x.size(); ++i) {
     const std::vector<int>& p = patch[i];
     if (p.empty()) continue;
-    double t[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
-    if (dim == 3) {
-      tangentFrame(normal[i], t[0], t[1]);
-    } else {
-      t[0][0] = -normal[i][1];
-      t[0][1] = normal[i][0];
-    }
+    const std::vector<std::array<double, 3>> t = tangentBasis(normal[i], dim);
     // Coordinates from the node, so that the fit's value there is its constant coefficient.
     std::vector<std::array<double, 2>> xi(p.size(), std::array<double, 2>{0.0, 0.0});
     std::vector<double> v(p.size());
@@ -149,16 +123,26 @@ std::vector<std::array<double, 3>> mirrorImages(const std::array<double, 3>& onP
   return orbit;
 }
 
-void recoverContactPressures(std::vector<ContactNode>& nodes, const std::vector<int>& pairOf,
-                             const ElasticContactProblem& problem) {
-  const int dim = problem.dim();
+namespace {
+
+// The points of the pressure recovery: the contact nodes first, then the mirror images.
+struct RecoveryPoints {
+  std::vector<std::array<double, 3>> x, normal;
+  std::vector<double> value;
+  std::vector<std::vector<int>> patch;
+  std::vector<int> degree;
+};
+
+// Per node: itself and the nodes sharing a facet of its pair's slave boundary with it that have
+// a row in the same pair. The degree of each node's fit is its slave facets': on quadratic
+// facets a linear fit over the ring would flatten a curved pressure (Tet10 at a/3.8: -2.1 % at
+// the peak), where their nodal values are smooth already.
+RecoveryPoints facetPatches(const std::vector<ContactNode>& nodes, const std::vector<int>& pairOf,
+                            const ElasticContactProblem& problem) {
   std::map<std::pair<int, int>, int> index;  // (pair, slave node) -> node
   for (std::size_t i = 0; i < nodes.size(); ++i)
     index[{pairOf[i], nodes[i].slaveNode}] = static_cast<int>(i);
   std::vector<std::set<int>> near(nodes.size());
-  // The polynomial of each pair's fit has its slave facets' degree: on quadratic facets a
-  // linear fit over the ring would flatten a curved pressure (Tet10 at a/3.8: -2.1 % at the
-  // peak), where their nodal values are smooth already.
   std::vector<int> pairDegree(problem.pairs.size(), 1);
   for (std::size_t k = 0; k < problem.pairs.size(); ++k) {
     const GmshBoundary& b = problem.mesh.boundary(problem.pairs[k].spec.slave);
@@ -172,41 +156,86 @@ void recoverContactPressures(std::vector<ContactNode>& nodes, const std::vector<
       for (int i : onFacet) near[i].insert(onFacet.begin(), onFacet.end());
     }
   }
-  std::vector<std::array<double, 3>> x(nodes.size()), n(nodes.size());
-  std::vector<double> p(nodes.size());
-  std::vector<std::vector<int>> patch(nodes.size());
+  RecoveryPoints r;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    x[i] = {nodes[i].x, nodes[i].y, nodes[i].z};
-    n[i] = {nodes[i].normal[0], nodes[i].normal[1], nodes[i].normal[2]};
-    p[i] = nodes[i].pressure;
+    const ContactNode& n = nodes[i];
+    r.x.push_back({n.x, n.y, n.z});
+    r.normal.push_back({n.normal[0], n.normal[1], n.normal[2]});
+    r.value.push_back(n.pressure);
     near[i].insert(static_cast<int>(i));
-    patch[i].assign(near[i].begin(), near[i].end());
+    r.patch.emplace_back(near[i].begin(), near[i].end());
+    r.degree.push_back(pairDegree[pairOf[i]]);
   }
-  // A node on a symmetry plane has only the half of its ring on the model's side. The model
-  // stands for the whole body mirrored across the plane, whose ring holds the mirror images as
-  // well: they join the patch as extra points (after the nodes), so the fit is the whole body's
-  // and its slope across the plane zero. Points on the plane are their own images.
+  return r;
+}
+
+// A node on a symmetry plane has only the half of its ring on the model's side. The model stands
+// for the whole body mirrored across the plane, whose ring holds the mirror images as well: they
+// join the node's patch as extra points, so the fit is the whole body's and its slope across the
+// plane zero. Points on the plane are their own images.
+void addMirrorImages(RecoveryPoints& r, const std::vector<ContactNode>& nodes,
+                     const ElasticContactProblem& problem) {
+  const int dim = problem.dim();
   std::map<int, std::vector<int>> planes;  // slave node -> the components its planes hold
   for (const auto& [node, c] : problem.mirroredComponents) planes[node].push_back(c);
-  const std::size_t numContactNodes = nodes.size();
-  for (std::size_t i = 0; i < numContactNodes; ++i) {
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
     const auto it = planes.find(nodes[i].slaveNode);
     if (it == planes.end()) continue;
+    const std::vector<int> ring = r.patch[i];
     double scale = 0.0;
-    for (int j : near[i])
-      for (int c = 0; c < dim; ++c) scale = std::max(scale, std::abs(x[j][c] - x[i][c]));
-    for (int j : near[i])
-      for (const auto& image : mirrorImages(x[i], it->second, x[j], 1e-9 * scale)) {
-        patch[i].push_back(static_cast<int>(x.size()));
-        x.push_back(image);
-        n.push_back(n[i]);
-        p.push_back(p[j]);
-        patch.emplace_back();  // an image is not recovered itself
+    for (int j : ring)
+      for (int c = 0; c < dim; ++c) scale = std::max(scale, std::abs(r.x[j][c] - r.x[i][c]));
+    for (int j : ring)
+      for (const auto& image : mirrorImages(r.x[i], it->second, r.x[j], 1e-9 * scale)) {
+        r.patch[i].push_back(static_cast<int>(r.x.size()));
+        r.x.push_back(image);
+        r.normal.push_back(r.normal[i]);
+        r.value.push_back(r.value[j]);
+        r.patch.emplace_back();  // an image is not recovered itself
+        r.degree.push_back(1);
       }
   }
-  std::vector<int> degree(x.size(), 1);
-  for (std::size_t i = 0; i < numContactNodes; ++i) degree[i] = pairDegree[pairOf[i]];
-  const std::vector<double> rec = patchRecovery(x, n, p, patch, dim, degree);
+}
+
+// The slots of the nodal stress averages: one per (body, mesh node), so that a node two bodies
+// share (a conforming mesh) averages each body's elements on their own. A node of one body takes
+// its own id; a further body's copy takes a slot after the mesh's nodes. Every rank numbers them
+// alike (from every subdomain, in order).
+struct NodalSlots {
+  std::vector<int> firstBody;  // per mesh node: the first body using it, or -1
+  std::map<std::pair<int, long long>, int> further;  // (body, node) of a node's further bodies
+  std::size_t count = 0;
+  std::size_t of(int body, long long node) const {
+    return firstBody[node] == body ? static_cast<std::size_t>(node) : further.at({body, node});
+  }
+};
+
+NodalSlots nodalSlots(const ElasticContactProblem& problem) {
+  NodalSlots s;
+  s.firstBody.assign(problem.mesh.numNodes(), -1);
+  s.count = s.firstBody.size();
+  for (std::size_t k = 0; k < problem.subdomains.size(); ++k) {
+    const int body = problem.bodyOfSubdomain[problem.subdomains[k].id];
+    for (long long g : problem.subdomains[k].globalNode) {
+      if (s.firstBody[g] < 0) s.firstBody[g] = body;
+      if (s.firstBody[g] != body && s.further.emplace(std::make_pair(body, g), s.count).second)
+        ++s.count;
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+void recoverContactPressures(std::vector<ContactNode>& nodes,
+                             const ElasticContactProblem& problem) {
+  // The old single-pair keys leave ContactNode::pair at -1: their one pair is pairs[0].
+  std::vector<int> pairOf;
+  for (const ContactNode& n : nodes) pairOf.push_back(std::max(n.pair, 0));
+  RecoveryPoints r = facetPatches(nodes, pairOf, problem);
+  addMirrorImages(r, nodes, problem);
+  const std::vector<double> rec =
+      patchRecovery(r.x, r.normal, r.value, r.patch, problem.dim(), r.degree);
   for (std::size_t i = 0; i < nodes.size(); ++i)
     nodes[i].pressureRecovered = nodes[i].pressure > 0.0 ? std::max(0.0, rec[i]) : 0.0;
 }
@@ -219,11 +248,11 @@ double maxRecoveredPressure(const std::vector<ContactNode>& nodes) {
 
 double maxNodalVonMises(const tfeti::Comm& comm, const ElasticContactProblem& problem,
                         const std::vector<plasticity::StressField>& stresses) {
-  // Per global node: the sum of the element-extrapolated stresses of every element sharing it
-  // (a subdomain's nodal field is their mean over its own elements) and their count.
+  // Per slot: the sum of the element-extrapolated stresses of every element of the body sharing
+  // the node (a subdomain's nodal field is their mean over its own elements) and their count.
   constexpr int nv = plasticity::kNumVoigt;
-  const std::size_t nn = problem.mesh.numNodes();
-  std::vector<double> local((nv + 1) * nn, 0.0), global((nv + 1) * nn, 0.0);
+  const NodalSlots slots = nodalSlots(problem);
+  std::vector<double> local((nv + 1) * slots.count, 0.0), global(local.size(), 0.0);
   for (std::size_t i = 0; i < stresses.size(); ++i) {
     const plasticity::ElementMesh& em = problem.localElements[i];
     const auto& globalNode = problem.local[i].mesh.globalNode;
@@ -231,7 +260,7 @@ double maxNodalVonMises(const tfeti::Comm& comm, const ElasticContactProblem& pr
     for (int v : em.connectivity) ++count[v];
     for (int a = 0; a < em.numNodes(); ++a) {
       if (count[a] == 0) continue;
-      double* g = &local[(nv + 1) * static_cast<std::size_t>(globalNode[a])];
+      double* g = &local[(nv + 1) * slots.of(problem.localBody[i], globalNode[a])];
       for (int c = 0; c < nv; ++c) g[c] += count[a] * stresses[i].atNode(a, c);
       g[nv] += count[a];
     }
@@ -239,8 +268,8 @@ double maxNodalVonMises(const tfeti::Comm& comm, const ElasticContactProblem& pr
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(),
                      global.data());
   double best = 0.0;
-  for (std::size_t g = 0; g < nn; ++g) {
-    const double* s = &global[(nv + 1) * g];
+  for (std::size_t k = 0; k < slots.count; ++k) {
+    const double* s = &global[(nv + 1) * k];
     if (s[nv] == 0.0) continue;
     double mean[nv];
     for (int c = 0; c < nv; ++c) mean[c] = s[c] / s[nv];

@@ -40,7 +40,7 @@ std::vector<std::array<double, 3>> mirrorImages(const std::array<double, 3>& onP
                                                 const std::vector<int>& components,
                                                 const std::array<double, 3>& point, double tol);
 
-// Sets ContactNode::pressureRecovered of every node (nodes[i] the row of pair pairOf[i]): the
+// Sets ContactNode::pressureRecovered of every node (contactNodes' of `problem`): the
 // patch recovery (linear on linear slave facets, quadratic on quadratic ones) of the pressures over
 // the node and the nodes sharing a facet of the pair's slave boundary with it that have a row in
 // the pair (open ones with their zero, so that the fit near the contact's edge follows the
@@ -48,14 +48,14 @@ std::vector<std::array<double, 3>> mirrorImages(const std::array<double, 3>& onP
 // row stays open). A node on a symmetry plane (ElasticContactProblem::mirroredComponents) takes its
 // neighbours' mirror images across the plane into its patch too, as the whole body's ring would
 // hold them.
-void recoverContactPressures(std::vector<ContactNode>& nodes, const std::vector<int>& pairOf,
-                             const ElasticContactProblem& problem);
+void recoverContactPressures(std::vector<ContactNode>& nodes, const ElasticContactProblem& problem);
 
 double maxRecoveredPressure(const std::vector<ContactNode>& nodes);
 
-// The largest von Mises stress of the nodal stress tensors averaged over every element sharing
-// the node, in all subdomains (so the figure does not depend on the decomposition); stresses:
-// one field per local subdomain of `problem`. Every rank gets the value.
+// The largest von Mises stress of the nodal stress tensors averaged over every element of one
+// body sharing the node, in all subdomains (so the figure does not depend on the decomposition;
+// a node two bodies share averages each body's elements apart); stresses: one field per local
+// subdomain of `problem`. Every rank gets the value.
 double maxNodalVonMises(const tfeti::Comm& comm, const ElasticContactProblem& problem,
                         const std::vector<plasticity::StressField>& stresses);
 
