@@ -20,8 +20,8 @@
                                           Hessian multiplications (QP) or nonlinear iterations
                                           and multiplications to 1 % (nonlinear_contact), the
                                           same contact force, solution norm,
-                                          max |u| and contact.csv (when written) to T (1e-10)
-                                          relative to their scale
+                                          max |u|, contact.csv and contact_pressure.csv (when
+                                          written) to T (1e-10) relative to their scale
   check_summary.py prescribed DIR (--reaction R | --contact-force) [--tol T] [--residual E]
                                           prescribed displacements: converged, B_E u = c_E to
                                           E (1e-8) of max |u|, the first prescribed entry's reaction
@@ -364,7 +364,9 @@ def same_dual_operator(dirs, tol):
     def close(a, b, scale):
         return abs(a - b) <= tol * max(scale, 1e-300)
 
-    ref_rows = contact_rows(dirs[0]) if os.path.exists(dirs[0] + "/contact.csv") else None
+    tables = [name for name in ("contact.csv", "contact_pressure.csv")
+              if os.path.exists(f"{dirs[0]}/{name}")]
+    ref_tables = {name: contact_rows(dirs[0], name) for name in tables}
     for d in dirs[1:]:
         s = load(d)
         total, most = s.get("explicit_dual_bytes", 0), s.get("explicit_dual_bytes_max_rank", 0)
@@ -386,21 +388,23 @@ def same_dual_operator(dirs, tol):
         for key in ("solution_norm2", "max_abs_u"):
             if key in ref and not close(s[key], ref[key], abs(ref[key])):
                 fail(f"{d}: {key} {s[key]:.15e} vs {ref[key]:.15e} (implicit)")
-        if ref_rows is not None:
-            rows = contact_rows(d)
-            scale = [max(abs(r[k]) for r in ref_rows) for k in range(len(ref_rows[0]))]
+        # Every column (coordinates, multipliers, pressures) relative to the column's largest.
+        for name, ref_rows in ref_tables.items():
+            rows = contact_rows(d, name)
             if len(rows) != len(ref_rows):
-                fail(f"{d}: {len(rows)} contact rows, {len(ref_rows)} implicit")
+                fail(f"{d}: {len(rows)} rows in {name}, {len(ref_rows)} implicit")
+            scale = [max(abs(r[k]) for r in ref_rows) for k in range(len(ref_rows[0]))] \
+                if ref_rows else []
             for a, b in zip(ref_rows, rows):
                 for k in range(len(a)):
                     if not close(a[k], b[k], scale[k]):
-                        fail(f"{d}: contact.csv column {k}: {b[k]:.15e} vs {a[k]:.15e}")
+                        fail(f"{d}: {name} column {k}: {b[k]:.15e} vs {a[k]:.15e}")
         print(f"OK: {d}: explicit F_s {total} bytes ({most} on the largest rank), counts "
               f"{counts(s)} and the solution as implicit to {tol}")
 
 
-def contact_rows(d):
-    with open(d + "/contact.csv") as f:
+def contact_rows(d, name="contact.csv"):
+    with open(f"{d}/{name}") as f:
         return [tuple(float(x) for x in r) for r in list(csv.reader(f))[1:]]
 
 

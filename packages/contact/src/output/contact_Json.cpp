@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace contact {
@@ -72,8 +73,13 @@ void Json::write(std::string& out, int indent, int depth) const {
         out += "null";
         break;
       }
+      // The fewest digits (from 15) that read back as the same double: 0.3 stays 0.3, and a
+      // computed figure keeps every digit a comparison between runs (1e-10 and below) needs.
       char buf[32];
-      std::snprintf(buf, sizeof buf, "%.10g", number_);
+      for (int digits = 15; digits <= 17; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, number_);
+        if (std::strtod(buf, nullptr) == number_) break;
+      }
       out += buf;
       break;
     }

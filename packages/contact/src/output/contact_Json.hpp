@@ -1,7 +1,8 @@
 #pragma once
 // A small JSON document builder for summary.json: objects keep insertion order so the file
-// reads in the order the run produced it. Non-finite numbers are written as null (JSON has no
-// NaN), so a failed run still produces a parsable file.
+// reads in the order the run produced it. Numbers read back as the same double (the fewest
+// digits from 15 that do); non-finite numbers are written as null (JSON has no NaN), so a
+// failed run still produces a parsable file.
 #include <map>
 #include <memory>
 #include <string>
