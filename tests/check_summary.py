@@ -22,6 +22,11 @@
                                           same contact force, solution norm,
                                           max |u|, contact.csv and contact_pressure.csv (when
                                           written) to T (1e-10) relative to their scale
+  check_summary.py explicit_export DIR FILE [FILE ...]
+                                          the F_s blocks a run exported (FETI "Explicit
+                                          export file"), read as gpu/ reads them: header, one
+                                          block per subdomain, symmetric, diagonal >= 0,
+                                          their packed bytes equal to explicit_dual_bytes
   check_summary.py prescribed DIR (--reaction R | --contact-force) [--tol T] [--residual E]
                                           prescribed displacements: converged, B_E u = c_E to
                                           E (1e-8) of max |u|, the first prescribed entry's reaction
@@ -401,6 +406,45 @@ def same_dual_operator(dirs, tol):
                         fail(f"{d}: {name} column {k}: {b[k]:.15e} vs {a[k]:.15e}")
         print(f"OK: {d}: explicit F_s {total} bytes ({most} on the largest rank), counts "
               f"{counts(s)} and the solution as implicit to {tol}")
+
+
+def explicit_export(d, files):
+    """The F_s blocks a run exported (FETI "Explicit export file"), read as gpu/ reads them:
+    "TFETIF01", int64 count, per block int64 m and m*m float64 column-major."""
+    import struct
+    s = load(d)
+    blocks = []
+    for path in files:
+        with open(path, "rb") as f:
+            data = f.read()
+        if data[:8] != b"TFETIF01":
+            fail(f"{path}: no TFETIF01 header")
+        (count,), pos = struct.unpack_from("<q", data, 8), 16
+        for k in range(count):
+            (m,) = struct.unpack_from("<q", data, pos)
+            if not 0 < m <= 1 << 20 or pos + 8 + 8 * m * m > len(data):
+                fail(f"{path}: block {k} of {count}: size {m} does not fit the file")
+            blocks.append((m, struct.unpack_from(f"<{m * m}d", data, pos + 8)))
+            pos += 8 + 8 * m * m
+        if pos != len(data):
+            fail(f"{path}: {len(data) - pos} bytes after the {count} blocks")
+    if len(blocks) != s["subdomains"]:
+        fail(f"{len(blocks)} blocks in {len(files)} files, {s['subdomains']} subdomains")
+    packed = 8 * sum(m * (m + 1) // 2 for m, _ in blocks)
+    if s.get("dual_operator") != "explicit" or s.get("explicit_dual_bytes") != packed:
+        fail(f"{d}: explicit_dual_bytes {s.get('explicit_dual_bytes')}, the blocks' packed "
+             f"triangles {packed} bytes")
+    for k, (m, f) in enumerate(blocks):
+        scale = max(abs(v) for v in f)
+        for j in range(m):
+            if not f[j * m + j] >= 0:  # 0 where a row acts on the dofs that fix the kernel
+                fail(f"block {k}: diagonal {j} is {f[j * m + j]}, F_s is positive semidefinite")
+            for i in range(j):
+                if abs(f[j * m + i] - f[i * m + j]) > 1e-14 * scale:
+                    fail(f"block {k}: F({i},{j}) = {f[j * m + i]}, F({j},{i}) = {f[i * m + j]}")
+    sizes = sorted(m for m, _ in blocks)
+    print(f"OK: {len(blocks)} blocks of {sizes[0]}..{sizes[-1]} rows in {len(files)} files, "
+          f"symmetric, {packed} bytes packed as summary.json says")
 
 
 def contact_rows(d, name="contact.csv"):
@@ -1436,6 +1480,8 @@ if __name__ == "__main__":
     elif mode == "same_dual_operator":
         same_dual_operator([a for i, a in enumerate(args) if a != "--tol" and
                             (i == 0 or args[i - 1] != "--tol")], option(args, "--tol", 1e-10))
+    elif mode == "explicit_export":
+        explicit_export(args[0], args[1:])
     elif mode == "factorizations_reused":
         factorizations_reused(args)
     elif mode == "analyses_shared":
