@@ -33,7 +33,9 @@ function(tfeti_package)
     target_compile_options(${P_NAME} INTERFACE ${TFETI_SANITIZE_FLAGS})
     target_link_options(${P_NAME} INTERFACE ${TFETI_SANITIZE_FLAGS})
   endif()
-  target_compile_options(${P_NAME} PRIVATE -Wall -Wextra -Wno-unused-parameter)
+  # C++ sources only: nvcc takes no -Wall (a CUDA build's .cu sources, TFETI_ENABLE_CUDA).
+  target_compile_options(${P_NAME} PRIVATE
+                         $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wno-unused-parameter>)
   # No <name>_EXPORTS define for a shared build: no code uses it (every symbol is visible), and
   # without it a shared and a static build compile each object with the same command (both with
   # -fPIC), so that ccache serves one from the other (docs/shared_libraries.md).

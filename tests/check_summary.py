@@ -12,7 +12,7 @@
   check_summary.py same DIR1 DIR2 ...     identical iteration counts, residual histories and
                                           solution norms to rounding (different rank counts)
   check_summary.py diverged DIR           the run reported non-convergence (converged = false)
-  check_summary.py same_dual_operator IMPLICIT EXPLICIT [EXPLICIT2 ...] [--tol T]
+  check_summary.py same_dual_operator IMPLICIT EXPLICIT [EXPLICIT2 ...] [--tol T] [--device D]
                                           FETI "Dual operator" = explicit against implicit:
                                           dual_operator and the F_s bytes reported (0 when
                                           implicit; total >= largest rank's > 0 when explicit),
@@ -21,7 +21,9 @@
                                           and multiplications to 1 % (nonlinear_contact), the
                                           same contact force, solution norm,
                                           max |u|, contact.csv and contact_pressure.csv (when
-                                          written) to T (1e-10) relative to their scale
+                                          written) to T (1e-10) relative to their scale;
+                                          explicit_device is D (host; with gpu every F apply
+                                          on the device and explicit_device_work reported)
   check_summary.py explicit_export DIR FILE [FILE ...]
                                           the F_s blocks a run exported (FETI "Explicit
                                           export file"), read as gpu/ reads them: header, one
@@ -353,7 +355,7 @@ def contact(d, force_tol):
           ", ".join(f"{n} {v:.1e}" for n, v, _ in checks))
 
 
-def same_dual_operator(dirs, tol):
+def same_dual_operator(dirs, tol, device="host"):
     ref = load(dirs[0])
     if ref.get("dual_operator") != "implicit" or ref.get("explicit_dual_bytes") != 0:
         fail(f"{dirs[0]}: dual_operator {ref.get('dual_operator')}, explicit_dual_bytes "
@@ -378,6 +380,16 @@ def same_dual_operator(dirs, tol):
         if s.get("dual_operator") != "explicit" or not 0 < most <= total:
             fail(f"{d}: dual_operator {s.get('dual_operator')}, F_s bytes {total} (largest rank "
                  f"{most}): expected explicit with 0 < largest rank <= total")
+        if s.get("explicit_device", "host") != device:
+            fail(f"{d}: explicit_device {s.get('explicit_device')}, expected {device}")
+        if device == "gpu":
+            w = s.get("explicit_device_work", {})
+            if not w.get("applies", 0) >= s.get("dual_operator_applies", 1) or \
+                    not w.get("kernel_bytes_per_apply", 0) >= total or \
+                    not w.get("kernel_bandwidth_gb_per_s", 0) > 0:
+                fail(f"{d}: explicit_device_work {w}: expected every F apply on the device "
+                     f"({s.get('dual_operator_applies')}), streaming at least the F_s "
+                     f"({total} bytes), at a bandwidth > 0")
         a, b = counts(s), counts(ref)
         # A QP's discrete choices (MPRGP's steps, where a face solve of the level search stops)
         # can flip with the rounding of F, and a nonlinear run solves a QP per iteration: the
@@ -1478,8 +1490,10 @@ if __name__ == "__main__":
     elif mode == "same":
         same(args)
     elif mode == "same_dual_operator":
-        same_dual_operator([a for i, a in enumerate(args) if a != "--tol" and
-                            (i == 0 or args[i - 1] != "--tol")], option(args, "--tol", 1e-10))
+        flags = ("--tol", "--device")
+        same_dual_operator([a for i, a in enumerate(args) if a not in flags and
+                            (i == 0 or args[i - 1] not in flags)], option(args, "--tol", 1e-10),
+                           args[args.index("--device") + 1] if "--device" in args else "host")
     elif mode == "explicit_export":
         explicit_export(args[0], args[1:])
     elif mode == "factorizations_reused":

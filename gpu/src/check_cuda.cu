@@ -2,11 +2,14 @@
 // blocks stay on the device, every apply moves the stacked dual vector in and out once.
 //  - cuBLAS gemvStridedBatched (uniform block sizes), fp64 and fp32;
 //  - a hand-written kernel, one thread block per subdomain (any block sizes), fp64 and fp32;
+//  - batched_dual::DeviceBlocks, the class the main code applies its F_s with (FETI "Explicit
+//    device" = gpu), fp64, with its update of a block;
 // each checked against the CPU reference (fp64 to 1e-12, fp32 to 1e-5), with its time, the
 // bytes it moves and the bandwidth achieved; and the same apply on the host's cores.
 #include <cublas_v2.h>
 #include <cuda_runtime.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <stdexcept>
@@ -15,6 +18,8 @@
 #include <vector>
 
 #include "batched_dual.hpp"
+#include "batched_dual_device.hpp"
+#include "batched_dual_kernel.cuh"
 
 namespace {
 
@@ -24,25 +29,6 @@ void cuda(cudaError_t e, const char* what) {
 void cublas(cublasStatus_t s, const char* what) {
   if (s != CUBLAS_STATUS_SUCCESS)
     throw std::runtime_error(std::string(what) + ": cuBLAS status " + std::to_string(s));
-}
-
-// y_s = F_s x_s, one thread block per subdomain: thread i accumulates row i over the columns
-// (column-major: the threads of a warp read consecutive values of a column).
-template <class T>
-__global__ void batchedApply(const T* values, const long long* offset, const long long* vecOffset,
-                             const int* rows, const T* x, T* y) {
-  const int s = blockIdx.x, m = rows[s];
-  const T* a = values + offset[s];
-  const T* xs = x + vecOffset[s];
-  extern __shared__ unsigned char shared[];
-  T* xsh = reinterpret_cast<T*>(shared);
-  for (int j = threadIdx.x; j < m; j += blockDim.x) xsh[j] = xs[j];
-  __syncthreads();
-  for (int i = threadIdx.x; i < m; i += blockDim.x) {
-    T acc = 0;
-    for (int j = 0; j < m; ++j) acc += a[i + static_cast<long long>(j) * m] * xsh[j];
-    y[vecOffset[s] + i] = acc;
-  }
 }
 
 template <class T>
@@ -111,9 +97,8 @@ bool run(const char* name, const gpucheck::Blocks& b, const std::vector<double>&
                 bytes / (ms * 1e-3) / 1e9, err, limit, err <= limit ? "" : "  FAILED");
   };
   const auto kernel = [&] {
-    const int threads = 256;
-    batchedApply<T>
-        <<<count, threads, b.maxRows * sizeof(T)>>>(d.values, dOffset, dVecOffset, dRows, d.x, d.y);
+    batched_dual::launchBatchedApply<T>(count, b.maxRows, d.values, dOffset, dVecOffset, dRows, d.x,
+                                        d.y);
   };
   if (b.uniform()) {
     const int m = b.rows.front();
@@ -131,6 +116,41 @@ bool run(const char* name, const gpucheck::Blocks& b, const std::vector<double>&
       },
       o.repeats);
   report("kernel + x, y transfer", withTransfers);
+  return ok;
+}
+
+// The class the main code applies its F_s with (FETI "Explicit device" = gpu): the stacked x
+// through its pinned buffer, every block by one kernel, y back; then a block replaced (update,
+// as after a reassembly: block 0 doubled) and applied again.
+bool runDeviceBlocks(const gpucheck::Blocks& b, const std::vector<double>& x,
+                     const std::vector<double>& ref, const gpucheck::Options& o) {
+  batched_dual::DeviceBlocks dev(b.rows, b.values);
+  std::copy(x.begin(), x.end(), dev.hostX());
+  for (int r = 0; r <= o.repeats; ++r) dev.apply();
+  std::vector<double> y(dev.hostY(), dev.hostY() + dev.vectorSize());
+  double err = gpucheck::relativeError(y, ref);
+  const double n = static_cast<double>(dev.applies());
+  const double kernelMs = 1e3 * dev.kernelSeconds() / n, applyMs = 1e3 * dev.applySeconds() / n;
+  bool ok = err <= 1e-12;
+  std::printf("fp64   %-22s %9.3f ms, %7.1f GB/s, error %.2e (limit 1e-12)%s\n",
+              "DeviceBlocks kernel", kernelMs, dev.kernelBytes() / (kernelMs * 1e-3) / 1e9, err,
+              ok ? "" : "  FAILED");
+  std::printf("fp64   %-22s %9.3f ms (%.1f MB in and out per apply)\n", "DeviceBlocks apply",
+              applyMs, dev.transferBytes() / 1e6);
+  if (!b.rows.empty()) {
+    const std::size_t m = static_cast<std::size_t>(b.rows[0]);
+    std::vector<double> twice(b.values.begin(), b.values.begin() + m * m);
+    for (double& v : twice) v *= 2.0;
+    dev.update(0, twice.data());
+    dev.apply();
+    std::vector<double> want = ref;
+    for (std::size_t i = 0; i < m; ++i) want[i] *= 2.0;
+    y.assign(dev.hostY(), dev.hostY() + dev.vectorSize());
+    err = gpucheck::relativeError(y, want);
+    std::printf("fp64   %-22s error %.2e (limit 1e-12)%s\n", "DeviceBlocks update", err,
+                err <= 1e-12 ? "" : "  FAILED");
+    ok = ok && err <= 1e-12;
+  }
   return ok;
 }
 
@@ -167,6 +187,7 @@ int main(int argc, char** argv) {
     cublas(cublasCreate(&h), "cublasCreate");
     ok = run<double>("fp64", b, x, ref, o, h, dOff, dVoff, dRows, 1e-12) && ok;
     ok = run<float>("fp32", b, x, ref, o, h, dOff, dVoff, dRows, 1e-5) && ok;
+    ok = runDeviceBlocks(b, x, ref, o) && ok;
     cublasDestroy(h);
     cudaFree(dOff);
     cudaFree(dVoff);

@@ -63,6 +63,8 @@ struct FetiDimensions {
   // the largest rank's).
   std::string dualOperator = "implicit";
   unsigned long long explicitDualBytes = 0, explicitDualBytesMaxRank = 0;
+  // FETI "Explicit device" and, with gpu, the device's work (tfeti::FetiSolver).
+  tfeti::FetiSolver::ExplicitDeviceWork explicitDevice;
 };
 
 // nonlinear_contact: how the load steps went ("nonlinear" object; the steps are in history).

@@ -175,6 +175,7 @@ FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::Pa
   const auto bytes = solver.explicitDualBytes();
   d.explicitDualBytes = bytes.total;
   d.explicitDualBytesMaxRank = bytes.maxPerRank;
+  d.explicitDevice = solver.explicitDeviceWork();
   return d;
 }
 
@@ -182,6 +183,20 @@ void addDualOperatorSummary(Json& s, const FetiDimensions& feti) {
   s["dual_operator"] = feti.dualOperator;
   s["explicit_dual_bytes"] = feti.explicitDualBytes;
   s["explicit_dual_bytes_max_rank"] = feti.explicitDualBytesMaxRank;
+  const auto& dev = feti.explicitDevice;
+  s["explicit_device"] = dev.device;
+  if (dev.device != "gpu") return;
+  // The batched applies on the device: per apply, what the kernel streams and what crosses
+  // between host and device (all ranks), and the bandwidth of the slowest rank's kernels.
+  Json w = Json::object();
+  w["applies"] = dev.applies;
+  w["kernel_seconds"] = dev.kernelSeconds;
+  w["apply_seconds"] = dev.applySeconds;
+  w["kernel_bytes_per_apply"] = dev.kernelBytes;
+  w["transfer_bytes_per_apply"] = dev.transferBytes;
+  w["kernel_bandwidth_gb_per_s"] =
+      dev.kernelSeconds > 0 ? dev.kernelBytes * dev.applies / dev.kernelSeconds / 1e9 : 0.0;
+  s["explicit_device_work"] = w;
 }
 
 void addSolverSummary(Json& s, const FetiDimensions& feti, const tfeti::DualResult& result,

@@ -11,6 +11,10 @@
 #include <stdexcept>
 #include <tuple>
 
+#ifdef TFETI_HAVE_CUDA
+#include "batched_dual_device.hpp"
+#endif
+
 // The system BLAS that Trilinos links (Teuchos::BLAS offers no symmetric matrix-vector product).
 extern "C" {
 void dspmv_(const char* uplo, const int* n, const double* alpha, const double* ap, const double* x,
@@ -63,11 +67,49 @@ DenseStorage parseDenseStorage(const std::string& name) {
                               "\" is not one of: packed, full");
 }
 
+ExplicitDevice parseExplicitDevice(const std::string& name) {
+  if (name == "host") return ExplicitDevice::Host;
+  if (name == "gpu") return ExplicitDevice::Gpu;
+  throw std::invalid_argument("FETI \"Explicit device\" \"" + name + "\" is not one of: host, gpu");
+}
+
+bool explicitDeviceBuilt() {
+#ifdef TFETI_HAVE_CUDA
+  return true;
+#else
+  return false;
+#endif
+}
+
+void checkExplicitDevice(const std::string& dualOperator, const std::string& device) {
+  if (parseExplicitDevice(device) != ExplicitDevice::Gpu) return;
+  if (dualOperator != "explicit")
+    throw std::invalid_argument(
+        "FETI \"Explicit device\" = gpu applies the explicit F_s: it needs \"Dual operator\" = "
+        "explicit (this run has " +
+        dualOperator + ")");
+#ifdef TFETI_HAVE_CUDA
+  std::string why;
+  if (!batched_dual::deviceAvailable(why))
+    throw std::invalid_argument("FETI \"Explicit device\" = gpu: " + why);
+#else
+  throw std::invalid_argument(
+      "FETI \"Explicit device\" = gpu: this build has no CUDA (configure with "
+      "-DTFETI_ENABLE_CUDA=ON where nvcc is found; docs/dual_operator.md)");
+#endif
+}
+
 ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
                                            std::vector<std::shared_ptr<Subdomain>> subdomains,
                                            DenseStorage storage,
-                                           const ExplicitDualOperator* previous)
-    : subdomains_(std::move(subdomains)), storage_(storage), multiplierMap_(tearing.multiplierMap) {
+                                           const ExplicitDualOperator* previous,
+                                           ExplicitDevice device)
+    : subdomains_(std::move(subdomains)),
+      storage_(storage),
+      multiplierMap_(tearing.multiplierMap),
+      device_(device) {
+  // Before any assembly: a run asking for a device it cannot have stops at once.
+  checkExplicitDevice("explicit", device_ == ExplicitDevice::Gpu ? "gpu" : "host");
   if (tearing.subdomainRows.size() != subdomains_.size())
     throw std::logic_error("ExplicitDualOperator: " + std::to_string(subdomains_.size()) +
                            " subdomains, rows for " + std::to_string(tearing.subdomainRows.size()));
@@ -98,6 +140,65 @@ ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
       assemble(i);
     }
   }
+  if (device_ == ExplicitDevice::Gpu) uploadBlocks();
+}
+
+std::vector<double> ExplicitDualOperator::fullValues(const Block& b) const {
+  const std::size_t m = static_cast<std::size_t>(b.rows());
+  if (storage_ == DenseStorage::Full) return *b.F;
+  std::vector<double> full(m * m);
+  for (std::size_t j = 0; j < m; ++j)
+    for (std::size_t r = 0; r <= j; ++r)
+      full[j * m + r] = full[r * m + j] = (*b.F)[r + j * (j + 1) / 2];
+  return full;
+}
+
+void ExplicitDualOperator::uploadBlocks() {
+#ifdef TFETI_HAVE_CUDA
+  std::vector<int> rows;
+  std::vector<double> values;
+  vecOffset_.clear();
+  std::size_t offset = 0;
+  for (const Block& b : blocks_) {
+    rows.push_back(b.rows());
+    vecOffset_.push_back(offset);
+    offset += static_cast<std::size_t>(b.rows());
+    const std::vector<double> full = fullValues(b);
+    values.insert(values.end(), full.begin(), full.end());
+  }
+  deviceBlocks_ = std::make_shared<batched_dual::DeviceBlocks>(rows, values);
+#endif
+}
+
+void ExplicitDualOperator::applyOnDevice(const MultiVector& xo, MultiVector& yo) const {
+#ifdef TFETI_HAVE_CUDA
+  batched_dual::DeviceBlocks& dev = *deviceBlocks_;
+  for (std::size_t j = 0; j < xo.getNumVectors(); ++j) {
+    auto x = xo.getData(j);
+    auto y = yo.getDataNonConst(j);
+    double* hx = dev.hostX();
+    for (std::size_t s = 0; s < blocks_.size(); ++s)
+      for (int r = 0; r < blocks_[s].rows(); ++r) hx[vecOffset_[s] + r] = x[blocks_[s].overlap[r]];
+    dev.apply();
+    const double* hy = dev.hostY();
+    for (std::size_t s = 0; s < blocks_.size(); ++s)
+      for (int r = 0; r < blocks_[s].rows(); ++r) y[blocks_[s].overlap[r]] += hy[vecOffset_[s] + r];
+  }
+#endif
+}
+
+ExplicitDualOperator::DeviceWork ExplicitDualOperator::deviceWork() const {
+  DeviceWork w;
+#ifdef TFETI_HAVE_CUDA
+  if (deviceBlocks_) {
+    w.applies = deviceBlocks_->applies();
+    w.kernelSeconds = deviceBlocks_->kernelSeconds();
+    w.applySeconds = deviceBlocks_->applySeconds();
+    w.kernelBytes = deviceBlocks_->kernelBytes();
+    w.transferBytes = deviceBlocks_->transferBytes();
+  }
+#endif
+  return w;
 }
 
 void ExplicitDualOperator::assemble(std::size_t i) const {
@@ -149,7 +250,12 @@ void ExplicitDualOperator::assemble(std::size_t i) const {
 
 void ExplicitDualOperator::refreshStale() const {
   for (std::size_t i = 0; i < blocks_.size(); ++i)
-    if (blocks_[i].version != subdomains_[i]->factorVersion()) assemble(i);
+    if (blocks_[i].version != subdomains_[i]->factorVersion()) {
+      assemble(i);
+#ifdef TFETI_HAVE_CUDA
+      if (deviceBlocks_) deviceBlocks_->update(i, fullValues(blocks_[i]).data());
+#endif
+    }
 }
 
 void ExplicitDualOperator::apply(const MultiVector& X, MultiVector& Y, Scalar alpha,
@@ -163,12 +269,22 @@ void ExplicitDualOperator::apply(const MultiVector& X, MultiVector& Y, Scalar al
   }
   xo_->doImport(X, *import_, Tpetra::INSERT);
   yo_->putScalar(0.0);
+  if (deviceBlocks_)
+    applyOnDevice(*xo_, *yo_);
+  else
+    applyOnHost(*xo_, *yo_);
+  sum_->putScalar(0.0);
+  sum_->doExport(*yo_, *import_, Tpetra::ADD);
+  Y.update(alpha, *sum_, beta);
+}
+
+void ExplicitDualOperator::applyOnHost(const MultiVector& xo, MultiVector& yo) const {
   const char uplo = 'U';
   const int one = 1;
   const double dOne = 1.0, dZero = 0.0;
-  for (std::size_t j = 0; j < nv; ++j) {
-    auto x = xo_->getData(j);
-    auto y = yo_->getDataNonConst(j);
+  for (std::size_t j = 0; j < xo.getNumVectors(); ++j) {
+    auto x = xo.getData(j);
+    auto y = yo.getDataNonConst(j);
     for (const Block& b : blocks_) {
       const int m = b.rows();
       if (m == 0) continue;
@@ -182,21 +298,11 @@ void ExplicitDualOperator::apply(const MultiVector& X, MultiVector& Y, Scalar al
       for (int r = 0; r < m; ++r) y[b.overlap[r]] += yb_[r];
     }
   }
-  sum_->putScalar(0.0);
-  sum_->doExport(*yo_, *import_, Tpetra::ADD);
-  Y.update(alpha, *sum_, beta);
 }
 
 std::vector<double> ExplicitDualOperator::fullBlock(std::size_t i) const {
   refreshStale();
-  const Block& b = blocks_.at(i);
-  const std::size_t m = static_cast<std::size_t>(b.rows());
-  if (storage_ == DenseStorage::Full) return *b.F;
-  std::vector<double> full(m * m);
-  for (std::size_t j = 0; j < m; ++j)
-    for (std::size_t r = 0; r <= j; ++r)
-      full[j * m + r] = full[r * m + j] = (*b.F)[r + j * (j + 1) / 2];
-  return full;
+  return fullValues(blocks_.at(i));
 }
 
 std::size_t ExplicitDualOperator::bytes() const {

@@ -8,6 +8,12 @@
 // Import in reverse). F_s is assembled with multi-right-hand-side solves: K_s+ applied to the
 // dense columns of B_s^T, a block of columns at a time (BLAS-3 in CHOLMOD's supernodal solve).
 //
+// Device (FETI "Explicit device" = gpu, a TFETI_ENABLE_CUDA build): the blocks are also held
+// full on a CUDA device (batched_dual::DeviceBlocks, gpu/src/) and every apply gathers the
+// rank's stacked x_s once into pinned memory, applies all blocks by one kernel, and scatters the
+// stacked y_s back; the Import and Export are unchanged. A reassembled block is copied over its
+// old one on the device.
+//
 // Staleness: every block records the factorization it came from (Subdomain::factorVersion());
 // apply() reassembles any block whose subdomain was refactorized since, so a K+ that changes
 // under the operator cannot be applied with an old F_s. A new operator built after update() (new
@@ -22,6 +28,10 @@
 #include "tfeti_Tearing.hpp"
 #include "tfeti_Types.hpp"
 
+namespace batched_dual {
+class DeviceBlocks;
+}
+
 namespace tfeti {
 
 // How a dense symmetric F_s is stored: the upper triangle packed (m(m+1)/2 values, BLAS dspmv)
@@ -30,13 +40,27 @@ enum class DenseStorage { Packed, Full };
 
 DenseStorage parseDenseStorage(const std::string& name);
 
+// Where the F_s are applied: on the host by BLAS-2, or on a CUDA device (gpu).
+enum class ExplicitDevice { Host, Gpu };
+ExplicitDevice parseExplicitDevice(const std::string& name);
+// Whether this build has the device side (TFETI_ENABLE_CUDA with nvcc found).
+bool explicitDeviceBuilt();
+// FETI "Explicit device" against "Dual operator", this build and this machine: throws
+// std::invalid_argument naming the parameter where gpu cannot be had (an implicit operator, no
+// CUDA in the build, no device visible).
+void checkExplicitDevice(const std::string& dualOperator, const std::string& device);
+
 class ExplicitDualOperator {
  public:
   // tearing: B's rows by local subdomain (tearing.subdomainRows) and the multiplier map;
   // subdomains: the local subdomains in the same order. previous (may be null): an operator
   // whose unchanged blocks are taken over instead of being assembled again.
+  // device = Gpu: throws std::invalid_argument naming FETI "Explicit device" when this build
+  // has no CUDA or no device is visible, std::runtime_error when the device cannot hold the
+  // blocks.
   ExplicitDualOperator(const Tearing& tearing, std::vector<std::shared_ptr<Subdomain>> subdomains,
-                       DenseStorage storage, const ExplicitDualOperator* previous = nullptr);
+                       DenseStorage storage, const ExplicitDualOperator* previous = nullptr,
+                       ExplicitDevice device = ExplicitDevice::Host);
 
   // Y = alpha F X + beta Y on the multiplier map (collective: one Import and one Export).
   void apply(const MultiVector& X, MultiVector& Y, Scalar alpha, Scalar beta) const;
@@ -68,9 +92,35 @@ class ExplicitDualOperator {
   // (gpu/README.md reads it). Throws std::runtime_error naming the file when it cannot write.
   void exportBlocks(const std::string& file) const;
 
+  // The device's work on this rank (all 0 on the host): applies (one per vector), the kernels'
+  // seconds and the applies' seconds with the host gather/scatter and transfers; per apply the
+  // bytes the kernel streams (every F_s once, x and y) and those crossing to and from the device.
+  struct DeviceWork {
+    long long applies = 0;
+    double kernelSeconds = 0.0, applySeconds = 0.0, kernelBytes = 0.0, transferBytes = 0.0;
+    // Another operator's work after this one's: counts and seconds add up, the bytes per apply
+    // are the latest operator's that applied.
+    void add(const DeviceWork& w) {
+      applies += w.applies;
+      kernelSeconds += w.kernelSeconds;
+      applySeconds += w.applySeconds;
+      if (w.applies > 0) {
+        kernelBytes = w.kernelBytes;
+        transferBytes = w.transferBytes;
+      }
+    }
+  };
+  ExplicitDevice device() const { return device_; }
+  DeviceWork deviceWork() const;
+
  private:
   void assemble(std::size_t i) const;
   void refreshStale() const;
+  std::vector<double> fullValues(const Block& b) const;
+  void uploadBlocks();
+  // yo += blockdiag(F_s) xo on the overlap map: BLAS-2 per block, or the device's batch.
+  void applyOnHost(const MultiVector& xo, MultiVector& yo) const;
+  void applyOnDevice(const MultiVector& xo, MultiVector& yo) const;
   std::vector<std::shared_ptr<Subdomain>> subdomains_;
   DenseStorage storage_;
   Teuchos::RCP<const Map> multiplierMap_, overlapMap_;
@@ -80,6 +130,9 @@ class ExplicitDualOperator {
   mutable double assemblySeconds_ = 0.0;
   mutable Teuchos::RCP<MultiVector> xo_, yo_, sum_;
   mutable std::vector<double> xb_, yb_;
+  ExplicitDevice device_ = ExplicitDevice::Host;
+  std::shared_ptr<batched_dual::DeviceBlocks> deviceBlocks_;  // Gpu only
+  std::vector<std::size_t> vecOffset_;                        // block s's x_s in the stacked x
 };
 
 }  // namespace tfeti

@@ -266,6 +266,15 @@ class FetiSolver {
     unsigned long long total = 0, maxPerRank = 0;
   };
   ExplicitDualBytes explicitDualBytes() const;
+  // FETI "Explicit device" ("host" or "gpu") and, with gpu, the device's work since set-up
+  // (every explicit operator this solver built): the slowest rank's applies and seconds, the
+  // bytes of all ranks per apply. Collective.
+  struct ExplicitDeviceWork {
+    std::string device = "host";
+    long long applies = 0;
+    double kernelSeconds = 0.0, applySeconds = 0.0, kernelBytes = 0.0, transferBytes = 0.0;
+  };
+  ExplicitDeviceWork explicitDeviceWork() const;
   // "implicit" or "explicit": how F is applied.
   std::string dualOperatorKind() const;
   const Tearing& tearing() const { return tearing_; }
@@ -366,6 +375,9 @@ class FetiSolver {
   std::vector<std::vector<double>> u_;
   FetiTimings timings_;
   MemoryLog memory_;
+  // The device work of the explicit operators replaced so far (explicitDeviceWork adds the
+  // current one's).
+  ExplicitDualOperator::DeviceWork deviceWorkDone_;
   Teuchos::RCP<std::ostream> out_;
   double toleranceFactor_ = 1.0;
   bool loadStepStart_ = false;

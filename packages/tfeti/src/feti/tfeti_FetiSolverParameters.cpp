@@ -64,6 +64,11 @@ void addMethodChoices(Teuchos::ParameterList& pl) {
          "Dual operator = explicit: the dense F_s as the packed upper triangle (half the "
          "bytes) or the full square (docs/dual_operator.md)",
          choice({"packed", "full"}));
+  pl.set("Explicit device", "host",
+         "Dual operator = explicit: where the F_s are applied: host (BLAS-2 per subdomain) or "
+         "gpu (kept on a CUDA device, one batched product per apply; a TFETI_ENABLE_CUDA build, "
+         "docs/dual_operator.md)",
+         choice({"host", "gpu"}));
   pl.set("Explicit export file", "",
          "Dual operator = explicit: when not empty, every rank writes its F_s to "
          "<value>.rank<r>.bin after each assembly (the format of gpu/README.md)");

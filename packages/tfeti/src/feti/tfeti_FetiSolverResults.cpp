@@ -215,6 +215,19 @@ FetiSolver::ExplicitDualBytes FetiSolver::explicitDualBytes() const {
   return b;
 }
 
+FetiSolver::ExplicitDeviceWork FetiSolver::explicitDeviceWork() const {
+  ExplicitDeviceWork all;
+  all.device = params_.get<std::string>("Explicit device");
+  ExplicitDualOperator::DeviceWork mine = deviceWorkDone_;
+  if (const auto& ex = F_->explicitPart()) mine.add(ex->deviceWork());
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &mine.applies, &all.applies);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &mine.kernelSeconds, &all.kernelSeconds);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &mine.applySeconds, &all.applySeconds);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &mine.kernelBytes, &all.kernelBytes);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &mine.transferBytes, &all.transferBytes);
+  return all;
+}
+
 std::string FetiSolver::dualOperatorKind() const {
   return F_->explicitPart() ? "explicit" : "implicit";
 }

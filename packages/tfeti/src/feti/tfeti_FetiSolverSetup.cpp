@@ -57,6 +57,8 @@ std::vector<long long> FetiSolver::dualRowsPerSubdomain(
   rejectMisplacedParameters(valid);
   applySolverAliases(valid);
   valid.validateParametersAndSetDefaults(*validParameters());
+  checkExplicitDevice(valid.get<std::string>("Dual operator"),
+                      valid.get<std::string>("Explicit device"));
   int localDpn = local.empty() ? 0 : local.front().dofsPerNode, dpn = 0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &localDpn, &dpn);
   const Tearing t = buildTearing(comm, numSubdomains, tearingInput(local), dpn,
@@ -83,6 +85,9 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   rejectMisplacedParameters(params_);
   applySolverAliases(params_);
   params_.validateParametersAndSetDefaults(*validParameters());
+  // A device that the run cannot use is an input error: said before anything is factorized.
+  checkExplicitDevice(params_.get<std::string>("Dual operator"),
+                      params_.get<std::string>("Explicit device"));
   // Subdomain matrices given as Tpetra::CrsMatrix become CSR arrays (checked with the rest).
   collectively(*comm_, [&] {
     for (auto& sd : data_) {
@@ -222,6 +227,8 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
 }
 
 void FetiSolver::buildDualOperator() {
+  const ExplicitDevice device = parseExplicitDevice(params_.get<std::string>("Explicit device"));
+  if (!F_.is_null() && F_->explicitPart()) deviceWorkDone_.add(F_->explicitPart()->deviceWork());
   if (params_.get<std::string>("Dual operator") != "explicit") {
     F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
     return;
@@ -248,7 +255,7 @@ void FetiSolver::buildDualOperator() {
     const DenseStorage storage = parseDenseStorage(params_.get<std::string>("Explicit storage"));
     collectively(*comm_, [&] {
       ex = std::make_shared<const ExplicitDualOperator>(tearing_, subdomains_, storage,
-                                                        previous.get());
+                                                        previous.get(), device);
     });
   }
   previous.reset();
