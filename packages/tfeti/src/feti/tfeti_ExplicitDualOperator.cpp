@@ -73,16 +73,8 @@ ExplicitDevice parseExplicitDevice(const std::string& name) {
   throw std::invalid_argument("FETI \"Explicit device\" \"" + name + "\" is not one of: host, gpu");
 }
 
-bool explicitDeviceBuilt() {
-#ifdef TFETI_HAVE_CUDA
-  return true;
-#else
-  return false;
-#endif
-}
-
-void checkExplicitDevice(const std::string& dualOperator, const std::string& device) {
-  if (parseExplicitDevice(device) != ExplicitDevice::Gpu) return;
+void checkExplicitDevice(const std::string& dualOperator, ExplicitDevice device) {
+  if (device != ExplicitDevice::Gpu) return;
   if (dualOperator != "explicit")
     throw std::invalid_argument(
         "FETI \"Explicit device\" = gpu applies the explicit F_s: it needs \"Dual operator\" = "
@@ -109,7 +101,7 @@ ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
       multiplierMap_(tearing.multiplierMap),
       device_(device) {
   // Before any assembly: a run asking for a device it cannot have stops at once.
-  checkExplicitDevice("explicit", device_ == ExplicitDevice::Gpu ? "gpu" : "host");
+  checkExplicitDevice("explicit", device_);
   if (tearing.subdomainRows.size() != subdomains_.size())
     throw std::logic_error("ExplicitDualOperator: " + std::to_string(subdomains_.size()) +
                            " subdomains, rows for " + std::to_string(tearing.subdomainRows.size()));
@@ -143,28 +135,39 @@ ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
   if (device_ == ExplicitDevice::Gpu) uploadBlocks();
 }
 
-std::vector<double> ExplicitDualOperator::fullValues(const Block& b) const {
+void ExplicitDualOperator::writeFull(const Block& b, double* out) const {
   const std::size_t m = static_cast<std::size_t>(b.rows());
-  if (storage_ == DenseStorage::Full) return *b.F;
-  std::vector<double> full(m * m);
+  if (storage_ == DenseStorage::Full) {
+    std::copy(b.F->begin(), b.F->end(), out);
+    return;
+  }
   for (std::size_t j = 0; j < m; ++j)
     for (std::size_t r = 0; r <= j; ++r)
-      full[j * m + r] = full[r * m + j] = (*b.F)[r + j * (j + 1) / 2];
+      out[j * m + r] = out[r * m + j] = (*b.F)[r + j * (j + 1) / 2];
+}
+
+std::vector<double> ExplicitDualOperator::fullValues(const Block& b) const {
+  std::vector<double> full(static_cast<std::size_t>(b.rows()) * b.rows());
+  writeFull(b, full.data());
   return full;
 }
 
 void ExplicitDualOperator::uploadBlocks() {
 #ifdef TFETI_HAVE_CUDA
   std::vector<int> rows;
-  std::vector<double> values;
+  std::size_t vector = 0, count = 0;
   vecOffset_.clear();
-  std::size_t offset = 0;
   for (const Block& b : blocks_) {
     rows.push_back(b.rows());
-    vecOffset_.push_back(offset);
-    offset += static_cast<std::size_t>(b.rows());
-    const std::vector<double> full = fullValues(b);
-    values.insert(values.end(), full.begin(), full.end());
+    vecOffset_.push_back(vector);
+    vector += static_cast<std::size_t>(b.rows());
+    count += static_cast<std::size_t>(b.rows()) * b.rows();
+  }
+  // Every block full, one after the other, as DeviceBlocks takes them.
+  std::vector<double> values(count);
+  for (std::size_t i = 0, at = 0; i < blocks_.size(); ++i) {
+    writeFull(blocks_[i], values.data() + at);
+    at += static_cast<std::size_t>(blocks_[i].rows()) * blocks_[i].rows();
   }
   deviceBlocks_ = std::make_shared<batched_dual::DeviceBlocks>(rows, values);
 #endif

@@ -43,12 +43,10 @@ DenseStorage parseDenseStorage(const std::string& name);
 // Where the F_s are applied: on the host by BLAS-2, or on a CUDA device (gpu).
 enum class ExplicitDevice { Host, Gpu };
 ExplicitDevice parseExplicitDevice(const std::string& name);
-// Whether this build has the device side (TFETI_ENABLE_CUDA with nvcc found).
-bool explicitDeviceBuilt();
 // FETI "Explicit device" against "Dual operator", this build and this machine: throws
 // std::invalid_argument naming the parameter where gpu cannot be had (an implicit operator, no
 // CUDA in the build, no device visible).
-void checkExplicitDevice(const std::string& dualOperator, const std::string& device);
+void checkExplicitDevice(const std::string& dualOperator, ExplicitDevice device);
 
 class ExplicitDualOperator {
  public:
@@ -110,12 +108,13 @@ class ExplicitDualOperator {
       }
     }
   };
-  ExplicitDevice device() const { return device_; }
   DeviceWork deviceWork() const;
 
  private:
   void assemble(std::size_t i) const;
   void refreshStale() const;
+  // Block b full and column-major into out (m^2 values), from either storage.
+  void writeFull(const Block& b, double* out) const;
   std::vector<double> fullValues(const Block& b) const;
   void uploadBlocks();
   // yo += blockdiag(F_s) xo on the overlap map: BLAS-2 per block, or the device's batch.

@@ -220,11 +220,17 @@ FetiSolver::ExplicitDeviceWork FetiSolver::explicitDeviceWork() const {
   all.device = params_.get<std::string>("Explicit device");
   ExplicitDualOperator::DeviceWork mine = deviceWorkDone_;
   if (const auto& ex = F_->explicitPart()) mine.add(ex->deviceWork());
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &mine.applies, &all.applies);
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &mine.kernelSeconds, &all.kernelSeconds);
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &mine.applySeconds, &all.applySeconds);
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &mine.kernelBytes, &all.kernelBytes);
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 1, &mine.transferBytes, &all.transferBytes);
+  // The slowest rank's counts and seconds, all ranks' bytes: two reductions.
+  const double most[3] = {static_cast<double>(mine.applies), mine.kernelSeconds, mine.applySeconds};
+  const double sum[2] = {mine.kernelBytes, mine.transferBytes};
+  double mostAll[3], sumAll[2];
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 3, most, mostAll);
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, sum, sumAll);
+  all.applies = static_cast<long long>(mostAll[0]);
+  all.kernelSeconds = mostAll[1];
+  all.applySeconds = mostAll[2];
+  all.kernelBytes = sumAll[0];
+  all.transferBytes = sumAll[1];
   return all;
 }
 

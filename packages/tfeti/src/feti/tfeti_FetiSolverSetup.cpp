@@ -58,7 +58,7 @@ std::vector<long long> FetiSolver::dualRowsPerSubdomain(
   applySolverAliases(valid);
   valid.validateParametersAndSetDefaults(*validParameters());
   checkExplicitDevice(valid.get<std::string>("Dual operator"),
-                      valid.get<std::string>("Explicit device"));
+                      parseExplicitDevice(valid.get<std::string>("Explicit device")));
   int localDpn = local.empty() ? 0 : local.front().dofsPerNode, dpn = 0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &localDpn, &dpn);
   const Tearing t = buildTearing(comm, numSubdomains, tearingInput(local), dpn,
@@ -87,7 +87,7 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
   params_.validateParametersAndSetDefaults(*validParameters());
   // A device that the run cannot use is an input error: said before anything is factorized.
   checkExplicitDevice(params_.get<std::string>("Dual operator"),
-                      params_.get<std::string>("Explicit device"));
+                      parseExplicitDevice(params_.get<std::string>("Explicit device")));
   // Subdomain matrices given as Tpetra::CrsMatrix become CSR arrays (checked with the rest).
   collectively(*comm_, [&] {
     for (auto& sd : data_) {
