@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Configures, builds and runs the standalone check of the batched explicit dual operator
-# (gpu/README.md) in a few minutes. Exit status 0 with "skipped: ..." where there is no CUDA
-# compiler or no GPU (the host check still runs); non-zero when a check fails.
+# Configures, builds and runs the standalone checks of the batched explicit dual operator and of
+# its blocks' assembly (gpu/README.md) in a few minutes. Exit status 0 with "skipped: ..." where
+# there is no CUDA compiler or no GPU (the host checks still run); non-zero when a check fails.
 #   gpu/run_check.sh [BUILD_DIR]      (default: gpu/build next to this script)
 # Environment: BLOCKS (512), ROWS (1158), REPEATS (20), EXPORT_FILES (exported blocks, space-
-# separated, instead of synthetic ones), CUDA_ARCH ("80;90").
+# separated, instead of synthetic ones), CUDA_ARCH ("80;90"), ASSEMBLY (1: also the F_s assembly
+# check; 0: the apply only).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/build}"
@@ -34,12 +35,22 @@ if [[ $has_gpu == 1 ]]; then
     timeout 120 "$build/dual_apply_check_cuda" --blocks=4096 --rows=256 --repeats="$repeats"
     timeout 120 "$build/dual_apply_check_cuda" --blocks=128 --rows=2400 --repeats="$repeats"
   fi
+  # The assembly of the F_s on the device (cuSOLVER potrf, cuBLAS trsm and syrk), both orderings:
+  # the prototype's 512 subdomains of 8³ Hex8, then smaller and larger subdomains.
+  if [[ "${ASSEMBLY:-1}" == 1 && ! -x "$build/dual_assembly_check_cuda" ]]; then
+    echo "no assembly check: built without cuBLAS or cuSOLVER (see $build.configure.log)"
+  elif [[ "${ASSEMBLY:-1}" == 1 ]]; then
+    timeout 240 "$build/dual_assembly_check_cuda" --elements=8 --count=512
+    timeout 120 "$build/dual_assembly_check_cuda" --elements=6 --count=512
+    timeout 120 "$build/dual_assembly_check_cuda" --elements=10 --count=128
+  fi
   exit 0
 fi
 # No device: the host check on a smaller batch (the same code path and reference), then skip.
 small=("--blocks=$(( blocks < 32 ? blocks : 32 ))" "--rows=$rows" "--repeats=3")
 [[ -n "${EXPORT_FILES:-}" ]] && small=("${args[@]}")
 timeout 300 "$build/dual_apply_check_cpu" "${small[@]}"
+[[ "${ASSEMBLY:-1}" == 1 ]] && timeout 120 "$build/dual_assembly_check_cpu"
 if [[ -z "$nvcc_path" ]]; then
   echo "skipped: no CUDA compiler (host check only; the device figures need a machine with CUDA and a GPU)"
 else

@@ -6,8 +6,10 @@
 //    device" = gpu), fp64, with its update of a block;
 // each checked against the CPU reference (fp64 to 1e-12, fp32 to 1e-5), with its time, the
 // bytes it moves and the bandwidth achieved; and the same apply on the host's cores.
-#include <cublas_v2.h>
 #include <cuda_runtime.h>
+#ifndef TFETI_GPU_CHECK_NO_CUBLAS
+#include <cublas_v2.h>
+#endif
 
 #include <algorithm>
 #include <cstdio>
@@ -20,16 +22,18 @@
 #include "batched_dual.hpp"
 #include "batched_dual_device.hpp"
 #include "batched_dual_kernel.cuh"
+#include "cuda_status.cuh"
 
 namespace {
 
-void cuda(cudaError_t e, const char* what) {
-  if (e != cudaSuccess) throw std::runtime_error(std::string(what) + ": " + cudaGetErrorString(e));
-}
+using gpucheck::cuda;
+
+#ifndef TFETI_GPU_CHECK_NO_CUBLAS
 void cublas(cublasStatus_t s, const char* what) {
   if (s != CUBLAS_STATUS_SUCCESS)
     throw std::runtime_error(std::string(what) + ": cuBLAS status " + std::to_string(s));
 }
+#endif
 
 template <class T>
 struct Device {
@@ -41,6 +45,7 @@ struct Device {
   }
 };
 
+#ifndef TFETI_GPU_CHECK_NO_CUBLAS
 // cuBLAS's strided batched gemv (one block size), y_s = F_s x_s.
 template <class T>
 void gemvBatched(cublasHandle_t h, int m, int count, const T* A, const T* x, T* y) {
@@ -55,6 +60,9 @@ void gemvBatched(cublasHandle_t h, int m, int count, const T* A, const T* x, T* 
                                      m, count),
            "cublasSgemvStridedBatched");
 }
+#else
+using cublasHandle_t = void*;  // built without cuBLAS: the kernel and DeviceBlocks only
+#endif
 
 // Mean milliseconds of f() on the device over `repeats` after a warm-up.
 template <class F>
@@ -100,11 +108,15 @@ bool run(const char* name, const gpucheck::Blocks& b, const std::vector<double>&
     batched_dual::launchBatchedApply<T>(count, b.maxRows, d.values, dOffset, dVecOffset, dRows, d.x,
                                         d.y);
   };
+#ifndef TFETI_GPU_CHECK_NO_CUBLAS
   if (b.uniform()) {
     const int m = b.rows.front();
     report("cuBLAS gemvStrided",
            deviceMs([&] { gemvBatched<T>(h, m, count, d.values, d.x, d.y); }, o.repeats));
   }
+#else
+  (void)h;
+#endif
   report("kernel", deviceMs(kernel, o.repeats));
   cuda(cudaGetLastError(), "kernel launch");
   // The dual vector crossing to the device and back with every apply (pageable host memory).
@@ -159,13 +171,8 @@ bool runDeviceBlocks(const gpucheck::Blocks& b, const std::vector<double>& x,
 int main(int argc, char** argv) {
   try {
     const gpucheck::Options o = gpucheck::parse(argc, argv);
-    int devices = 0;
-    if (cudaGetDeviceCount(&devices) != cudaSuccess || devices == 0) {
-      std::printf("skipped: no GPU (no CUDA device visible)\n");
-      return 0;
-    }
     cudaDeviceProp prop{};
-    cuda(cudaGetDeviceProperties(&prop, 0), "cudaGetDeviceProperties");
+    if (!gpucheck::visibleDevice(prop)) return 0;
     std::printf("device: %s, %.1f GiB\n", prop.name, prop.totalGlobalMem / 1073741824.0);
     const gpucheck::Blocks b = gpucheck::load(o);
     gpucheck::describe(b);
@@ -183,12 +190,18 @@ int main(int argc, char** argv) {
     cuda(cudaMemcpy(dVoff, voff.data(), voff.size() * sizeof(long long), cudaMemcpyHostToDevice),
          "");
     cuda(cudaMemcpy(dRows, b.rows.data(), b.rows.size() * sizeof(int), cudaMemcpyHostToDevice), "");
-    cublasHandle_t h;
+    cublasHandle_t h = nullptr;
+#ifndef TFETI_GPU_CHECK_NO_CUBLAS
     cublas(cublasCreate(&h), "cublasCreate");
+#else
+    std::printf("built without cuBLAS: no gemvStridedBatched line\n");
+#endif
     ok = run<double>("fp64", b, x, ref, o, h, dOff, dVoff, dRows, 1e-12) && ok;
     ok = run<float>("fp32", b, x, ref, o, h, dOff, dVoff, dRows, 1e-5) && ok;
     ok = runDeviceBlocks(b, x, ref, o) && ok;
+#ifndef TFETI_GPU_CHECK_NO_CUBLAS
     cublasDestroy(h);
+#endif
     cudaFree(dOff);
     cudaFree(dVoff);
     cudaFree(dRows);
