@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "batched_dual_kernel.cuh"
+#include "batched_dual_tiles_kernel.cuh"
 
 namespace batched_dual {
 
@@ -40,10 +41,11 @@ bool deviceAvailable(std::string& why) {
 }
 
 struct DeviceBlocks::Impl {
+  Storage storage = Storage::Full;
   std::vector<int> rows;
-  std::vector<long long> offset, vecOffset;
+  std::vector<long long> offset, vecOffset;  // offset: into the full values or the tiles
   int maxRows = 0;
-  std::size_t values = 0, vector = 0;
+  std::size_t values = 0, vector = 0;  // values: what the device holds
   double *dValues = nullptr, *dX = nullptr, *dY = nullptr, *hX = nullptr, *hY = nullptr;
   long long *dOffset = nullptr, *dVecOffset = nullptr;
   int* dRows = nullptr;
@@ -65,22 +67,42 @@ struct DeviceBlocks::Impl {
   }
 };
 
-DeviceBlocks::DeviceBlocks(const std::vector<int>& rows, const std::vector<double>& values)
+DeviceBlocks::DeviceBlocks(const std::vector<int>& rows, const std::vector<double>& values,
+                           Storage storage)
     : impl_(std::make_unique<Impl>()) {
   Impl& d = *impl_;
+  d.storage = storage;
   d.rows = rows;
+  std::size_t full = 0;
   for (int m : rows) {
     if (m < 0) throw std::invalid_argument("DeviceBlocks: a block with a negative size");
     d.offset.push_back(static_cast<long long>(d.values));
     d.vecOffset.push_back(static_cast<long long>(d.vector));
-    d.values += static_cast<std::size_t>(m) * m;
+    full += static_cast<std::size_t>(m) * m;
+    d.values += storage == Storage::Full ? static_cast<std::size_t>(m) * m
+                                         : static_cast<std::size_t>(tileCount(m)) * kTile * kTile;
     d.vector += m;
     d.maxRows = std::max(d.maxRows, m);
   }
-  if (values.size() != d.values)
+  if (values.size() != full)
     throw std::invalid_argument("DeviceBlocks: " + std::to_string(values.size()) +
-                                " values for blocks of " + std::to_string(d.values));
-  d.dValues = deviceCopy(values.data(), d.values, "the blocks F_s");
+                                " values for blocks of " + std::to_string(full));
+  if (storage == Storage::Full) {
+    d.dValues = deviceCopy(values.data(), d.values, "the blocks F_s");
+  } else {
+    int device = 0, optIn = 0;
+    check(cudaGetDevice(&device), "device");
+    check(cudaDeviceGetAttribute(&optIn, cudaDevAttrMaxSharedMemoryPerBlockOptin, device),
+          "shared memory per block");
+    if (tilesSharedBytes<double>(d.maxRows) > static_cast<std::size_t>(optIn))
+      throw std::runtime_error(
+          "DeviceBlocks: symmetric tiles of a block of " + std::to_string(d.maxRows) +
+          " rows need " + std::to_string(tilesSharedBytes<double>(d.maxRows)) +
+          " bytes of shared memory per thread block; the device gives " + std::to_string(optIn));
+    std::vector<std::int64_t> offset;
+    const std::vector<double> tiles = packAllTiles<double>(rows, values, offset);
+    d.dValues = deviceCopy(tiles.data(), tiles.size(), "the blocks F_s as symmetric tiles");
+  }
   d.dOffset = deviceCopy(d.offset.data(), d.offset.size(), "block offsets");
   d.dVecOffset = deviceCopy(d.vecOffset.data(), d.vecOffset.size(), "vector offsets");
   d.dRows = deviceCopy(d.rows.data(), d.rows.size(), "block sizes");
@@ -95,10 +117,23 @@ DeviceBlocks::DeviceBlocks(const std::vector<int>& rows, const std::vector<doubl
 
 DeviceBlocks::~DeviceBlocks() = default;
 
+Storage DeviceBlocks::storage() const {
+  return impl_->storage;
+}
+
 void DeviceBlocks::update(std::size_t s, const double* values) {
   const Impl& d = *impl_;
-  const std::size_t m = static_cast<std::size_t>(d.rows.at(s));
-  check(cudaMemcpy(d.dValues + d.offset[s], values, m * m * sizeof(double), cudaMemcpyHostToDevice),
+  const int m = d.rows.at(s);
+  if (d.storage == Storage::Full) {
+    check(cudaMemcpy(d.dValues + d.offset[s], values,
+                     static_cast<std::size_t>(m) * m * sizeof(double), cudaMemcpyHostToDevice),
+          "update of a block");
+    return;
+  }
+  std::vector<double> tiles(static_cast<std::size_t>(tileCount(m)) * kTile * kTile);
+  packTiles(values, m, tiles.data());
+  check(cudaMemcpy(d.dValues + d.offset[s], tiles.data(), tiles.size() * sizeof(double),
+                   cudaMemcpyHostToDevice),
         "update of a block");
 }
 
@@ -115,8 +150,15 @@ void DeviceBlocks::apply() {
   const std::size_t bytes = d.vector * sizeof(double);
   check(cudaMemcpy(d.dX, d.hX, bytes, cudaMemcpyHostToDevice), "x to the device");
   check(cudaEventRecord(d.start), "event");
-  launchBatchedApply<double>(static_cast<int>(d.rows.size()), d.maxRows, d.dValues, d.dOffset,
-                             d.dVecOffset, d.dRows, d.dX, d.dY);
+  const int count = static_cast<int>(d.rows.size());
+  if (d.storage == Storage::Full)
+    launchBatchedApply<double>(count, d.maxRows, d.dValues, d.dOffset, d.dVecOffset, d.dRows, d.dX,
+                               d.dY);
+  else if (!launchBatchedApplyTiles<double>(count, d.maxRows, d.dValues, d.dOffset, d.dVecOffset,
+                                            d.dRows, d.dX, d.dY))
+    throw std::runtime_error(
+        "DeviceBlocks: the symmetric tiles' kernel could not get its shared "
+        "memory");
   check(cudaGetLastError(), "the batched apply's launch");
   check(cudaEventRecord(d.stop), "event");
   check(cudaMemcpy(d.hY, d.dY, bytes, cudaMemcpyDeviceToHost), "y to the host");

@@ -14,15 +14,24 @@ namespace batched_dual {
 // Whether a CUDA device is visible; if not, why (for the caller's error message).
 bool deviceAvailable(std::string& why);
 
+// How the device holds the blocks: full (every value, column-major), or the upper triangle by
+// 32 × 32 tiles (batched_dual_tiles.hpp: about half the bytes, so about half the apply's
+// memory traffic).
+enum class Storage { Full, SymmetricTiles };
+
 class DeviceBlocks {
  public:
   // rows[s] = m_s; values: the blocks full and column-major, block s at sum_{t<s} m_t^2.
-  // Uploads them; throws std::runtime_error (with CUDA's message) when the device cannot hold
-  // them.
-  DeviceBlocks(const std::vector<int>& rows, const std::vector<double>& values);
+  // Uploads them in the given storage; throws std::runtime_error (with CUDA's message) when the
+  // device cannot hold them, or cannot give the tiles' kernel the shared memory that the largest
+  // block needs.
+  DeviceBlocks(const std::vector<int>& rows, const std::vector<double>& values,
+               Storage storage = Storage::Full);
   ~DeviceBlocks();
   DeviceBlocks(const DeviceBlocks&) = delete;
   DeviceBlocks& operator=(const DeviceBlocks&) = delete;
+
+  Storage storage() const;
 
   // Block s's values again (the same size, full column-major), after a reassembly.
   void update(std::size_t s, const double* values);

@@ -22,6 +22,7 @@
 #include "batched_dual.hpp"
 #include "batched_dual_device.hpp"
 #include "batched_dual_kernel.cuh"
+#include "batched_dual_tiles_kernel.cuh"
 #include "cuda_status.cuh"
 
 namespace {
@@ -82,6 +83,52 @@ double deviceMs(F&& f, int repeats) {
   return ms / repeats;
 }
 
+// The symmetric tiles (batched_dual_tiles.hpp): about half the bytes of the full blocks.
+template <class T>
+void runTiles(const char* name, const gpucheck::Blocks& b, const std::vector<T>& hx,
+              const std::vector<double>& ref, const gpucheck::Options& o,
+              const long long* dVecOffset, const int* dRows, const T* dx, T* dy, double limit,
+              bool& ok) {
+  std::vector<std::int64_t> offset;
+  const std::vector<T> tiles = batched_dual::packAllTiles<T>(b.rows, b.values, offset);
+  const std::vector<long long> off(offset.begin(), offset.end());
+  T* dTiles = nullptr;
+  long long* dOff = nullptr;
+  cuda(cudaMalloc(&dTiles, tiles.size() * sizeof(T)), "cudaMalloc tiles");
+  cuda(cudaMalloc(&dOff, off.size() * sizeof(long long)), "cudaMalloc tile offsets");
+  cuda(cudaMemcpy(dTiles, tiles.data(), tiles.size() * sizeof(T), cudaMemcpyHostToDevice),
+       "upload tiles");
+  cuda(cudaMemcpy(dOff, off.data(), off.size() * sizeof(long long), cudaMemcpyHostToDevice),
+       "upload tile offsets");
+  cuda(cudaMemset(dy, 0x7f, hx.size() * sizeof(T)), "cudaMemset y");
+  const int count = static_cast<int>(b.rows.size());
+  bool launched = true;
+  const double ms = deviceMs(
+      [&] {
+        launched = batched_dual::launchBatchedApplyTiles<T>(count, b.maxRows, dTiles, dOff,
+                                                            dVecOffset, dRows, dx, dy);
+      },
+      o.repeats);
+  cuda(cudaGetLastError(), "tiles kernel launch");
+  if (!launched) {
+    std::printf("%-6s %-22s not run: a block of %d rows needs %zu bytes of shared memory\n", name,
+                "kernel, symmetric tiles", b.maxRows, batched_dual::tilesSharedBytes<T>(b.maxRows));
+  } else {
+    std::vector<T> hy(hx.size());
+    cuda(cudaMemcpy(hy.data(), dy, hy.size() * sizeof(T), cudaMemcpyDeviceToHost), "download");
+    const double err = gpucheck::relativeError(hy, ref);
+    const double bytes = static_cast<double>(tiles.size() + 2 * b.vecSize) * sizeof(T);
+    ok = ok && err <= limit;
+    std::printf(
+        "%-6s %-22s %9.3f ms, %7.1f GB/s, error %.2e (limit %.0e)%s; %.0f %% of the "
+        "full blocks' bytes\n",
+        name, "kernel, symm. tiles", ms, bytes / (ms * 1e-3) / 1e9, err, limit,
+        err <= limit ? "" : "  FAILED", 100.0 * bytes / gpucheck::bytesMoved(b, sizeof(T)));
+  }
+  cudaFree(dTiles);
+  cudaFree(dOff);
+}
+
 template <class T>
 bool run(const char* name, const gpucheck::Blocks& b, const std::vector<double>& x,
          const std::vector<double>& ref, const gpucheck::Options& o, cublasHandle_t h,
@@ -104,6 +151,9 @@ bool run(const char* name, const gpucheck::Blocks& b, const std::vector<double>&
     std::printf("%-6s %-22s %9.3f ms, %7.1f GB/s, error %.2e (limit %.0e)%s\n", name, how, ms,
                 bytes / (ms * 1e-3) / 1e9, err, limit, err <= limit ? "" : "  FAILED");
   };
+  // y is overwritten with huge values before every measurement, so that an apply that writes
+  // nothing cannot pass on the last one's result.
+  const auto clearY = [&] { cuda(cudaMemset(d.y, 0x7f, hy.size() * sizeof(T)), "cudaMemset y"); };
   const auto kernel = [&] {
     batched_dual::launchBatchedApply<T>(count, b.maxRows, d.values, dOffset, dVecOffset, dRows, d.x,
                                         d.y);
@@ -111,15 +161,19 @@ bool run(const char* name, const gpucheck::Blocks& b, const std::vector<double>&
 #ifndef TFETI_GPU_CHECK_NO_CUBLAS
   if (b.uniform()) {
     const int m = b.rows.front();
+    clearY();
     report("cuBLAS gemvStrided",
            deviceMs([&] { gemvBatched<T>(h, m, count, d.values, d.x, d.y); }, o.repeats));
   }
 #else
   (void)h;
 #endif
+  clearY();
   report("kernel", deviceMs(kernel, o.repeats));
   cuda(cudaGetLastError(), "kernel launch");
+  runTiles<T>(name, b, hx, ref, o, dVecOffset, dRows, d.x, d.y, limit, ok);
   // The dual vector crossing to the device and back with every apply (pageable host memory).
+  clearY();
   const double withTransfers = deviceMs(
       [&] {
         cudaMemcpy(d.x, hx.data(), hx.size() * sizeof(T), cudaMemcpyHostToDevice);
@@ -131,12 +185,16 @@ bool run(const char* name, const gpucheck::Blocks& b, const std::vector<double>&
   return ok;
 }
 
-// The class the main code applies its F_s with (FETI "Explicit device" = gpu): the stacked x
-// through its pinned buffer, every block by one kernel, y back; then a block replaced (update,
-// as after a reassembly: block 0 doubled) and applied again.
+// The class the main code applies its F_s with (FETI "Explicit device" = gpu), in the given
+// storage: the stacked x through its pinned buffer, every block by one kernel, y back; then a
+// block replaced (update, as after a reassembly: block 0 doubled) and applied again.
 bool runDeviceBlocks(const gpucheck::Blocks& b, const std::vector<double>& x,
-                     const std::vector<double>& ref, const gpucheck::Options& o) {
-  batched_dual::DeviceBlocks dev(b.rows, b.values);
+                     const std::vector<double>& ref, const gpucheck::Options& o,
+                     batched_dual::Storage storage) {
+  const std::string name =
+      storage == batched_dual::Storage::Full ? "DeviceBlocks full" : "DeviceBlocks tiles";
+  const auto label = [&](const char* what) { return name + " " + what; };
+  batched_dual::DeviceBlocks dev(b.rows, b.values, storage);
   std::copy(x.begin(), x.end(), dev.hostX());
   for (int r = 0; r <= o.repeats; ++r) dev.apply();
   std::vector<double> y(dev.hostY(), dev.hostY() + dev.vectorSize());
@@ -144,10 +202,10 @@ bool runDeviceBlocks(const gpucheck::Blocks& b, const std::vector<double>& x,
   const double n = static_cast<double>(dev.applies());
   const double kernelMs = 1e3 * dev.kernelSeconds() / n, applyMs = 1e3 * dev.applySeconds() / n;
   bool ok = err <= 1e-12;
-  std::printf("fp64   %-22s %9.3f ms, %7.1f GB/s, error %.2e (limit 1e-12)%s\n",
-              "DeviceBlocks kernel", kernelMs, dev.kernelBytes() / (kernelMs * 1e-3) / 1e9, err,
-              ok ? "" : "  FAILED");
-  std::printf("fp64   %-22s %9.3f ms (%.1f MB in and out per apply)\n", "DeviceBlocks apply",
+  std::printf("fp64   %-26s %9.3f ms, %7.1f GB/s, error %.2e (limit 1e-12)%s; %.2f GiB\n",
+              label("kernel").c_str(), kernelMs, dev.kernelBytes() / (kernelMs * 1e-3) / 1e9, err,
+              ok ? "" : "  FAILED", dev.blockBytes() / 1073741824.0);
+  std::printf("fp64   %-26s %9.3f ms (%.1f MB in and out per apply)\n", label("apply").c_str(),
               applyMs, dev.transferBytes() / 1e6);
   if (!b.rows.empty()) {
     const std::size_t m = static_cast<std::size_t>(b.rows[0]);
@@ -159,7 +217,7 @@ bool runDeviceBlocks(const gpucheck::Blocks& b, const std::vector<double>& x,
     for (std::size_t i = 0; i < m; ++i) want[i] *= 2.0;
     y.assign(dev.hostY(), dev.hostY() + dev.vectorSize());
     err = gpucheck::relativeError(y, want);
-    std::printf("fp64   %-22s error %.2e (limit 1e-12)%s\n", "DeviceBlocks update", err,
+    std::printf("fp64   %-26s error %.2e (limit 1e-12)%s\n", label("update").c_str(), err,
                 err <= 1e-12 ? "" : "  FAILED");
     ok = ok && err <= 1e-12;
   }
@@ -198,7 +256,8 @@ int main(int argc, char** argv) {
 #endif
     ok = run<double>("fp64", b, x, ref, o, h, dOff, dVoff, dRows, 1e-12) && ok;
     ok = run<float>("fp32", b, x, ref, o, h, dOff, dVoff, dRows, 1e-5) && ok;
-    ok = runDeviceBlocks(b, x, ref, o) && ok;
+    ok = runDeviceBlocks(b, x, ref, o, batched_dual::Storage::Full) && ok;
+    ok = runDeviceBlocks(b, x, ref, o, batched_dual::Storage::SymmetricTiles) && ok;
 #ifndef TFETI_GPU_CHECK_NO_CUBLAS
     cublasDestroy(h);
 #endif

@@ -163,13 +163,17 @@ void ExplicitDualOperator::uploadBlocks() {
     vector += static_cast<std::size_t>(b.rows());
     count += static_cast<std::size_t>(b.rows()) * b.rows();
   }
-  // Every block full, one after the other, as DeviceBlocks takes them.
+  // Every block full, one after the other, as DeviceBlocks takes them. Packed on the host is
+  // the upper triangle by 32 x 32 tiles on the device (about half the bytes), full is full.
   std::vector<double> values(count);
   for (std::size_t i = 0, at = 0; i < blocks_.size(); ++i) {
     writeFull(blocks_[i], values.data() + at);
     at += static_cast<std::size_t>(blocks_[i].rows()) * blocks_[i].rows();
   }
-  deviceBlocks_ = std::make_shared<batched_dual::DeviceBlocks>(rows, values);
+  deviceBlocks_ = std::make_shared<batched_dual::DeviceBlocks>(
+      rows, values,
+      storage_ == DenseStorage::Packed ? batched_dual::Storage::SymmetricTiles
+                                       : batched_dual::Storage::Full);
 #endif
 }
 

@@ -9,10 +9,10 @@
 // dense columns of B_s^T, a block of columns at a time (BLAS-3 in CHOLMOD's supernodal solve).
 //
 // Device (FETI "Explicit device" = gpu, a TFETI_ENABLE_CUDA build): the blocks are also held
-// full on a CUDA device (batched_dual::DeviceBlocks, gpu/src/) and every apply gathers the
-// rank's stacked x_s once into pinned memory, applies all blocks by one kernel, and scatters the
-// stacked y_s back; the Import and Export are unchanged. A reassembled block is copied over its
-// old one on the device.
+// on a CUDA device (batched_dual::DeviceBlocks, gpu/src/; packed storage as the upper triangle
+// by 32 x 32 tiles, full storage full), and every apply gathers the rank's stacked x_s once into
+// pinned memory, applies all blocks by one kernel, and scatters the stacked y_s back; the Import
+// and Export are unchanged. A reassembled block is copied over its old one on the device.
 //
 // Staleness: every block records the factorization it came from (Subdomain::factorVersion());
 // apply() reassembles any block whose subdomain was refactorized since, so a K+ that changes

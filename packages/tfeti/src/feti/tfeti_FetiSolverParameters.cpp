@@ -62,7 +62,8 @@ void addMethodChoices(Teuchos::ParameterList& pl) {
          choice({"implicit", "explicit"}));
   pl.set("Explicit storage", "packed",
          "Dual operator = explicit: the dense F_s as the packed upper triangle (half the "
-         "bytes) or the full square (docs/dual_operator.md)",
+         "bytes) or the full square; with Explicit device = gpu, packed is the upper triangle "
+         "by 32 x 32 tiles on the device (docs/dual_operator.md)",
          choice({"packed", "full"}));
   pl.set("Explicit device", "host",
          "Dual operator = explicit: where the F_s are applied: host (BLAS-2 per subdomain) or "
