@@ -5,7 +5,8 @@
 #   gpu/run_check.sh [BUILD_DIR]      (default: gpu/build next to this script)
 # Environment: BLOCKS (512), ROWS (1158), REPEATS (20), EXPORT_FILES (exported blocks, space-
 # separated, instead of synthetic ones), CUDA_ARCH ("80;90"), ASSEMBLY (1: also the F_s assembly
-# check; 0: the apply only).
+# check; 0: the apply only), SANITIZE (1: compute-sanitizer memcheck and racecheck on small
+# shapes where it can run; 0: not).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/build}"
@@ -27,23 +28,69 @@ if [[ -x "$build/dual_apply_check_cuda" ]] && command -v nvidia-smi > /dev/null 
    nvidia-smi -L 2> /dev/null | grep -q GPU; then
   has_gpu=1
 fi
+# With a device every step runs even when an earlier one fails (a session with a GPU is short:
+# one failure must not hide the other figures); the exit status says whether any failed.
+failed=()
+step() {
+  local limit="$1"
+  shift
+  echo "== $*"
+  local rc=0
+  timeout "$limit" "$@" --require-device || rc=$?
+  if ((rc != 0)); then failed+=("$(basename "$1") ${*:2} (exit $rc)"); fi
+}
+# compute-sanitizer (memcheck, racecheck) on small shapes, where it can run: an error it finds
+# fails the check; a sanitizer that cannot attach to the device (seen on some runtimes) only
+# says so.
+sanitize() {
+  local tool="$1" log rc=0
+  shift
+  log="$(timeout 300 compute-sanitizer --tool "$tool" "$@" --require-device 2>&1)" || rc=$?
+  if grep -q "ERROR SUMMARY: [1-9]" <<< "$log"; then
+    echo "$log" | tail -40
+    echo "compute-sanitizer $tool $(basename "$1") ${*:2}: FAILED"
+    failed+=("compute-sanitizer $tool $(basename "$1") ${*:2}")
+  elif ((rc == 0)) && grep -q "ERROR SUMMARY: 0 errors" <<< "$log"; then
+    echo "compute-sanitizer $tool $(basename "$1") ${*:2}: 0 errors"
+  else
+    echo "$log" | tail -5
+    echo "compute-sanitizer $tool $(basename "$1"): could not run here (not a failure of the check)"
+  fi
+}
 if [[ $has_gpu == 1 ]]; then
   nvidia-smi --query-gpu=name,memory.total,clocks.max.memory --format=csv,noheader || true
-  timeout 480 "$build/dual_apply_check_cuda" "${args[@]}"
-  # fp64 and fp32 at other block sizes (2D-like and larger 3D subdomains), synthetic only.
+  step 240 "$build/dual_apply_check_cuda" "${args[@]}"
+  # fp64 and fp32 at other block sizes (2D-like, larger 3D subdomains, and blocks beyond the
+  # full kernel's shared x_s), synthetic only.
   if [[ -z "${EXPORT_FILES:-}" ]]; then
-    timeout 120 "$build/dual_apply_check_cuda" --blocks=4096 --rows=256 --repeats="$repeats"
-    timeout 120 "$build/dual_apply_check_cuda" --blocks=128 --rows=2400 --repeats="$repeats"
+    step 60 "$build/dual_apply_check_cuda" --blocks=4096 --rows=256 --repeats="$repeats"
+    step 60 "$build/dual_apply_check_cuda" --blocks=128 --rows=2400 --repeats="$repeats"
+    step 60 "$build/dual_apply_check_cuda" --blocks=4 --rows=7000 --repeats=3
   fi
   # The assembly of the F_s on the device (cuSOLVER potrf, cuBLAS trsm and syrk), both orderings:
   # the prototype's 512 subdomains of 8³ Hex8, then smaller and larger subdomains.
   if [[ "${ASSEMBLY:-1}" == 1 && ! -x "$build/dual_assembly_check_cuda" ]]; then
     echo "no assembly check: built without cuBLAS or cuSOLVER (see $build.configure.log)"
+    failed+=("assembly check not built")
   elif [[ "${ASSEMBLY:-1}" == 1 ]]; then
-    timeout 240 "$build/dual_assembly_check_cuda" --elements=8 --count=512
-    timeout 120 "$build/dual_assembly_check_cuda" --elements=6 --count=512
-    timeout 120 "$build/dual_assembly_check_cuda" --elements=10 --count=128
+    step 120 "$build/dual_assembly_check_cuda" --elements=8 --count=512
+    step 60 "$build/dual_assembly_check_cuda" --elements=6 --count=512
+    step 60 "$build/dual_assembly_check_cuda" --elements=10 --count=128
   fi
+  if [[ "${SANITIZE:-1}" == 1 ]] && command -v compute-sanitizer > /dev/null; then
+    # racecheck on the apply only: in the assembly, shared memory is cuBLAS's and cuSOLVER's
+    # (not ours to check) and the tiled mirror's.
+    sanitize memcheck "$build/dual_apply_check_cuda" --blocks=3 --rows=300 --repeats=1 --host-threads=4
+    sanitize racecheck "$build/dual_apply_check_cuda" --blocks=3 --rows=300 --repeats=1 --host-threads=4
+    if [[ -x "$build/dual_assembly_check_cuda" ]]; then
+      sanitize memcheck "$build/dual_assembly_check_cuda" --elements=3 --count=4 --streams=2 --phases=1
+    fi
+  fi
+  if (( ${#failed[@]} )); then
+    printf 'FAILED: %s\n' "${failed[@]}"
+    exit 1
+  fi
+  echo "all device checks passed"
   exit 0
 fi
 # No device: the host check on a smaller batch (the same code path and reference), then skip.

@@ -173,6 +173,7 @@ double timeIt(F&& f, int repeats) {
 
 struct Options {
   int blocks = 512, rows = 1158, repeats = 20, hostThreads = 0;
+  bool requireDevice = false;      // the device check: no device is an error, not a skip
   std::vector<std::string> files;  // exported blocks instead of synthetic ones
 };
 
@@ -194,10 +195,12 @@ inline Options parse(int argc, char** argv) {
       o.hostThreads = std::stoi(value("--host-threads"));
     else if (!value("--file").empty())
       o.files.push_back(value("--file"));
+    else if (a == "--require-device")
+      o.requireDevice = true;
     else
       throw std::invalid_argument("unknown option " + a +
                                   " (--blocks=N --rows=M --repeats=R --host-threads=T "
-                                  "--file=EXPORT.bin ...)");
+                                  "--file=EXPORT.bin ... --require-device)");
   }
   if (o.hostThreads <= 0) o.hostThreads = std::max(1u, std::thread::hardware_concurrency());
   return o;

@@ -230,7 +230,7 @@ int main(int argc, char** argv) {
   try {
     const gpucheck::Options o = gpucheck::parse(argc, argv);
     cudaDeviceProp prop{};
-    if (!gpucheck::visibleDevice(prop)) return 0;
+    if (!gpucheck::visibleDevice(prop, o.requireDevice)) return 0;
     std::printf("device: %s, %.1f GiB\n", prop.name, prop.totalGlobalMem / 1073741824.0);
     const gpucheck::Blocks b = gpucheck::load(o);
     gpucheck::describe(b);

@@ -13,11 +13,15 @@ inline void cuda(cudaError_t e, const char* what) {
 }
 
 // Device 0's properties, or false (and the line that makes run_check.sh and ctest report a skip)
-// where no device is visible.
-inline bool visibleDevice(cudaDeviceProp& prop) {
+// where no device is visible; with `required` (run_check.sh on a machine whose nvidia-smi lists
+// a GPU) no device is an error instead.
+inline bool visibleDevice(cudaDeviceProp& prop, bool required) {
   int devices = 0;
-  if (cudaGetDeviceCount(&devices) != cudaSuccess || devices == 0) {
-    std::printf("skipped: no GPU (no CUDA device visible)\n");
+  const cudaError_t e = cudaGetDeviceCount(&devices);
+  if (e != cudaSuccess || devices == 0) {
+    const std::string why = e != cudaSuccess ? cudaGetErrorString(e) : "none visible";
+    if (required) throw std::runtime_error("a CUDA device was required: " + why);
+    std::printf("skipped: no GPU (no CUDA device: %s)\n", why.c_str());
     return false;
   }
   cuda(cudaGetDeviceProperties(&prop, 0), "cudaGetDeviceProperties");

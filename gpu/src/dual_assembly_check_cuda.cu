@@ -37,12 +37,17 @@ void cusolver(cusolverStatus_t s, const char* what) {
 
 struct Options {
   int elements = 8, count = 512, streams = 4, phases = 8, checkStride = 16;
+  bool requireDevice = false;  // no device is an error, not a skip
 };
 
 Options parse(int argc, char** argv) {
   Options o;
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
+    if (a == "--require-device") {
+      o.requireDevice = true;
+      continue;
+    }
     const auto value = [&](const char* name, int& out) {
       const std::string p = std::string(name) + "=";
       if (a.rfind(p, 0) != 0) return false;
@@ -54,7 +59,7 @@ Options parse(int argc, char** argv) {
         !value("--check-stride", o.checkStride))
       throw std::invalid_argument("unknown option " + a +
                                   " (--elements=NE --count=N --streams=S --phases=P "
-                                  "--check-stride=C)");
+                                  "--check-stride=C --require-device)");
   }
   if (o.count < 1 || o.streams < 1 || o.phases < 1 || o.checkStride < 1)
     throw std::invalid_argument("--count, --streams, --phases and --check-stride must be >= 1");
@@ -304,7 +309,7 @@ int main(int argc, char** argv) {
   try {
     const Options opt = parse(argc, argv);
     cudaDeviceProp prop{};
-    if (!gpucheck::visibleDevice(prop)) return 0;
+    if (!gpucheck::visibleDevice(prop, opt.requireDevice)) return 0;
     const gpucheck::Hex8Subdomain s = gpucheck::hex8Subdomain(opt.elements);
     const auto t0 = std::chrono::steady_clock::now();
     const gpucheck::BandCholesky c(s.Kreg);
