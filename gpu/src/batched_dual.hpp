@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "batched_dual_tiles.hpp"
+#include "check_options.hpp"
 
 namespace gpucheck {
 
@@ -181,20 +182,11 @@ inline Options parse(int argc, char** argv) {
   Options o;
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
-    const auto value = [&](const char* name) {
-      const std::string p = std::string(name) + "=";
-      return a.rfind(p, 0) == 0 ? a.substr(p.size()) : std::string();
-    };
-    if (!value("--blocks").empty())
-      o.blocks = std::stoi(value("--blocks"));
-    else if (!value("--rows").empty())
-      o.rows = std::stoi(value("--rows"));
-    else if (!value("--repeats").empty())
-      o.repeats = std::stoi(value("--repeats"));
-    else if (!value("--host-threads").empty())
-      o.hostThreads = std::stoi(value("--host-threads"));
-    else if (!value("--file").empty())
-      o.files.push_back(value("--file"));
+    if (intOption(a, "--blocks", 1, o.blocks) || intOption(a, "--rows", 1, o.rows) ||
+        intOption(a, "--repeats", 1, o.repeats) || intOption(a, "--host-threads", 0, o.hostThreads))
+      continue;
+    if (a.rfind("--file=", 0) == 0 && a.size() > 7)
+      o.files.push_back(a.substr(7));
     else if (a == "--require-device")
       o.requireDevice = true;
     else
@@ -202,7 +194,7 @@ inline Options parse(int argc, char** argv) {
                                   " (--blocks=N --rows=M --repeats=R --host-threads=T "
                                   "--file=EXPORT.bin ... --require-device)");
   }
-  if (o.hostThreads <= 0) o.hostThreads = std::max(1u, std::thread::hardware_concurrency());
+  if (o.hostThreads == 0) o.hostThreads = std::max(1u, std::thread::hardware_concurrency());
   return o;
 }
 

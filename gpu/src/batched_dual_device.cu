@@ -73,34 +73,31 @@ DeviceBlocks::DeviceBlocks(const std::vector<int>& rows, const std::vector<doubl
   Impl& d = *impl_;
   d.storage = storage;
   d.rows = rows;
-  std::size_t full = 0;
   for (int m : rows) {
     if (m < 0) throw std::invalid_argument("DeviceBlocks: a block with a negative size");
     d.offset.push_back(static_cast<long long>(d.values));
     d.vecOffset.push_back(static_cast<long long>(d.vector));
-    full += static_cast<std::size_t>(m) * m;
-    d.values += storage == Storage::Full ? static_cast<std::size_t>(m) * m
-                                         : static_cast<std::size_t>(tileCount(m)) * kTile * kTile;
+    d.values += static_cast<std::size_t>(m) * m;
     d.vector += m;
     d.maxRows = std::max(d.maxRows, m);
   }
-  if (values.size() != full)
+  if (values.size() != d.values)
     throw std::invalid_argument("DeviceBlocks: " + std::to_string(values.size()) +
-                                " values for blocks of " + std::to_string(full));
+                                " values for blocks of " + std::to_string(d.values));
   if (storage == Storage::Full) {
     d.dValues = deviceCopy(values.data(), d.values, "the blocks F_s");
   } else {
-    int device = 0, optIn = 0;
-    check(cudaGetDevice(&device), "device");
-    check(cudaDeviceGetAttribute(&optIn, cudaDevAttrMaxSharedMemoryPerBlockOptin, device),
-          "shared memory per block");
-    if (tilesSharedBytes<double>(d.maxRows) > static_cast<std::size_t>(optIn))
-      throw std::runtime_error(
-          "DeviceBlocks: symmetric tiles of a block of " + std::to_string(d.maxRows) +
-          " rows need " + std::to_string(tilesSharedBytes<double>(d.maxRows)) +
-          " bytes of shared memory per thread block; the device gives " + std::to_string(optIn));
+    const std::size_t need = tilesSharedBytes<double>(d.maxRows), have = sharedBytesOptIn();
+    if (need > have)
+      throw std::runtime_error("DeviceBlocks: symmetric tiles of a block of " +
+                               std::to_string(d.maxRows) + " rows need " + std::to_string(need) +
+                               " bytes of shared memory per thread block; the device gives " +
+                               std::to_string(have));
+    // The offsets and the count become the tiles'.
     std::vector<std::int64_t> offset;
     const std::vector<double> tiles = packAllTiles<double>(rows, values, offset);
+    d.offset.assign(offset.begin(), offset.end());
+    d.values = tiles.size();
     d.dValues = deviceCopy(tiles.data(), tiles.size(), "the blocks F_s as symmetric tiles");
   }
   d.dOffset = deviceCopy(d.offset.data(), d.offset.size(), "block offsets");

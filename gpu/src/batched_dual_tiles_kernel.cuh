@@ -20,6 +20,17 @@ constexpr std::size_t tilesSharedBytes(int maxRows) {
   return (static_cast<std::size_t>(maxRows) + kTileWarps * kTile * (kTile + 1)) * sizeof(T);
 }
 
+// The most dynamic shared memory a thread block may opt into on the current device (0 when
+// CUDA cannot say).
+inline std::size_t sharedBytesOptIn() {
+  int device = 0, optIn = 0;
+  if (cudaGetDevice(&device) != cudaSuccess ||
+      cudaDeviceGetAttribute(&optIn, cudaDevAttrMaxSharedMemoryPerBlockOptin, device) !=
+          cudaSuccess)
+    return 0;
+  return static_cast<std::size_t>(optIn);
+}
+
 template <class T>
 __global__ void batchedApplyTiles(const T* tiles, const long long* tileOffset,
                                   const long long* vecOffset, const int* rows, const T* x, T* y) {
@@ -74,16 +85,11 @@ bool launchBatchedApplyTiles(int count, int maxRows, const T* tiles, const long 
                              cudaStream_t stream = 0) {
   if (count == 0) return true;
   const std::size_t bytes = tilesSharedBytes<T>(maxRows);
-  if (bytes > 48 * 1024) {
-    int device = 0, optIn = 0;
-    if (cudaGetDevice(&device) != cudaSuccess ||
-        cudaDeviceGetAttribute(&optIn, cudaDevAttrMaxSharedMemoryPerBlockOptin, device) !=
-            cudaSuccess ||
-        bytes > static_cast<std::size_t>(optIn) ||
-        cudaFuncSetAttribute(batchedApplyTiles<T>, cudaFuncAttributeMaxDynamicSharedMemorySize,
-                             static_cast<int>(bytes)) != cudaSuccess)
-      return false;
-  }
+  if (bytes > 48 * 1024 &&
+      (bytes > sharedBytesOptIn() ||
+       cudaFuncSetAttribute(batchedApplyTiles<T>, cudaFuncAttributeMaxDynamicSharedMemorySize,
+                            static_cast<int>(bytes)) != cudaSuccess))
+    return false;
   batchedApplyTiles<T>
       <<<count, kTileWarps * kTile, bytes, stream>>>(tiles, tileOffset, vecOffset, rows, x, y);
   return true;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace gpucheck {
@@ -119,16 +120,10 @@ inline Csr regularized(const Csr& K, const std::array<int, 6>& fixing) {
   return r;
 }
 
-// The cube [0, ne]³ of unit elements, E = 1, ν = 0.3.
-inline Hex8Subdomain hex8Subdomain(int elements) {
-  if (elements < 1 || elements > 64)
-    throw std::invalid_argument("--elements must be 1..64 per edge");
-  Hex8Subdomain s;
-  s.elements = elements;
-  const int N = elements + 1;
-  s.n = 3 * N * N * N;
-  // Each node couples with the nodes of the 3 × 3 × 3 box around it: the rows' columns.
-  Csr& K = s.K;
+// The stiffness pattern: each node couples with the nodes of the 3 × 3 × 3 box around it.
+inline Csr stiffnessPattern(const Hex8Subdomain& s) {
+  const int N = s.nodesPerEdge();
+  Csr K;
   K.n = s.n;
   K.rowPtr.assign(1, 0);
   for (int k = 0; k < N; ++k)
@@ -142,10 +137,15 @@ inline Hex8Subdomain hex8Subdomain(int elements) {
           K.rowPtr.push_back(static_cast<int>(K.col.size()));
         }
   K.val.assign(K.col.size(), 0.0);
+  return K;
+}
+
+// K's values: every element's stiffness (unit cubes, E = 1, ν = 0.3) added into the pattern.
+inline void assembleStiffness(const Hex8Subdomain& s, Csr& K) {
   const std::array<double, 576> ke = hex8Stiffness(1.0, 1.0, 0.3);
-  for (int k = 0; k < elements; ++k)
-    for (int j = 0; j < elements; ++j)
-      for (int i = 0; i < elements; ++i) {
+  for (int k = 0; k < s.elements; ++k)
+    for (int j = 0; j < s.elements; ++j)
+      for (int i = 0; i < s.elements; ++i) {
         int dof[24];
         for (int a = 0; a < 8; ++a)
           for (int c = 0; c < 3; ++c)
@@ -158,19 +158,40 @@ inline Hex8Subdomain hex8Subdomain(int elements) {
             K.val[std::lower_bound(first, last, dof[c]) - K.col.begin()] += ke[24 * c + r];
         }
       }
+}
+
+// The dual rows of an interior subdomain: every dof of every surface node, increasing.
+inline std::vector<int> surfaceDofs(const Hex8Subdomain& s) {
+  const int N = s.nodesPerEdge(), ne = s.elements;
+  std::vector<int> dofs;
   for (int k = 0; k < N; ++k)
     for (int j = 0; j < N; ++j)
-      for (int i = 0; i < N; ++i) {
-        const bool surface =
-            i == 0 || j == 0 || k == 0 || i == elements || j == elements || k == elements;
-        if (surface)
-          for (int c = 0; c < 3; ++c) s.dualDof.push_back(3 * s.node(i, j, k) + c);
-      }
-  // Node A = (0,0,0) fixed in x, y, z removes the translations; B = (ne,0,0) in y, z the
-  // rotations about z and y; C = (0,ne,0) in z the rotation about x.
-  const int A = s.node(0, 0, 0), B = s.node(elements, 0, 0), C = s.node(0, elements, 0);
-  s.fixing = {3 * A, 3 * A + 1, 3 * A + 2, 3 * B + 1, 3 * B + 2, 3 * C + 2};
-  s.Kreg = regularized(K, s.fixing);
+      for (int i = 0; i < N; ++i)
+        if (i == 0 || j == 0 || k == 0 || i == ne || j == ne || k == ne)
+          for (int c = 0; c < 3; ++c) dofs.push_back(3 * s.node(i, j, k) + c);
+  return dofs;
+}
+
+// The six fixing dofs: node A = (0,0,0) fixed in x, y, z removes the translations; B = (ne,0,0)
+// in y, z the rotations about z and y; C = (0,ne,0) in z the rotation about x.
+inline std::array<int, 6> fixingDofs(const Hex8Subdomain& s) {
+  const int A = s.node(0, 0, 0), B = s.node(s.elements, 0, 0), C = s.node(0, s.elements, 0);
+  return {3 * A, 3 * A + 1, 3 * A + 2, 3 * B + 1, 3 * B + 2, 3 * C + 2};
+}
+
+// The cube [0, ne]³ of unit elements.
+inline Hex8Subdomain hex8Subdomain(int elements) {
+  if (elements < 1 || elements > 64)
+    throw std::invalid_argument("--elements = " + std::to_string(elements) +
+                                " is not within 1..64 per edge");
+  Hex8Subdomain s;
+  s.elements = elements;
+  s.n = 3 * s.nodesPerEdge() * s.nodesPerEdge() * s.nodesPerEdge();
+  s.K = stiffnessPattern(s);
+  assembleStiffness(s, s.K);
+  s.dualDof = surfaceDofs(s);
+  s.fixing = fixingDofs(s);
+  s.Kreg = regularized(s.K, s.fixing);
   return s;
 }
 
