@@ -7,9 +7,13 @@ Dirichlet preconditioner, PCPG to 1e-6, on 2 MPI ranks (run_benchmarks.py's inpu
   python3 bench/dual_operator.py [--build build] [--ranks 2] [--out bench-out/dual_operator]
                                  [--sets 2d,3d] [--max-dofs 1.1e6] [--min-dofs 0] [--storage]
 
-2d:  H/h = 8, 16, 32, 64 at about 0.1M unknowns, and H/h = 16 at about 0.4M and 1M
-3d:  H/h = 4, 6, 8 at about 0.1M unknowns, and H/h = 8 at about 0.35M and 0.8M (the 3D 0.8M
-     pair takes minutes; --max-dofs bounds every set)
+2d:  H/h = 8, 16, 32, 64 at about 0.1M unknowns, H/h = 16 at about 0.4M and 1M, and H/h = 16
+     and 32 at about 4.2M
+3d:  H/h = 4, 6, 8 at about 0.1M unknowns, and H/h = 8 at about 0.35M, 0.8M and 1.6M (the 3D
+     pairs from 0.8M take minutes each; the 1.6M explicit run needs about 13 GiB, and 3D
+     explicit at 4M does not fit this machine's 24 GiB)
+Sizes here are the mesh's unknowns, which --max-dofs and --min-dofs bound; the tables print the
+torn ones (primal_dim: every subdomain's dofs, 8³-element subdomains 2187 each).
 
 Per run: iterations, the set-up time and within it the assembly of the F_s, the time of one F
 apply (Output/Time dual operator: the mean of 10, slowest rank) and of the rest of an
@@ -37,9 +41,9 @@ DUAL = """<ParameterList name="FETI">
 # (dim, subdomains per side (x, y[, z]), elements per subdomain side)
 CASES = {
     "2d": [(2, (40, 20), 8), (2, (20, 10), 16), (2, (10, 5), 32), (2, (6, 3), 64),
-           (2, (40, 20), 16), (2, (64, 32), 16)],
+           (2, (40, 20), 16), (2, (64, 32), 16), (2, (128, 64), 16), (2, (64, 32), 32)],
     "3d": [(3, (8, 8, 8), 4), (3, (5, 5, 5), 6), (3, (4, 4, 4), 8), (3, (6, 6, 6), 8),
-           (3, (8, 8, 8), 8)],
+           (3, (8, 8, 8), 8), (3, (10, 10, 10), 8)],
 }
 
 

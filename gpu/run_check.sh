@@ -66,6 +66,9 @@ if [[ $has_gpu == 1 ]]; then
     step 60 "$build/dual_apply_check_cuda" --blocks=4096 --rows=256 --repeats="$repeats"
     step 60 "$build/dual_apply_check_cuda" --blocks=128 --rows=2400 --repeats="$repeats"
     step 60 "$build/dual_apply_check_cuda" --blocks=4 --rows=7000 --repeats=3
+    # Blocks of different sizes in one batch, as a tearing gives them (1 row, 1157 rows, the
+    # rest in 579..1158): the offsets and the per-block bounds of every kernel.
+    step 60 "$build/dual_apply_check_cuda" --blocks=300 --rows=1158 --sizes=varying --repeats="$repeats"
   fi
   # The assembly of the F_s on the device (cuSOLVER potrf, cuBLAS trsm and syrk), both orderings:
   # the prototype's 512 subdomains of 8³ Hex8, then smaller and larger subdomains.
@@ -82,6 +85,7 @@ if [[ $has_gpu == 1 ]]; then
     # (not ours to check) and the tiled mirror's.
     sanitize memcheck "$build/dual_apply_check_cuda" --blocks=3 --rows=300 --repeats=1 --host-threads=4
     sanitize racecheck "$build/dual_apply_check_cuda" --blocks=3 --rows=300 --repeats=1 --host-threads=4
+    sanitize memcheck "$build/dual_apply_check_cuda" --blocks=5 --rows=300 --sizes=varying --repeats=1 --host-threads=4
     if [[ -x "$build/dual_assembly_check_cuda" ]]; then
       sanitize memcheck "$build/dual_assembly_check_cuda" --elements=3 --count=4 --streams=2 --phases=1
     fi

@@ -51,12 +51,26 @@ inline double hashValue(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
   return static_cast<double>(z >> 11) * (2.0 / 9007199254740992.0) - 1.0;
 }
 
-// count blocks of m x m: symmetric, entries in [-1, 1), diagonal m + 1 (diagonally dominant,
-// so symmetric positive definite, like a local dual operator).
-inline Blocks synthetic(int count, int m) {
+// The rows of synthetic block s of `count`: m each, or with `varying` spread over [m/2, m] (as
+// the subdomains of a real tearing differ: corners, contact and Dirichlet rows) with a block of
+// one row and one of m - 1 among them, so that the offsets, the sizes that are no multiple of a
+// warp or of a tile, and the kernels' per-block bounds are all exercised in one batch.
+inline int syntheticRows(int s, int count, int m, bool varying) {
+  if (!varying || m < 2) return m;
+  if (count >= 3 && s == 1) return 1;
+  if (count >= 3 && s == count - 1) return m - 1;
+  const int low = m / 2;
+  return low + static_cast<int>((static_cast<std::uint64_t>(s) * 7919u) %
+                                static_cast<std::uint64_t>(m - low + 1));
+}
+
+// count blocks: symmetric, entries in [-1, 1), diagonal m_s + 1 (diagonally dominant, so
+// symmetric positive definite, like a local dual operator).
+inline Blocks synthetic(int count, int rows, bool varying) {
   Blocks b;
-  for (int s = 0; s < count; ++s) b.add(m);
+  for (int s = 0; s < count; ++s) b.add(syntheticRows(s, count, rows, varying));
   for (int s = 0; s < count; ++s) {
+    const int m = b.rows[s];
     double* a = b.values.data() + b.offset[s];
     for (int j = 0; j < m; ++j)
       for (int i = 0; i <= j; ++i)
@@ -175,6 +189,7 @@ double timeIt(F&& f, int repeats) {
 struct Options {
   int blocks = 512, rows = 1158, repeats = 20, hostThreads = 0;
   bool requireDevice = false;      // the device check: no device is an error, not a skip
+  bool varying = false;            // synthetic blocks of different sizes (syntheticRows)
   std::vector<std::string> files;  // exported blocks instead of synthetic ones
 };
 
@@ -189,17 +204,21 @@ inline Options parse(int argc, char** argv) {
       o.files.push_back(a.substr(7));
     else if (a == "--require-device")
       o.requireDevice = true;
+    else if (a == "--sizes=varying" || a == "--sizes=uniform")
+      o.varying = a == "--sizes=varying";
     else
       throw std::invalid_argument("unknown option " + a +
-                                  " (--blocks=N --rows=M --repeats=R --host-threads=T "
-                                  "--file=EXPORT.bin ... --require-device)");
+                                  " (--blocks=N --rows=M --sizes=uniform|varying --repeats=R "
+                                  "--host-threads=T --file=EXPORT.bin ... --require-device)");
   }
+  if (o.varying && !o.files.empty())
+    throw std::invalid_argument("--sizes=varying is for synthetic blocks, not with --file");
   if (o.hostThreads == 0) o.hostThreads = std::max(1u, std::thread::hardware_concurrency());
   return o;
 }
 
 inline Blocks load(const Options& o) {
-  if (o.files.empty()) return synthetic(o.blocks, o.rows);
+  if (o.files.empty()) return synthetic(o.blocks, o.rows, o.varying);
   Blocks b;
   for (const auto& f : o.files) readExport(f, b);
   return b;

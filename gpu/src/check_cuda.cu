@@ -187,7 +187,8 @@ bool run(const char* name, const gpucheck::Blocks& b, const std::vector<double>&
 
 // The class the main code applies its F_s with (FETI "Explicit device" = gpu), in the given
 // storage: the stacked x through its pinned buffer, every block by one kernel, y back; then a
-// block replaced (update, as after a reassembly: block 0 doubled) and applied again.
+// block replaced (update, as after a reassembly: the middle block doubled, so that its offsets
+// in the blocks and in the vector matter) and applied again.
 bool runDeviceBlocks(const gpucheck::Blocks& b, const std::vector<double>& x,
                      const std::vector<double>& ref, const gpucheck::Options& o,
                      batched_dual::Storage storage) {
@@ -208,13 +209,14 @@ bool runDeviceBlocks(const gpucheck::Blocks& b, const std::vector<double>& x,
   std::printf("fp64   %-26s %9.3f ms (%.1f MB in and out per apply)\n", label("apply").c_str(),
               applyMs, dev.transferBytes() / 1e6);
   if (!b.rows.empty()) {
-    const std::size_t m = static_cast<std::size_t>(b.rows[0]);
-    std::vector<double> twice(b.values.begin(), b.values.begin() + m * m);
+    const std::size_t k = b.rows.size() / 2, m = static_cast<std::size_t>(b.rows[k]);
+    const auto first = b.values.begin() + b.offset[k];
+    std::vector<double> twice(first, first + m * m);
     for (double& v : twice) v *= 2.0;
-    dev.update(0, twice.data());
+    dev.update(k, twice.data());
     dev.apply();
     std::vector<double> want = ref;
-    for (std::size_t i = 0; i < m; ++i) want[i] *= 2.0;
+    for (std::size_t i = 0; i < m; ++i) want[b.vecOffset[k] + i] *= 2.0;
     y.assign(dev.hostY(), dev.hostY() + dev.vectorSize());
     err = gpucheck::relativeError(y, want);
     std::printf("fp64   %-26s error %.2e (limit 1e-12)%s\n", label("update").c_str(), err,
