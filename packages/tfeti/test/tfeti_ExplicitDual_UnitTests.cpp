@@ -5,6 +5,8 @@
 //  - the explicit F applies as the implicit one;
 //  - explicit and implicit solves agree (iterations, solution to 1e-10) in 2D and 3D with the
 //    lumped and Dirichlet preconditioners, also after update() and updateStiffness();
+//  - after update() with other contact rows on the same factors, only the changed rows' columns
+//    are solved for, and the blocks are still B_s K_s+ B_s^T;
 //  - an unknown "Dual operator" is an error listing the valid values.
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
@@ -12,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tfeti_FetiSolver.hpp"
@@ -228,6 +231,68 @@ TEUCHOS_UNIT_TEST(ExplicitDual, SameSolveAsImplicit) {
                     static_cast<long long>(ex.subdomains().size()));
       compare("updateStiffness");
     }
+}
+
+namespace {
+
+// Contact rows under the clamped box: -u_z <= 0 at the bottom nodes with x >= xMin, the
+// coefficient -scale instead of -1 from x >= 9 on (tfeti_test::floorRows), keyed by the node.
+std::vector<tfeti::InequalityRow> floorRows(const tfeti_test::Box3d& box, double xMin,
+                                            double scale) {
+  return tfeti_test::floorRows(
+      box, [](double) { return 0.0; }, xMin, true,
+      [scale](double x) { return x >= 9.0 ? -scale : -1.0; });
+}
+
+// The rows of a block as their (dof, coefficient) entries.
+std::vector<std::vector<std::pair<int, double>>> rowEntries(
+    const tfeti::ExplicitDualOperator::Block& b) {
+  std::vector<std::vector<std::pair<int, double>>> rows(b.rows());
+  for (std::size_t k = 0; k < b.entryRow.size(); ++k)
+    rows[b.entryRow[k]].emplace_back(b.entryDof[k], b.entryCoef[k]);
+  return rows;
+}
+
+}  // namespace
+
+// update() with other contact rows on the same factors, as a nonlinear loop's contact rows move
+// (rows added at 3 <= x < 6, the coefficients changed from x = 9 on, the rest kept): a block
+// keeps the old block's values for its unchanged rows and solves only for the others, exactly
+// as many columns as rows changed; every block is still B_s K_s+ B_s^T column by column.
+TEUCHOS_UNIT_TEST(ExplicitDual, OnlyChangedRowsAreSolvedFor) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(4, 2, 1, 3, 3, 3, false);
+  for (const std::string storage : {"packed", "full"}) {
+    tfeti::FetiSolver solver(comm, box.numSubdomains(), local3d(box),
+                             parameters("explicit", "lumped", storage), floorRows(box, 6.0, 1.0));
+    const auto before = solver.dualOperator()->explicitPart();
+    TEST_COMPARE(blockError(solver, *before), <, 1e-12);
+    std::vector<std::vector<double>> loads;
+    for (const auto& s : solver.subdomains()) loads.push_back(s->load());
+    solver.update(loads, floorRows(box, 3.0, 0.5));
+    const auto after = solver.dualOperator()->explicitPart();
+    // The columns to solve for: rows of a block that its old block does not have.
+    long long changed = 0, rows = 0, blocksChanged = 0;
+    for (std::size_t i = 0; i < after->blocks().size(); ++i) {
+      const auto oldRows = rowEntries(before->blocks()[i]);
+      const auto newRows = rowEntries(after->blocks()[i]);
+      for (const auto& r : newRows)
+        if (std::find(oldRows.begin(), oldRows.end(), r) == oldRows.end()) ++changed;
+      rows += after->blocks()[i].rows();
+      blocksChanged += newRows != oldRows ? 1 : 0;
+    }
+    const double err = blockError(solver, *after);
+    out << storage << ": " << tfeti_test::globalSum(*comm, after->assembledColumns())
+        << " columns solved for in " << tfeti_test::globalSum(*comm, after->assemblies())
+        << " blocks, of " << tfeti_test::globalSum(*comm, rows)
+        << " rows; max |F_s - B_s K_s+ B_s^T| / max |F_s| = " << err << "\n";
+    TEST_EQUALITY(after->assembledColumns(), changed);
+    TEST_EQUALITY(after->assemblies(), blocksChanged);
+    TEST_COMPARE(tfeti_test::globalSum(*comm, changed), >, 0LL);
+    TEST_COMPARE(tfeti_test::globalSum(*comm, changed), <, tfeti_test::globalSum(*comm, rows) / 4);
+    TEST_COMPARE(err, <, 1e-12);
+    TEST_COMPARE(applyDifference(solver, *solver.dualOperator()), <, 1e-12);
+  }
 }
 
 TEUCHOS_UNIT_TEST(ExplicitDual, UnknownValueIsAnError) {

@@ -161,32 +161,6 @@ Teuchos::ParameterList tightSmalbeParameters() {
   return params;
 }
 
-// A rigid floor under a box: -u_z <= gap(x) for each node of the bottom z = 0 at x >= xMin, on
-// the first subdomain that holds it, keyed by the node (rank 0 passes them all).
-template <class Gap>
-std::vector<tfeti::InequalityRow> floorRows(const tfeti_test::Box3d& box, const Gap& gap,
-                                            double xMin, bool keyed) {
-  std::vector<tfeti::InequalityRow> rows;
-  if (Tpetra::getDefaultComm()->getRank() != 0) return rows;
-  std::vector<long long> seen;
-  for (int sub = 0; sub < box.numSubdomains(); ++sub) {
-    const tfeti::SubdomainMesh m = box.subdomain(sub);
-    for (int n = 0; n < m.numNodes(); ++n) {
-      const long long node = m.globalNode[n];
-      if (m.coords[3 * n + 2] != 0.0 || m.coords[3 * n] < xMin ||
-          std::find(seen.begin(), seen.end(), node) != seen.end())
-        continue;
-      seen.push_back(node);
-      tfeti::InequalityRow r;
-      r.entries = {{sub, 3 * n + 2, -1.0}};
-      r.gap = gap(m.coords[3 * n]);
-      r.key = keyed ? node : -1;
-      rows.push_back(r);
-    }
-  }
-  return rows;
-}
-
 tfeti::StructuredRectangle square() {
   return tfeti::StructuredRectangle(0, 1, 0, 1, 4, 4, 4, 4);
 }

@@ -4,11 +4,14 @@
 // constant body load, and a box of hexahedra (or of tetrahedra, six per cube along the main
 // diagonal: a conforming split) torn into a grid of subdomains. The production 3D kernels live in
 // the plasticity package; these are here so that the FETI tests do not depend on them.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <Tpetra_Core.hpp>
 
 #include "tfeti_CsrMatrix.hpp"
 #include "tfeti_FetiSolver.hpp"
@@ -239,6 +242,35 @@ inline std::vector<tfeti::SubdomainData> localBoxSubdomains(const Box3d& box, co
     local.push_back(std::move(d));
   }
   return local;
+}
+
+// A rigid floor under a box: coef(x) u_z <= gap(x) (coef -1 unless given) for each node of the
+// bottom z = 0 at x >= xMin, on the first subdomain that holds it, keyed by the node where
+// `keyed` (rank 0 passes them all).
+template <class Gap, class Coef = double (*)(double)>
+std::vector<tfeti::InequalityRow> floorRows(
+    const Box3d& box, const Gap& gap, double xMin, bool keyed,
+    const Coef& coef = [](double) { return -1.0; }) {
+  std::vector<tfeti::InequalityRow> rows;
+  if (Tpetra::getDefaultComm()->getRank() != 0) return rows;
+  std::vector<long long> seen;
+  for (int sub = 0; sub < box.numSubdomains(); ++sub) {
+    const tfeti::SubdomainMesh m = box.subdomain(sub);
+    for (int n = 0; n < m.numNodes(); ++n) {
+      const long long node = m.globalNode[n];
+      const double x = m.coords[3 * n];
+      if (m.coords[3 * n + 2] != 0.0 || x < xMin ||
+          std::find(seen.begin(), seen.end(), node) != seen.end())
+        continue;
+      seen.push_back(node);
+      tfeti::InequalityRow r;
+      r.entries = {{sub, 3 * n + 2, coef(x)}};
+      r.gap = gap(x);
+      r.key = keyed ? node : -1;
+      rows.push_back(r);
+    }
+  }
+  return rows;
 }
 
 }  // namespace tfeti_test

@@ -124,12 +124,15 @@ ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
     Block& b = blocks_[i];
     for (GO row : rowsOf[i]) b.overlap.push_back(overlapMap_->getLocalElement(row));
     const auto it = old.find(b.subdomainId);
-    if (it != old.end() && it->second->version == subdomains_[i]->factorVersion() &&
-        samePattern(*it->second, b)) {
+    const bool sameFactor =
+        it != old.end() && it->second->version == subdomains_[i]->factorVersion();
+    if (sameFactor && samePattern(*it->second, b)) {
       b.F = it->second->F;
       b.version = it->second->version;
     } else {
-      assemble(i);
+      // Same factor, other rows (contact rows moved): the rows whose entries are unchanged keep
+      // their part of the old block, and only the others are solved for.
+      assemble(i, sameFactor ? it->second : nullptr);
     }
   }
   if (device_ == ExplicitDevice::Gpu) uploadBlocks();
@@ -208,31 +211,76 @@ ExplicitDualOperator::DeviceWork ExplicitDualOperator::deviceWork() const {
   return w;
 }
 
-void ExplicitDualOperator::assemble(std::size_t i) const {
+namespace {
+
+// Row r of a block: its (dof, coefficient) entries, in the block's order (by dof).
+std::vector<std::pair<int, double>> rowEntries(const ExplicitDualOperator::Block& b,
+                                               const std::vector<std::size_t>& first, int r) {
+  std::vector<std::pair<int, double>> e;
+  for (std::size_t k = first[r]; k < first[r + 1]; ++k)
+    e.emplace_back(b.entryDof[k], b.entryCoef[k]);
+  return e;
+}
+
+// Where each local row's entries start (entries are sorted by row): m + 1 offsets.
+std::vector<std::size_t> rowStarts(const ExplicitDualOperator::Block& b) {
+  std::vector<std::size_t> first(b.rows() + 1, 0);
+  for (int r : b.entryRow) ++first[r + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  return first;
+}
+
+}  // namespace
+
+void ExplicitDualOperator::assemble(std::size_t i, const Block* old) const {
   const auto start = std::chrono::steady_clock::now();
   Block& b = blocks_[i];
   Subdomain& s = *subdomains_[i];
   const int n = s.numDofs(), m = b.rows();
-  // Where each local row's entries start (entries are sorted by row).
-  std::vector<std::size_t> first(m + 1, 0);
-  for (int r : b.entryRow) ++first[r + 1];
-  std::partial_sum(first.begin(), first.end(), first.begin());
+  const std::vector<std::size_t> first = rowStarts(b);
   std::vector<double> full(static_cast<std::size_t>(m) * m, 0.0);
+  // from[r]: the old block's row with exactly row r's entries (F_s(r, q) = b_r^T K+ b_q depends
+  // on nothing else, so F_s(r, q) = F_old(from[r], from[q]) where both are kept), -1: solved.
+  std::vector<int> from(m, -1);
+  if (old) {
+    const std::vector<std::size_t> oldFirst = rowStarts(*old);
+    std::map<std::vector<std::pair<int, double>>, int> oldRows;
+    for (int r = 0; r < old->rows(); ++r) oldRows.emplace(rowEntries(*old, oldFirst, r), r);
+    for (int r = 0; r < m; ++r) {
+      const auto it = oldRows.find(rowEntries(b, first, r));
+      if (it != oldRows.end()) from[r] = it->second;
+    }
+    const std::vector<double> oldFull = fullValues(*old);
+    const std::size_t mo = static_cast<std::size_t>(old->rows());
+    for (int q = 0; q < m; ++q)
+      for (int r = 0; r < m; ++r)
+        if (from[q] >= 0 && from[r] >= 0)
+          full[static_cast<std::size_t>(q) * m + r] = oldFull[from[q] * mo + from[r]];
+  }
+  std::vector<int> solved;
+  for (int r = 0; r < m; ++r)
+    if (from[r] < 0) solved.push_back(r);
   std::vector<double> rhs, sol;
-  for (int c0 = 0; c0 < m; c0 += kColumnsPerSolve) {
-    const int w = std::min(kColumnsPerSolve, m - c0);
+  for (std::size_t c0 = 0; c0 < solved.size(); c0 += kColumnsPerSolve) {
+    const int w = static_cast<int>(std::min<std::size_t>(kColumnsPerSolve, solved.size() - c0));
     rhs.assign(static_cast<std::size_t>(n) * w, 0.0);
     sol.resize(rhs.size());
-    for (int c = 0; c < w; ++c)
-      for (std::size_t k = first[c0 + c]; k < first[c0 + c + 1]; ++k)
-        rhs[static_cast<std::size_t>(c) * n + b.entryDof[k]] += b.entryCoef[k];
-    s.applyPseudoInverse(rhs.data(), sol.data(), w);
-    // Column c0 + c of F_s: B_s times the solution.
     for (int c = 0; c < w; ++c) {
+      const int col = solved[c0 + c];
+      for (std::size_t k = first[col]; k < first[col + 1]; ++k)
+        rhs[static_cast<std::size_t>(c) * n + b.entryDof[k]] += b.entryCoef[k];
+    }
+    s.applyPseudoInverse(rhs.data(), sol.data(), w);
+    // Column `col` of F_s, B_s times the solution, and (where row r is kept, so that column r
+    // is not solved for) its row.
+    for (int c = 0; c < w; ++c) {
+      const int col = solved[c0 + c];
       const double* x = sol.data() + static_cast<std::size_t>(c) * n;
-      double* f = full.data() + static_cast<std::size_t>(c0 + c) * m;
+      double* f = full.data() + static_cast<std::size_t>(col) * m;
       for (std::size_t k = 0; k < b.entryRow.size(); ++k)
         f[b.entryRow[k]] += b.entryCoef[k] * x[b.entryDof[k]];
+      for (int r = 0; r < m; ++r)
+        if (from[r] >= 0) full[static_cast<std::size_t>(r) * m + col] = f[r];
     }
   }
   // Symmetric to rounding: keep the mean of the two triangles.
@@ -251,6 +299,7 @@ void ExplicitDualOperator::assemble(std::size_t i) const {
   b.F = std::move(F);
   b.version = s.factorVersion();
   ++assemblies_;
+  assembledColumns_ += static_cast<long long>(solved.size());
   assemblySeconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -18,7 +18,9 @@
 // apply() reassembles any block whose subdomain was refactorized since, so a K+ that changes
 // under the operator cannot be applied with an old F_s. A new operator built after update() (new
 // rows, same factors) takes over the blocks of the previous one whose subdomain, factorization
-// and rows B_s (by their local pattern and coefficients) are unchanged.
+// and rows B_s (by their local pattern and coefficients) are unchanged; where only some rows
+// changed (contact rows moving in a nonlinear loop), it keeps the old block's values for the
+// unchanged rows and solves only for the others.
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -84,6 +86,10 @@ class ExplicitDualOperator {
   // Blocks assembled (not taken over) since construction, reassemblies after a refactorization
   // included; and the wall time that took on this rank.
   long long assemblies() const { return assemblies_; }
+  // Columns of F_s computed by solves in those assemblies: m_s for a block assembled anew; for a
+  // block whose factor was kept and only some rows changed (contact rows after update()), the
+  // changed rows alone: the kept rows' part of the previous block is reused.
+  long long assembledColumns() const { return assembledColumns_; }
   double assemblySeconds() const { return assemblySeconds_; }
   // Writes this rank's blocks to `file`: "TFETIF01", int64 block count, then per block int64 m
   // and m*m doubles (full, column-major), all little-endian as the machine writes them
@@ -111,7 +117,9 @@ class ExplicitDualOperator {
   DeviceWork deviceWork() const;
 
  private:
-  void assemble(std::size_t i) const;
+  // Block i from its subdomain's factor; with `old` (the previous operator's block of the same
+  // subdomain and factorization), only the rows not among old's are solved for.
+  void assemble(std::size_t i, const Block* old = nullptr) const;
   void refreshStale() const;
   // Block b full and column-major into out (m^2 values), from either storage.
   void writeFull(const Block& b, double* out) const;
@@ -125,7 +133,7 @@ class ExplicitDualOperator {
   Teuchos::RCP<const Map> multiplierMap_, overlapMap_;
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> import_;
   mutable std::vector<Block> blocks_;
-  mutable long long assemblies_ = 0;
+  mutable long long assemblies_ = 0, assembledColumns_ = 0;
   mutable double assemblySeconds_ = 0.0;
   mutable Teuchos::RCP<MultiVector> xo_, yo_, sum_;
   mutable std::vector<double> xb_, yb_;
