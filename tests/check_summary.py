@@ -13,6 +13,7 @@
                                           solution norms to rounding (different rank counts)
   check_summary.py diverged DIR           the run reported non-convergence (converged = false)
   check_summary.py same_dual_operator IMPLICIT EXPLICIT [EXPLICIT2 ...] [--tol T] [--device D]
+                                     [--partial]
                                           FETI "Dual operator" = explicit against implicit:
                                           dual_operator and the F_s bytes reported (0 when
                                           implicit; total >= largest rank's > 0 when explicit),
@@ -355,7 +356,7 @@ def contact(d, force_tol):
           ", ".join(f"{n} {v:.1e}" for n, v, _ in checks))
 
 
-def same_dual_operator(dirs, tol, device="host"):
+def same_dual_operator(dirs, tol, device="host", partial=False):
     ref = load(dirs[0])
     if ref.get("dual_operator") != "implicit" or ref.get("explicit_dual_bytes") != 0:
         fail(f"{dirs[0]}: dual_operator {ref.get('dual_operator')}, explicit_dual_bytes "
@@ -382,6 +383,15 @@ def same_dual_operator(dirs, tol, device="host"):
                  f"{most}): expected explicit with 0 < largest rank <= total")
         if s.get("explicit_device", "host") != device:
             fail(f"{d}: explicit_device {s.get('explicit_device')}, expected {device}")
+        # The assemblies: at least one block, never more columns solved than assembling every
+        # assembled block anew would take; with partial, fewer (update() on the same factors
+        # kept the unchanged rows' part of the blocks).
+        a = s.get("explicit_dual_assembly", {})
+        solved, whole = a.get("columns_solved", -1), a.get("columns_full", -1)
+        if not (a.get("blocks", 0) > 0 and 0 < solved <= whole) or \
+                (partial and not solved < whole):
+            fail(f"{d}: explicit_dual_assembly {a}: expected blocks > 0 and 0 < columns_solved "
+                 f"{'< ' if partial else '<= '}columns_full")
         if device == "gpu":
             w = s.get("explicit_device_work", {})
             if not w.get("applies", 0) >= s.get("dual_operator_applies", 1) or \
@@ -1491,9 +1501,10 @@ if __name__ == "__main__":
         same(args)
     elif mode == "same_dual_operator":
         flags = ("--tol", "--device")
-        same_dual_operator([a for i, a in enumerate(args) if a not in flags and
+        same_dual_operator([a for i, a in enumerate(args) if a not in flags + ("--partial",) and
                             (i == 0 or args[i - 1] not in flags)], option(args, "--tol", 1e-10),
-                           args[args.index("--device") + 1] if "--device" in args else "host")
+                           args[args.index("--device") + 1] if "--device" in args else "host",
+                           "--partial" in args)
     elif mode == "explicit_export":
         explicit_export(args[0], args[1:])
     elif mode == "factorizations_reused":

@@ -65,6 +65,8 @@ struct FetiDimensions {
   unsigned long long explicitDualBytes = 0, explicitDualBytesMaxRank = 0;
   // FETI "Explicit device" and, with gpu, the device's work (tfeti::FetiSolver).
   tfeti::FetiSolver::ExplicitDeviceWork explicitDevice;
+  // When explicit: the F_s assemblies of the run (tfeti::FetiSolver::explicitAssembly).
+  tfeti::FetiSolver::ExplicitAssembly explicitAssembly;
 };
 
 // nonlinear_contact: how the load steps went ("nonlinear" object; the steps are in history).

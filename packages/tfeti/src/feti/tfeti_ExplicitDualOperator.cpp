@@ -300,6 +300,7 @@ void ExplicitDualOperator::assemble(std::size_t i, const Block* old) const {
   b.version = s.factorVersion();
   ++assemblies_;
   assembledColumns_ += static_cast<long long>(solved.size());
+  assembledRows_ += m;
   assemblySeconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

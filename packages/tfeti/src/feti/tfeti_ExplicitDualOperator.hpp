@@ -90,6 +90,8 @@ class ExplicitDualOperator {
   // block whose factor was kept and only some rows changed (contact rows after update()), the
   // changed rows alone: the kept rows' part of the previous block is reused.
   long long assembledColumns() const { return assembledColumns_; }
+  // The rows of those blocks: the columns that assembling each of them anew would have solved.
+  long long assembledRows() const { return assembledRows_; }
   double assemblySeconds() const { return assemblySeconds_; }
   // Writes this rank's blocks to `file`: "TFETIF01", int64 block count, then per block int64 m
   // and m*m doubles (full, column-major), all little-endian as the machine writes them
@@ -133,7 +135,7 @@ class ExplicitDualOperator {
   Teuchos::RCP<const Map> multiplierMap_, overlapMap_;
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> import_;
   mutable std::vector<Block> blocks_;
-  mutable long long assemblies_ = 0, assembledColumns_ = 0;
+  mutable long long assemblies_ = 0, assembledColumns_ = 0, assembledRows_ = 0;
   mutable double assemblySeconds_ = 0.0;
   mutable Teuchos::RCP<MultiVector> xo_, yo_, sum_;
   mutable std::vector<double> xb_, yb_;

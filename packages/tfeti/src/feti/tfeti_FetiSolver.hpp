@@ -275,6 +275,14 @@ class FetiSolver {
     double kernelSeconds = 0.0, applySeconds = 0.0, kernelBytes = 0.0, transferBytes = 0.0;
   };
   ExplicitDeviceWork explicitDeviceWork() const;
+  // "Dual operator" = explicit: the assemblies of F_s since set-up (every explicit operator this
+  // solver built, all ranks): blocks assembled, the columns solved for, and the columns that
+  // assembling each of those blocks anew would have solved (after update() on the same factors
+  // only the changed rows are solved for). All 0 when implicit. Collective.
+  struct ExplicitAssembly {
+    long long blocks = 0, columnsSolved = 0, columnsFull = 0;
+  };
+  ExplicitAssembly explicitAssembly() const;
   // "implicit" or "explicit": how F is applied.
   std::string dualOperatorKind() const;
   const Tearing& tearing() const { return tearing_; }
@@ -378,6 +386,7 @@ class FetiSolver {
   // The device work of the explicit operators replaced so far (explicitDeviceWork adds the
   // current one's).
   ExplicitDualOperator::DeviceWork deviceWorkDone_;
+  ExplicitAssembly explicitAssemblyDone_;  // this rank's, of the explicit operators replaced
   Teuchos::RCP<std::ostream> out_;
   double toleranceFactor_ = 1.0;
   bool loadStepStart_ = false;

@@ -234,6 +234,19 @@ FetiSolver::ExplicitDeviceWork FetiSolver::explicitDeviceWork() const {
   return all;
 }
 
+FetiSolver::ExplicitAssembly FetiSolver::explicitAssembly() const {
+  long long mine[3] = {explicitAssemblyDone_.blocks, explicitAssemblyDone_.columnsSolved,
+                       explicitAssemblyDone_.columnsFull};
+  if (const auto& ex = F_->explicitPart()) {
+    mine[0] += ex->assemblies();
+    mine[1] += ex->assembledColumns();
+    mine[2] += ex->assembledRows();
+  }
+  long long all[3] = {0, 0, 0};
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 3, mine, all);
+  return {all[0], all[1], all[2]};
+}
+
 std::string FetiSolver::dualOperatorKind() const {
   return F_->explicitPart() ? "explicit" : "implicit";
 }

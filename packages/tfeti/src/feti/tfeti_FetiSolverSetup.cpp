@@ -228,7 +228,13 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
 
 void FetiSolver::buildDualOperator() {
   const ExplicitDevice device = parseExplicitDevice(params_.get<std::string>("Explicit device"));
-  if (!F_.is_null() && F_->explicitPart()) deviceWorkDone_.add(F_->explicitPart()->deviceWork());
+  if (!F_.is_null() && F_->explicitPart()) {
+    const auto& ex = F_->explicitPart();
+    deviceWorkDone_.add(ex->deviceWork());
+    explicitAssemblyDone_.blocks += ex->assemblies();
+    explicitAssemblyDone_.columnsSolved += ex->assembledColumns();
+    explicitAssemblyDone_.columnsFull += ex->assembledRows();
+  }
   if (params_.get<std::string>("Dual operator") != "explicit") {
     F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
     return;
