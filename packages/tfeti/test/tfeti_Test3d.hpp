@@ -2,8 +2,9 @@
 // Test-only 3D finite elements for the tfeti unit tests: Tet4 (exact integration) and Hex8
 // (2x2x2 Gauss) stiffness matrices of the Laplacian and of isotropic linear elasticity, a
 // constant body load, and a box of hexahedra (or of tetrahedra, six per cube along the main
-// diagonal: a conforming split) torn into a grid of subdomains. The production 3D kernels live in
-// the plasticity package; these are here so that the FETI tests do not depend on them.
+// diagonal: a conforming split) torn into a grid of subdomains, and contact rows of a rigid floor
+// under it. The production 3D kernels live in the plasticity package; these are here so that the
+// FETI tests do not depend on them.
 #include <algorithm>
 #include <array>
 #include <cmath>

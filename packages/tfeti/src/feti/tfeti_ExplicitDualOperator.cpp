@@ -213,8 +213,18 @@ ExplicitDualOperator::DeviceWork ExplicitDualOperator::deviceWork() const {
 
 namespace {
 
+using Block = ExplicitDualOperator::Block;
+
+// Where each local row's entries start (entries are sorted by row): m + 1 offsets.
+std::vector<std::size_t> rowStarts(const Block& b) {
+  std::vector<std::size_t> first(b.rows() + 1, 0);
+  for (int r : b.entryRow) ++first[r + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  return first;
+}
+
 // Row r of a block: its (dof, coefficient) entries, in the block's order (by dof).
-std::vector<std::pair<int, double>> rowEntries(const ExplicitDualOperator::Block& b,
+std::vector<std::pair<int, double>> rowEntries(const Block& b,
                                                const std::vector<std::size_t>& first, int r) {
   std::vector<std::pair<int, double>> e;
   for (std::size_t k = first[r]; k < first[r + 1]; ++k)
@@ -222,44 +232,39 @@ std::vector<std::pair<int, double>> rowEntries(const ExplicitDualOperator::Block
   return e;
 }
 
-// Where each local row's entries start (entries are sorted by row): m + 1 offsets.
-std::vector<std::size_t> rowStarts(const ExplicitDualOperator::Block& b) {
-  std::vector<std::size_t> first(b.rows() + 1, 0);
-  for (int r : b.entryRow) ++first[r + 1];
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  return first;
+// For each row of b, the row of `old` with exactly its entries, -1 where old has none (or no
+// old block): F_s(r, q) = b_r^T K+ b_q depends on nothing else, so on the same factor the kept
+// rows' part of F_s is old's.
+std::vector<int> keptRows(const Block& b, const std::vector<std::size_t>& first, const Block* old) {
+  std::vector<int> from(b.rows(), -1);
+  if (!old) return from;
+  const std::vector<std::size_t> oldFirst = rowStarts(*old);
+  std::map<std::vector<std::pair<int, double>>, int> oldRows;
+  for (int r = 0; r < old->rows(); ++r) oldRows.emplace(rowEntries(*old, oldFirst, r), r);
+  for (int r = 0; r < b.rows(); ++r) {
+    const auto it = oldRows.find(rowEntries(b, first, r));
+    if (it != oldRows.end()) from[r] = it->second;
+  }
+  return from;
 }
 
-}  // namespace
+// full (m x m, column-major) at the kept rows and columns from old's full values (mo x mo).
+void copyKept(const std::vector<int>& from, const std::vector<double>& oldFull, std::size_t mo,
+              std::vector<double>& full) {
+  const std::size_t m = from.size();
+  for (std::size_t q = 0; q < m; ++q)
+    for (std::size_t r = 0; r < m; ++r)
+      if (from[q] >= 0 && from[r] >= 0) full[q * m + r] = oldFull[from[q] * mo + from[r]];
+}
 
-void ExplicitDualOperator::assemble(std::size_t i, const Block* old) const {
-  const auto start = std::chrono::steady_clock::now();
-  Block& b = blocks_[i];
-  Subdomain& s = *subdomains_[i];
+// The columns `solved` of F_s = B_s K+ B_s^T into full (m x m, column-major), kColumnsPerSolve
+// right-hand sides per solve; where a row is not solved for, its row is filled from the columns
+// (F_s symmetric), so that full is complete.
+void solveColumns(const Block& b, const std::vector<std::size_t>& first,
+                  const std::vector<int>& solved, Subdomain& s, std::vector<double>& full) {
   const int n = s.numDofs(), m = b.rows();
-  const std::vector<std::size_t> first = rowStarts(b);
-  std::vector<double> full(static_cast<std::size_t>(m) * m, 0.0);
-  // from[r]: the old block's row with exactly row r's entries (F_s(r, q) = b_r^T K+ b_q depends
-  // on nothing else, so F_s(r, q) = F_old(from[r], from[q]) where both are kept), -1: solved.
-  std::vector<int> from(m, -1);
-  if (old) {
-    const std::vector<std::size_t> oldFirst = rowStarts(*old);
-    std::map<std::vector<std::pair<int, double>>, int> oldRows;
-    for (int r = 0; r < old->rows(); ++r) oldRows.emplace(rowEntries(*old, oldFirst, r), r);
-    for (int r = 0; r < m; ++r) {
-      const auto it = oldRows.find(rowEntries(b, first, r));
-      if (it != oldRows.end()) from[r] = it->second;
-    }
-    const std::vector<double> oldFull = fullValues(*old);
-    const std::size_t mo = static_cast<std::size_t>(old->rows());
-    for (int q = 0; q < m; ++q)
-      for (int r = 0; r < m; ++r)
-        if (from[q] >= 0 && from[r] >= 0)
-          full[static_cast<std::size_t>(q) * m + r] = oldFull[from[q] * mo + from[r]];
-  }
-  std::vector<int> solved;
-  for (int r = 0; r < m; ++r)
-    if (from[r] < 0) solved.push_back(r);
+  std::vector<char> isSolved(m, 0);
+  for (int c : solved) isSolved[c] = 1;
   std::vector<double> rhs, sol;
   for (std::size_t c0 = 0; c0 < solved.size(); c0 += kColumnsPerSolve) {
     const int w = static_cast<int>(std::min<std::size_t>(kColumnsPerSolve, solved.size() - c0));
@@ -271,8 +276,6 @@ void ExplicitDualOperator::assemble(std::size_t i, const Block* old) const {
         rhs[static_cast<std::size_t>(c) * n + b.entryDof[k]] += b.entryCoef[k];
     }
     s.applyPseudoInverse(rhs.data(), sol.data(), w);
-    // Column `col` of F_s, B_s times the solution, and (where row r is kept, so that column r
-    // is not solved for) its row.
     for (int c = 0; c < w; ++c) {
       const int col = solved[c0 + c];
       const double* x = sol.data() + static_cast<std::size_t>(c) * n;
@@ -280,23 +283,45 @@ void ExplicitDualOperator::assemble(std::size_t i, const Block* old) const {
       for (std::size_t k = 0; k < b.entryRow.size(); ++k)
         f[b.entryRow[k]] += b.entryCoef[k] * x[b.entryDof[k]];
       for (int r = 0; r < m; ++r)
-        if (from[r] >= 0) full[static_cast<std::size_t>(r) * m + col] = f[r];
+        if (!isSolved[r]) full[static_cast<std::size_t>(r) * m + col] = f[r];
     }
   }
-  // Symmetric to rounding: keep the mean of the two triangles.
-  auto F = std::make_shared<std::vector<double>>(storedSize(storage_, m), 0.0);
+}
+
+// F_s in the given storage from full, symmetric to rounding: the mean of the two triangles.
+std::shared_ptr<std::vector<double>> symmetricStorage(const std::vector<double>& full, int m,
+                                                      DenseStorage storage) {
+  auto F = std::make_shared<std::vector<double>>(storedSize(storage, m), 0.0);
   for (int j = 0; j < m; ++j)
     for (int r = 0; r <= j; ++r) {
       const double v = 0.5 * (full[static_cast<std::size_t>(j) * m + r] +
                               full[static_cast<std::size_t>(r) * m + j]);
-      if (storage_ == DenseStorage::Packed) {
+      if (storage == DenseStorage::Packed) {
         (*F)[r + static_cast<std::size_t>(j) * (j + 1) / 2] = v;
       } else {
         (*F)[static_cast<std::size_t>(j) * m + r] = v;
         (*F)[static_cast<std::size_t>(r) * m + j] = v;
       }
     }
-  b.F = std::move(F);
+  return F;
+}
+
+}  // namespace
+
+void ExplicitDualOperator::assemble(std::size_t i, const Block* old) const {
+  const auto start = std::chrono::steady_clock::now();
+  Block& b = blocks_[i];
+  Subdomain& s = *subdomains_[i];
+  const int m = b.rows();
+  const std::vector<std::size_t> first = rowStarts(b);
+  const std::vector<int> from = keptRows(b, first, old);
+  std::vector<double> full(static_cast<std::size_t>(m) * m, 0.0);
+  if (old) copyKept(from, fullValues(*old), static_cast<std::size_t>(old->rows()), full);
+  std::vector<int> solved;
+  for (int r = 0; r < m; ++r)
+    if (from[r] < 0) solved.push_back(r);
+  solveColumns(b, first, solved, s, full);
+  b.F = symmetricStorage(full, m, storage_);
   b.version = s.factorVersion();
   ++assemblies_;
   assembledColumns_ += static_cast<long long>(solved.size());
