@@ -2,10 +2,12 @@
 """FETI "Dual operator" = implicit against explicit on the CPU (issue 29, docs/dual_operator.md):
 structured elasticity in 2D ((0,2)x(0,1), plane strain) and 3D (unit cube, Hex8), clamped, the
 Dirichlet preconditioner, PCPG to 1e-6, on 2 MPI ranks (run_benchmarks.py's inputs); each case solved with both operators
-(and, with --storage, the explicit one in both storages).
+(and, with --storage, the explicit one in both storages; with --solves, the explicit one assembled
+by solves as well as from the Schur complement, FETI "Explicit assembly").
 
   python3 bench/dual_operator.py [--build build] [--ranks 2] [--out bench-out/dual_operator]
                                  [--sets 2d,3d] [--max-dofs 1.1e6] [--min-dofs 0] [--storage]
+                                 [--solves]
 
 2d:  H/h = 8, 16, 32, 64 at about 0.1M unknowns, H/h = 16 at about 0.4M and 1M, and H/h = 16
      and 32 at about 4.2M
@@ -35,7 +37,8 @@ import run_benchmarks as rb  # noqa: E402
 # dual operator's parameters added to the FETI list.
 DUAL = """<ParameterList name="FETI">
     <Parameter name="Dual operator" type="string" value="{kind}"/>
-    <Parameter name="Explicit storage" type="string" value="{storage}"/>"""
+    <Parameter name="Explicit storage" type="string" value="{storage}"/>
+    <Parameter name="Explicit assembly" type="string" value="{assembly}"/>"""
 
 
 # (dim, subdomains per side (x, y[, z]), elements per subdomain side)
@@ -54,9 +57,10 @@ def unknowns(dim, s, e):
     return dim * n
 
 
-def run(o, dim, s, e, kind, storage):
-    name = f"{dim}d_{'x'.join(map(str, s))}_{e}_{kind}" + (f"_{storage}" if kind == "explicit"
-                                                            else "")
+def run(o, dim, s, e, kind, storage, assembly="schur"):
+    name = f"{dim}d_{'x'.join(map(str, s))}_{e}_{kind}" + (
+        f"_{storage}" + ("" if assembly == "schur" else f"_{assembly}") if kind == "explicit"
+        else "")
     d = os.path.join(o.out, name)
     os.makedirs(d, exist_ok=True)
     xml = os.path.join(d, "input.xml")
@@ -65,7 +69,7 @@ def run(o, dim, s, e, kind, storage):
             rb.TEMPLATE3D.format(problem="elasticity", s=s[0], e=e, prec="dirichlet"))
     with open(xml, "w") as f:
         f.write(text.replace('<ParameterList name="FETI">',
-                             DUAL.format(kind=kind, storage=storage)))
+                             DUAL.format(kind=kind, storage=storage, assembly=assembly)))
     res = rb.mpirun([o.build + "/bin/tfeti_contact", "--input=" + xml, "--output=" + d], o.ranks)
     if res.returncode != 0:
         return None
@@ -87,6 +91,9 @@ def main():
     p.add_argument("--min-dofs", type=float, default=0)
     p.add_argument("--storage", action="store_true",
                    help="also the explicit operator with the full storage")
+    p.add_argument("--solves", action="store_true",
+                   help="also the explicit operator assembled by solves (Explicit assembly = "
+                   "solves; the default is schur)")
     o = p.parse_args()
     print("| dim | subdomains | H/h | unknowns | dual | operator | iterations | set-up s "
           "(F_s assembly s) | F apply ms | P, M, vectors ms | solve s | factors MiB | F_s MiB | "
@@ -98,16 +105,19 @@ def main():
             n = unknowns(dim, s, e)
             if n > o.max_dofs or n < o.min_dofs:
                 continue
-            kinds = [("implicit", "packed"), ("explicit", "packed")]
+            kinds = [("implicit", "packed", "schur"), ("explicit", "packed", "schur")]
             if o.storage:
-                kinds.append(("explicit", "full"))
+                kinds.append(("explicit", "full", "schur"))
+            if o.solves:
+                kinds.append(("explicit", "packed", "solves"))
             rows = {}
-            for kind, storage in kinds:
-                r = run(o, dim, s, e, kind, storage)
+            for kind, storage, assembly in kinds:
+                r = run(o, dim, s, e, kind, storage, assembly)
                 if r is None:
                     continue
                 t = r["timings"]
-                label = kind + (f" ({storage})" if kind == "explicit" else "")
+                label = kind + (f" ({storage}{'' if assembly == 'schur' else ', solves'})"
+                                if kind == "explicit" else "")
                 rows[label] = r
                 nsub = 1
                 for k in s:
@@ -119,18 +129,22 @@ def main():
                       f"{1e3 * t.get('vector_updates_s', 0):.2f} | {t['solve_s']:.2f} | "
                       f"{mib(r['factor_bytes']):.0f} | {mib(r.get('explicit_dual_bytes', 0)):.0f} | "
                       f"{r['memory']['peak_mib_all_ranks']:.0f} |", flush=True)
-            im, ex = rows.get("implicit"), rows.get("explicit (packed)")
-            if im and ex:
-                ti, te = im["timings"], ex["timings"]
-                gain = ti["dual_apply_s"] - te["dual_apply_s"]
-                summary.append((dim, e, im["primal_dim"], ti["dual_apply_s"] / te["dual_apply_s"],
-                                te["dual_operator_s"] / gain if gain > 0 else float("inf"),
-                                (ti["setup_s"] + ti["solve_s"]) / (te["setup_s"] + te["solve_s"])))
-    print("\n| dim | H/h | unknowns | apply speed-up | applies to pay the assembly | "
+            im = rows.get("implicit")
+            for label in ("explicit (packed)", "explicit (packed, solves)"):
+                ex = rows.get(label)
+                if im and ex:
+                    ti, te = im["timings"], ex["timings"]
+                    gain = ti["dual_apply_s"] - te["dual_apply_s"]
+                    summary.append((dim, e, im["primal_dim"], label,
+                                    ti["dual_apply_s"] / te["dual_apply_s"],
+                                    te["dual_operator_s"] / gain if gain > 0 else float("inf"),
+                                    (ti["setup_s"] + ti["solve_s"]) /
+                                    (te["setup_s"] + te["solve_s"])))
+    print("\n| dim | H/h | unknowns | explicit | apply speed-up | applies to pay the assembly | "
           "whole-solve speed-up (set-up + solve) |")
-    print("|---|---|---|---|---|---|")
-    for dim, e, n, speed, pay, whole in summary:
-        print(f"| {dim}D | {e} | {n} | {speed:.2f} | {pay:.0f} | {whole:.2f} |")
+    print("|---|---|---|---|---|---|---|")
+    for dim, e, n, label, speed, pay, whole in summary:
+        print(f"| {dim}D | {e} | {n} | {label} | {speed:.2f} | {pay:.0f} | {whole:.2f} |")
 
 
 if __name__ == "__main__":

@@ -13,7 +13,7 @@
                                           solution norms to rounding (different rank counts)
   check_summary.py diverged DIR           the run reported non-convergence (converged = false)
   check_summary.py same_dual_operator IMPLICIT EXPLICIT [EXPLICIT2 ...] [--tol T] [--device D]
-                                     [--partial]
+                                     [--partial] [--mult-tol F] [--assembly schur|solves]
                                           FETI "Dual operator" = explicit against implicit:
                                           dual_operator and the F_s bytes reported (0 when
                                           implicit; total >= largest rank's > 0 when explicit),
@@ -24,7 +24,9 @@
                                           max |u|, contact.csv and contact_pressure.csv (when
                                           written) to T (1e-10) relative to their scale;
                                           explicit_device is D (host; with gpu every F apply
-                                          on the device and explicit_device_work reported)
+                                          on the device and explicit_device_work reported);
+                                          a QP's multiplications to F (0.01); schur_blocks
+                                          in (0, blocks] (schur) or 0 (solves)
   check_summary.py explicit_export DIR FILE [FILE ...]
                                           the F_s blocks a run exported (FETI "Explicit
                                           export file"), read as gpu/ reads them: header, one
@@ -356,7 +358,7 @@ def contact(d, force_tol):
           ", ".join(f"{n} {v:.1e}" for n, v, _ in checks))
 
 
-def same_dual_operator(dirs, tol, device="host", partial=False):
+def same_dual_operator(dirs, tol, device="host", partial=False, mult_tol=0.01, assembly="schur"):
     ref = load(dirs[0])
     if ref.get("dual_operator") != "implicit" or ref.get("explicit_dual_bytes") != 0:
         fail(f"{dirs[0]}: dual_operator {ref.get('dual_operator')}, explicit_dual_bytes "
@@ -392,6 +394,12 @@ def same_dual_operator(dirs, tol, device="host", partial=False):
                 (partial and not solved < whole):
             fail(f"{d}: explicit_dual_assembly {a}: expected blocks > 0 and 0 < columns_solved "
                  f"{'< ' if partial else '<= '}columns_full")
+        # schur: blocks assembled anew come from the Schur complement (the partial ones by
+        # solves); solves: none does.
+        schur = a.get("schur_blocks", -1)
+        if not (0 < schur <= a["blocks"] if assembly == "schur" else schur == 0):
+            fail(f"{d}: explicit_dual_assembly {a}: Explicit assembly = {assembly} expects "
+                 f"{'0 < schur_blocks <= blocks' if assembly == 'schur' else 'schur_blocks 0'}")
         if device == "gpu":
             w = s.get("explicit_device_work", {})
             if not w.get("applies", 0) >= s.get("dual_operator_applies", 1) or \
@@ -403,9 +411,10 @@ def same_dual_operator(dirs, tol, device="host", partial=False):
         a, b = counts(s), counts(ref)
         # A QP's discrete choices (MPRGP's steps, where a face solve of the level search stops)
         # can flip with the rounding of F, and a nonlinear run solves a QP per iteration: the
-        # same (outer) iterations, the multiplications to 1 %. PCPG alone: the same iterations.
+        # same (outer) iterations, the multiplications to mult_tol (1 %). PCPG alone: the same
+        # iterations.
         same = a == b if len(a) == 1 else \
-            a[0] == b[0] and abs(a[1] - b[1]) <= 0.01 * b[1]
+            a[0] == b[0] and abs(a[1] - b[1]) <= mult_tol * b[1]
         if not s["converged"] or not same:
             fail(f"{d}: converged {s['converged']}, counts {a}; implicit {b}")
         if "contact" in ref and "force" in ref["contact"] and \
@@ -1500,11 +1509,13 @@ if __name__ == "__main__":
     elif mode == "same":
         same(args)
     elif mode == "same_dual_operator":
-        flags = ("--tol", "--device")
+        flags = ("--tol", "--device", "--mult-tol", "--assembly")
         same_dual_operator([a for i, a in enumerate(args) if a not in flags + ("--partial",) and
                             (i == 0 or args[i - 1] not in flags)], option(args, "--tol", 1e-10),
                            args[args.index("--device") + 1] if "--device" in args else "host",
-                           "--partial" in args)
+                           "--partial" in args, option(args, "--mult-tol", 0.01),
+                           args[args.index("--assembly") + 1] if "--assembly" in args
+                           else "schur")
     elif mode == "explicit_export":
         explicit_export(args[0], args[1:])
     elif mode == "factorizations_reused":

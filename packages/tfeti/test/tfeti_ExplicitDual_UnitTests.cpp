@@ -7,6 +7,7 @@
 //    lumped and Dirichlet preconditioners, also after update() and updateStiffness();
 //  - after update() with other contact rows on the same factors, only the changed rows' columns
 //    are solved for, and the blocks are still B_s K_s+ B_s^T;
+//  - the Schur assembly (the default) and the solves' give the same blocks, also with K freed;
 //  - an unknown "Dual operator" is an error listing the valid values.
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
@@ -296,6 +297,53 @@ TEUCHOS_UNIT_TEST(ExplicitDual, OnlyChangedRowsAreSolvedFor) {
   }
 }
 
+// "Explicit assembly": schur (the default) assembles every block from the Schur complement of
+// K_reg onto the dofs B_s touches (fixing dofs among them in 3D: the box's Dirichlet rows),
+// solves by the columns of B_s^T; both give B_s K_s+ B_s^T column by column, in 2D and 3D, with
+// contact rows. With "Keep subdomain matrices" = false the Schur assembly still takes place, and
+// K is freed after it.
+TEUCHOS_UNIT_TEST(ExplicitDual, SchurAndSolvesAssembliesAgree) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(4, 2, 1, 3, 3, 3, false);
+  for (const int dim : {2, 3}) {
+    std::vector<std::vector<double>> blocks[2];
+    for (const std::string assembly : {"schur", "solves"})
+      for (const bool keep : {true, false}) {
+        Teuchos::ParameterList params = parameters("explicit", "dirichlet");
+        params.set("Explicit assembly", assembly);
+        params.set("Keep subdomain matrices", keep);
+        tfeti::FetiSolver solver(
+            comm, dim == 2 ? square().numSubdomains() : box.numSubdomains(),
+            dim == 2 ? local2d(tfeti_test::elasticity()) : local3d(box), params,
+            dim == 2 ? std::vector<tfeti::InequalityRow>{} : floorRows(box, 3.0, 0.5));
+        const auto ex = solver.dualOperator()->explicitPart();
+        long long nonEmpty = 0;
+        for (const auto& b : ex->blocks()) nonEmpty += b.rows() > 0 ? 1 : 0;
+        const double err = blockError(solver, *ex);
+        out << dim << "D, " << assembly << (keep ? "" : ", K freed") << ": "
+            << tfeti_test::globalSum(*comm, ex->schurAssemblies()) << " of "
+            << tfeti_test::globalSum(*comm, ex->assemblies())
+            << " blocks from the Schur complement; max |F_s - B_s K_s+ B_s^T| / max |F_s| = " << err
+            << "\n";
+        TEST_COMPARE(err, <, 1e-12);
+        TEST_EQUALITY(ex->schurAssemblies(), assembly == "schur" ? nonEmpty : 0LL);
+        TEST_EQUALITY(solver.explicitAssembly().schurBlocks,
+                      assembly == "schur" ? tfeti_test::globalSum(*comm, nonEmpty) : 0LL);
+        for (const auto& sub : solver.subdomains()) TEST_EQUALITY(sub->hasStiffness(), keep);
+        if (keep)
+          for (std::size_t i = 0; i < ex->blocks().size(); ++i)
+            blocks[assembly == "schur" ? 0 : 1].push_back(ex->fullBlock(i));
+      }
+    double diff = 0.0;
+    TEST_EQUALITY(blocks[0].size(), blocks[1].size());
+    for (std::size_t i = 0; i < blocks[0].size() && i < blocks[1].size(); ++i)
+      diff = std::max(diff, relativeDifference(blocks[0][i], blocks[1][i]));
+    out << dim << "D: schur against solves, max relative difference "
+        << tfeti_test::globalMax(*comm, diff) << "\n";
+    TEST_COMPARE(tfeti_test::globalMax(*comm, diff), <, 1e-12);
+  }
+}
+
 TEUCHOS_UNIT_TEST(ExplicitDual, UnknownValueIsAnError) {
   auto comm = Tpetra::getDefaultComm();
   const std::string msg = tfeti_test::messageOf([&] {
@@ -307,4 +355,14 @@ TEUCHOS_UNIT_TEST(ExplicitDual, UnknownValueIsAnError) {
   TEST_ASSERT(tfeti_test::contains(msg, "gpu"));
   TEST_ASSERT(tfeti_test::contains(msg, "implicit"));
   TEST_ASSERT(tfeti_test::contains(msg, "explicit"));
+  Teuchos::ParameterList params = parameters("explicit", "lumped");
+  params.set("Explicit assembly", "schurr");
+  const std::string typo = tfeti_test::messageOf([&] {
+    tfeti::FetiSolver solver(comm, square().numSubdomains(), local2d(tfeti_test::poisson()),
+                             params);
+  });
+  out << typo << "\n";
+  TEST_ASSERT(tfeti_test::contains(typo, "Explicit assembly"));
+  TEST_ASSERT(tfeti_test::contains(typo, "schurr"));
+  TEST_ASSERT(tfeti_test::contains(typo, "solves"));
 }

@@ -350,6 +350,59 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodPackedSolvesAgreeWithCholmodsOwn) {
   }
 }
 
+// The block of A^{-1} on a set of dofs (the explicit dual operator's Schur assembly): against
+// the solves with the unit columns, for dofs in any order, the boundary of a grid (what a
+// subdomain's dual rows touch) and scattered ones; the factor of factorize() stays as it was.
+TEUCHOS_UNIT_TEST(LocalSolver, CholmodInverseBlockIsTheSolvesBlock) {
+  const int g = 40;
+  for (const std::string type : {"cholmod", "cholmod-simplicial", "cholmod-supernodal"})
+    for (const double shift : {1.0, 1e-4}) {
+      const tfeti::CsrMatrix A = laplacian2d(g, shift);
+      const int n = A.rows;
+      auto s = tfeti::createLocalSolver(type);
+      s->factorize(A);
+      std::vector<int> boundary, scattered;
+      for (int i = 0; i < n; ++i) {
+        const int x = i % g, y = i / g;
+        if (x == 0 || y == 0 || x == g - 1 || y == g - 1) boundary.push_back(i);
+        if (i % 37 == 5) scattered.push_back(i);
+      }
+      std::reverse(scattered.begin(), scattered.end());  // not in increasing order
+      for (const auto& dofs : {boundary, scattered, std::vector<int>{n - 1}}) {
+        const int k = static_cast<int>(dofs.size());
+        std::vector<double> inv, unit(static_cast<std::size_t>(n) * k, 0.0), x(unit.size());
+        TEST_ASSERT(s->inverseBlock(A, dofs, inv));
+        TEST_EQUALITY(inv.size(), static_cast<std::size_t>(k) * k);
+        for (int j = 0; j < k; ++j) unit[std::size_t(j) * n + dofs[j]] = 1.0;
+        s->solve(unit.data(), x.data(), k);
+        double diff = 0.0, size = 0.0;
+        for (int j = 0; j < k; ++j)
+          for (int i = 0; i < k; ++i) {
+            const double ref = x[std::size_t(j) * n + dofs[i]];
+            diff = std::max(diff, std::abs(inv[std::size_t(j) * k + i] - ref));
+            size = std::max(size, std::abs(ref));
+          }
+        out << type << ", shift " << shift << ", " << k << " dofs: max difference " << diff
+            << " of " << size << "\n";
+        TEST_COMPARE(diff, <=, 1e-12 * size);
+      }
+      // The factor of factorize() is untouched: its solves are as accurate as before.
+      TEST_COMPARE(solveAndMeasure(*s, A, 1, 31).residual, <, 1e-12);
+      TEST_COMPARE(solveAndMeasure(*s, A, 12, 32).residual, <, 1e-12);
+      std::vector<double> inv;
+      TEST_THROW(s->inverseBlock(A, {3, 7, 3}, inv), std::logic_error);
+      TEST_THROW(s->inverseBlock(A, {n}, inv), std::logic_error);
+      // Another matrix than the one factorized (another pattern): not done, the caller solves.
+      TEST_ASSERT(!s->inverseBlock(laplacian2d(g - 1, shift), {0, 1}, inv));
+    }
+  // Amesos2's solvers offer none: the caller takes the solves.
+  auto klu = tfeti::createLocalSolver("klu2");
+  const tfeti::CsrMatrix A = laplacian2d(10, 1.0);
+  klu->factorize(A);
+  std::vector<double> inv;
+  TEST_ASSERT(!klu->inverseBlock(A, {0, 5}, inv));
+}
+
 // The Dirichlet preconditioner factorizes K(interior, interior) taken by CsrMatrix::submatrix:
 // every kept entry in its place, in the order of the rows, and nothing else.
 TEUCHOS_UNIT_TEST(CsrMatrix, SubmatrixKeepsTheChosenRowsAndColumns) {

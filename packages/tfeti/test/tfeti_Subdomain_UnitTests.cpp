@@ -132,6 +132,47 @@ TEUCHOS_UNIT_TEST(Subdomain, FloatingDistortedLShape) {
       checkFloating(mesh, ph, solver, out, success);
 }
 
+// The block of K+ on a set of dofs (the explicit dual operator's Schur assembly): the fixing
+// dofs among them zero, the others as K+ applied to the unit columns, for every local solver
+// (Amesos2's offer none: false); after releaseStiffness() there is none either.
+TEUCHOS_UNIT_TEST(Subdomain, PseudoInverseBlockIsKplusOnTheDofs) {
+  const tfeti::SubdomainMesh mesh = distortedLShape();
+  const tfeti::SubdomainData data = tfeti_test::subdomainData(mesh, tfeti_test::elasticity());
+  for (const auto& solver : tfeti::localSolverTypes()) {
+    tfeti::Subdomain sd(mesh.id, 2, mesh.coords, data.K, data.f, {}, Formulation::TFETI, solver);
+    const int n = sd.numDofs();
+    // Every fixing dof, and every third other one, descending.
+    std::vector<int> dofs;
+    for (int d = n - 1; d >= 0; --d)
+      if (d % 3 == 1 || std::count(sd.fixingDofs().begin(), sd.fixingDofs().end(), d))
+        dofs.push_back(d);
+    const int k = static_cast<int>(dofs.size());
+    std::vector<double> block;
+    const bool done = sd.pseudoInverseBlock(dofs, block);
+    TEST_EQUALITY(done, solver.rfind("cholmod", 0) == 0);
+    if (!done) continue;
+    std::vector<double> unit(static_cast<std::size_t>(n) * k, 0.0), x(unit.size());
+    for (int j = 0; j < k; ++j) unit[std::size_t(j) * n + dofs[j]] = 1.0;
+    sd.applyPseudoInverse(unit.data(), x.data(), k);
+    double diff = 0.0, size = 0.0, fixed = 0.0;
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < k; ++i) {
+        const double got = block[std::size_t(j) * k + i];
+        diff = std::max(diff, std::abs(got - x[std::size_t(j) * n + dofs[i]]));
+        size = std::max(size, std::abs(got));
+        for (int f : sd.fixingDofs())
+          if (dofs[i] == f || dofs[j] == f) fixed = std::max(fixed, std::abs(got));
+      }
+    out << solver << ": " << k << " dofs (" << sd.fixingDofs().size() << " fixing), max difference "
+        << diff << " of " << size << "\n";
+    TEST_EQUALITY(sd.fixingDofs().size(), 3u);
+    TEST_EQUALITY(fixed, 0.0);
+    TEST_COMPARE(diff, <=, 1e-12 * size);
+    sd.releaseStiffness();
+    TEST_ASSERT(!sd.pseudoInverseBlock(dofs, block));
+  }
+}
+
 TEUCHOS_UNIT_TEST(Subdomain, FloatingInFetiWithoutDirichletDofs) {
   // In FETI a subdomain away from the Dirichlet side floats just as in TFETI.
   const tfeti::SubdomainMesh mesh = rectangle().subdomain(4);

@@ -186,11 +186,13 @@ void addDualOperatorSummary(Json& s, const FetiDimensions& feti) {
   s["explicit_dual_bytes_max_rank"] = feti.explicitDualBytesMaxRank;
   if (feti.dualOperator == "explicit") {
     // Blocks assembled in the run, the columns solved for, and those that assembling each
-    // block anew would have solved: fewer where update() kept the unchanged rows' part.
+    // block anew would have solved: fewer where update() kept the unchanged rows' part; the
+    // blocks of those assembled from the Schur complement (their columns count as solved).
     Json a = Json::object();
     a["blocks"] = feti.explicitAssembly.blocks;
     a["columns_solved"] = feti.explicitAssembly.columnsSolved;
     a["columns_full"] = feti.explicitAssembly.columnsFull;
+    a["schur_blocks"] = feti.explicitAssembly.schurBlocks;
     s["explicit_dual_assembly"] = a;
   }
   const auto& dev = feti.explicitDevice;

@@ -67,6 +67,13 @@ DenseStorage parseDenseStorage(const std::string& name) {
                               "\" is not one of: packed, full");
 }
 
+BlockAssembly parseBlockAssembly(const std::string& name) {
+  if (name == "schur") return BlockAssembly::Schur;
+  if (name == "solves") return BlockAssembly::Solves;
+  throw std::invalid_argument("FETI \"Explicit assembly\" \"" + name +
+                              "\" is not one of: schur, solves");
+}
+
 ExplicitDevice parseExplicitDevice(const std::string& name) {
   if (name == "host") return ExplicitDevice::Host;
   if (name == "gpu") return ExplicitDevice::Gpu;
@@ -95,10 +102,12 @@ ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
                                            std::vector<std::shared_ptr<Subdomain>> subdomains,
                                            DenseStorage storage,
                                            const ExplicitDualOperator* previous,
-                                           ExplicitDevice device)
+                                           ExplicitDevice device, BlockAssembly assembly,
+                                           bool releaseStiffness)
     : subdomains_(std::move(subdomains)),
       storage_(storage),
       multiplierMap_(tearing.multiplierMap),
+      assembly_(assembly),
       device_(device) {
   // Before any assembly: a run asking for a device it cannot have stops at once.
   checkExplicitDevice("explicit", device_);
@@ -134,6 +143,7 @@ ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
       // their part of the old block, and only the others are solved for.
       assemble(i, sameFactor ? it->second : nullptr);
     }
+    if (releaseStiffness) subdomains_[i]->releaseStiffness();
   }
   if (device_ == ExplicitDevice::Gpu) uploadBlocks();
 }
@@ -288,6 +298,32 @@ void solveColumns(const Block& b, const std::vector<std::size_t>& first,
   }
 }
 
+// The whole of F_s = B_s K+ B_s^T into full (m x m, column-major, zero on entry) from the block
+// of K+ on the dofs B_s touches: F_s(r, q) = sum of c_k c_l Z(dof_k, dof_l) over row r's entries
+// k and row q's entries l. False where the subdomain cannot give that block.
+bool schurColumns(const Block& b, const std::vector<std::size_t>& first, Subdomain& s,
+                  std::vector<double>& full) {
+  std::vector<int> dofs(b.entryDof);
+  std::sort(dofs.begin(), dofs.end());
+  dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+  std::vector<double> Z;
+  if (!s.pseudoInverseBlock(dofs, Z)) return false;
+  const std::size_t k = dofs.size(), m = static_cast<std::size_t>(b.rows());
+  std::vector<std::size_t> at(b.entryDof.size());  // entry -> its dof's place in dofs
+  for (std::size_t e = 0; e < at.size(); ++e)
+    at[e] = std::lower_bound(dofs.begin(), dofs.end(), b.entryDof[e]) - dofs.begin();
+  for (std::size_t q = 0; q < m; ++q) {
+    double* f = full.data() + q * m;
+    for (std::size_t l = first[q]; l < first[q + 1]; ++l) {
+      const double* z = Z.data() + at[l] * k;
+      const double cl = b.entryCoef[l];
+      for (std::size_t e = 0; e < at.size(); ++e)
+        f[b.entryRow[e]] += cl * b.entryCoef[e] * z[at[e]];
+    }
+  }
+  return true;
+}
+
 // F_s in the given storage from full, symmetric to rounding: the mean of the two triangles.
 std::shared_ptr<std::vector<double>> symmetricStorage(const std::vector<double>& full, int m,
                                                       DenseStorage storage) {
@@ -320,7 +356,12 @@ void ExplicitDualOperator::assemble(std::size_t i, const Block* old) const {
   std::vector<int> solved;
   for (int r = 0; r < m; ++r)
     if (from[r] < 0) solved.push_back(r);
-  solveColumns(b, first, solved, s, full);
+  // A block assembled anew from the Schur complement; kept rows (few changed ones) by solves.
+  const bool anew = m > 0 && static_cast<int>(solved.size()) == m;
+  if (anew && assembly_ == BlockAssembly::Schur && schurColumns(b, first, s, full))
+    ++schurAssemblies_;
+  else
+    solveColumns(b, first, solved, s, full);
   b.F = symmetricStorage(full, m, storage_);
   b.version = s.factorVersion();
   ++assemblies_;

@@ -5,8 +5,10 @@
 //   F x = sum_s R_s^T F_s R_s x      (R_s: the rows of subdomain s)
 // is applied as: import x onto the rows touching this rank's subdomains (one Tpetra Import),
 // one dense symmetric matrix-vector product (BLAS-2) per subdomain, export-add back (the same
-// Import in reverse). F_s is assembled with multi-right-hand-side solves: K_s+ applied to the
-// dense columns of B_s^T, a block of columns at a time (BLAS-3 in CHOLMOD's supernodal solve).
+// Import in reverse). F_s is assembled from the Schur complement of K_reg onto the dofs B_s
+// touches (dense LAPACK on the trailing block of a factorization with those dofs last), or with
+// multi-right-hand-side solves: K_s+ applied to the dense columns of B_s^T, a block of columns
+// at a time (BLAS-3 in CHOLMOD's supernodal solve); BlockAssembly below.
 //
 // Device (FETI "Explicit device" = gpu, a TFETI_ENABLE_CUDA build): the blocks are also held
 // on a CUDA device (batched_dual::DeviceBlocks, gpu/src/; packed storage as the upper triangle
@@ -42,6 +44,15 @@ enum class DenseStorage { Packed, Full };
 
 DenseStorage parseDenseStorage(const std::string& name);
 
+// How a block is assembled anew (FETI "Explicit assembly"): schur: F_s = C_s Z_s C_s^T, Z_s the
+// block of K_s+ on the dofs B_s touches (C_s: B_s's columns there), the inverse of the Schur
+// complement of K_reg onto them, from one factorization of K_reg with those dofs ordered last
+// (Subdomain::pseudoInverseBlock); solves: K_s+ applied to the columns of B_s^T. A subdomain
+// whose K was released, or whose local solver offers no inverse block (Amesos2's), takes the
+// solves; so do the changed rows of a partial reassembly.
+enum class BlockAssembly { Schur, Solves };
+BlockAssembly parseBlockAssembly(const std::string& name);
+
 // Where the F_s are applied: on the host by BLAS-2, or on a CUDA device (gpu).
 enum class ExplicitDevice { Host, Gpu };
 ExplicitDevice parseExplicitDevice(const std::string& name);
@@ -57,10 +68,14 @@ class ExplicitDualOperator {
   // whose unchanged blocks are taken over instead of being assembled again.
   // device = Gpu: throws std::invalid_argument naming FETI "Explicit device" when this build
   // has no CUDA or no device is visible, std::runtime_error when the device cannot hold the
-  // blocks.
+  // blocks. releaseStiffness: every subdomain's K is freed (Subdomain::releaseStiffness) once
+  // its block is assembled or taken over, so that the Schur assembly, which needs K, does not
+  // keep every K until the last block (FETI "Keep subdomain matrices" = false).
   ExplicitDualOperator(const Tearing& tearing, std::vector<std::shared_ptr<Subdomain>> subdomains,
                        DenseStorage storage, const ExplicitDualOperator* previous = nullptr,
-                       ExplicitDevice device = ExplicitDevice::Host);
+                       ExplicitDevice device = ExplicitDevice::Host,
+                       BlockAssembly assembly = BlockAssembly::Schur,
+                       bool releaseStiffness = false);
 
   // Y = alpha F X + beta Y on the multiplier map (collective: one Import and one Export).
   void apply(const MultiVector& X, MultiVector& Y, Scalar alpha, Scalar beta) const;
@@ -92,6 +107,9 @@ class ExplicitDualOperator {
   long long assembledColumns() const { return assembledColumns_; }
   // The rows of those blocks: the columns that assembling each of them anew would have solved.
   long long assembledRows() const { return assembledRows_; }
+  // Of those blocks, the ones assembled from the Schur complement (BlockAssembly::Schur); their
+  // m_s columns count in assembledColumns() too.
+  long long schurAssemblies() const { return schurAssemblies_; }
   double assemblySeconds() const { return assemblySeconds_; }
   // Writes this rank's blocks to `file`: "TFETIF01", int64 block count, then per block int64 m
   // and m*m doubles (full, column-major), all little-endian as the machine writes them
@@ -135,7 +153,9 @@ class ExplicitDualOperator {
   Teuchos::RCP<const Map> multiplierMap_, overlapMap_;
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> import_;
   mutable std::vector<Block> blocks_;
-  mutable long long assemblies_ = 0, assembledColumns_ = 0, assembledRows_ = 0;
+  BlockAssembly assembly_;
+  mutable long long assemblies_ = 0, assembledColumns_ = 0, assembledRows_ = 0,
+                    schurAssemblies_ = 0;
   mutable double assemblySeconds_ = 0.0;
   mutable Teuchos::RCP<MultiVector> xo_, yo_, sum_;
   mutable std::vector<double> xb_, yb_;

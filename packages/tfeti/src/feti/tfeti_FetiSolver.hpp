@@ -278,9 +278,11 @@ class FetiSolver {
   // "Dual operator" = explicit: the assemblies of F_s since set-up (every explicit operator this
   // solver built, all ranks): blocks assembled, the columns solved for, and the columns that
   // assembling each of those blocks anew would have solved (after update() on the same factors
-  // only the changed rows are solved for). All 0 when implicit. Collective.
+  // only the changed rows are solved for), and the blocks of those assembled from the Schur
+  // complement ("Explicit assembly" = schur; their columns count as solved). All 0 when
+  // implicit. Collective.
   struct ExplicitAssembly {
-    long long blocks = 0, columnsSolved = 0, columnsFull = 0;
+    long long blocks = 0, columnsSolved = 0, columnsFull = 0, schurBlocks = 0;
   };
   ExplicitAssembly explicitAssembly() const;
   // "implicit" or "explicit": how F is applied.
@@ -334,7 +336,9 @@ class FetiSolver {
   bool keepOrBuildTearing(const std::vector<InequalityRow>& inequalities, bool subdomainsKept);
   void requireNoRowOnEliminatedDofs() const;
   void buildDualRhs();
-  void buildDualOperator();
+  // releaseStiffness: the explicit operator frees every subdomain's K once its F_s is assembled
+  // (the Schur assembly needs K; "Keep subdomain matrices" = false).
+  void buildDualOperator(bool releaseStiffness = false);
   // The dual solve: PCPG (tfeti_FetiSolverSolve.cpp), the QP of the inequality rows
   // (tfeti_FetiSolverQp.cpp).
   DualResult solvePcpg();

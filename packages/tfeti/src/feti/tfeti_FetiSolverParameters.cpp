@@ -65,6 +65,12 @@ void addMethodChoices(Teuchos::ParameterList& pl) {
          "bytes) or the full square; with Explicit device = gpu, packed is the upper triangle "
          "by 32 x 32 tiles on the device (docs/dual_operator.md)",
          choice({"packed", "full"}));
+  pl.set("Explicit assembly", "schur",
+         "Dual operator = explicit: how each F_s is assembled: schur: from the inverse of the "
+         "Schur complement of K_reg onto the dofs B_s touches (a factorization with those dofs "
+         "last, then dense LAPACK); solves: K+ applied to the columns of B_s^T. Local solvers "
+         "other than CHOLMOD, and K released, take the solves (docs/dual_operator.md)",
+         choice({"schur", "solves"}));
   pl.set("Explicit device", "host",
          "Dual operator = explicit: where the F_s are applied: host (BLAS-2 per subdomain) or "
          "gpu (kept on a CUDA device, one batched product per apply; a TFETI_ENABLE_CUDA build, "

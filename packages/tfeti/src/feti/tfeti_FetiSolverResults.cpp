@@ -235,16 +235,17 @@ FetiSolver::ExplicitDeviceWork FetiSolver::explicitDeviceWork() const {
 }
 
 FetiSolver::ExplicitAssembly FetiSolver::explicitAssembly() const {
-  long long mine[3] = {explicitAssemblyDone_.blocks, explicitAssemblyDone_.columnsSolved,
-                       explicitAssemblyDone_.columnsFull};
+  long long mine[4] = {explicitAssemblyDone_.blocks, explicitAssemblyDone_.columnsSolved,
+                       explicitAssemblyDone_.columnsFull, explicitAssemblyDone_.schurBlocks};
   if (const auto& ex = F_->explicitPart()) {
     mine[0] += ex->assemblies();
     mine[1] += ex->assembledColumns();
     mine[2] += ex->assembledRows();
+    mine[3] += ex->schurAssemblies();
   }
-  long long all[3] = {0, 0, 0};
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 3, mine, all);
-  return {all[0], all[1], all[2]};
+  long long all[4] = {0, 0, 0, 0};
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 4, mine, all);
+  return {all[0], all[1], all[2], all[3]};
 }
 
 std::string FetiSolver::dualOperatorKind() const {

@@ -195,6 +195,13 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
       parsePreconditioner(params_.get<std::string>("Preconditioner"));
   const std::string solver = params_.get<std::string>("Local solver");
   const bool kept = keepOrBuildTearing(inequalities, subdomainsKept);
+  // The explicit operator's Schur assembly factorizes K_reg again with the dual rows' dofs last:
+  // then K is freed by the operator, a subdomain's once its F_s is assembled.
+  const bool release = !params_.get<bool>("Keep subdomain matrices");
+  const bool releaseNow =
+      release &&
+      !(params_.get<std::string>("Dual operator") == "explicit" &&
+        parseBlockAssembly(params_.get<std::string>("Explicit assembly")) == BlockAssembly::Schur);
   if (!kept) {
     PhaseTimer t(*comm_, timings_.coarse, &memory_, "coarse");
     coarse_ = std::make_unique<CoarseSpace>(tearing_, subdomains_,
@@ -214,7 +221,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
         if (stiffnessChanged_[i] || dofs != subdomains_[i]->interfaceDofs())
           subdomains_[i]->setupPreconditioner(dofs, precType, solver);
         // Freed one by one, so that K and the preconditioner's factors never coexist in full.
-        if (!params_.get<bool>("Keep subdomain matrices")) subdomains_[i]->releaseStiffness();
+        if (releaseNow) subdomains_[i]->releaseStiffness();
       }
     });
     stiffnessChanged_.assign(subdomains_.size(), 0);
@@ -222,11 +229,11 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
       M_ = Teuchos::rcp(new DualPreconditioner(tearing_, subdomains_));
   }
   Kplus_ = Teuchos::rcp(new PseudoInverseOperator(tearing_.primalMap, subdomains_));
-  buildDualOperator();
+  buildDualOperator(release && !releaseNow);
   countAnalyses();
 }
 
-void FetiSolver::buildDualOperator() {
+void FetiSolver::buildDualOperator(bool releaseStiffness) {
   const ExplicitDevice device = parseExplicitDevice(params_.get<std::string>("Explicit device"));
   if (!F_.is_null() && F_->explicitPart()) {
     const auto& ex = F_->explicitPart();
@@ -234,6 +241,7 @@ void FetiSolver::buildDualOperator() {
     explicitAssemblyDone_.blocks += ex->assemblies();
     explicitAssemblyDone_.columnsSolved += ex->assembledColumns();
     explicitAssemblyDone_.columnsFull += ex->assembledRows();
+    explicitAssemblyDone_.schurBlocks += ex->schurAssemblies();
   }
   if (params_.get<std::string>("Dual operator") != "explicit") {
     F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
@@ -260,8 +268,9 @@ void FetiSolver::buildDualOperator() {
     PhaseTimer t(*comm_, timings_.dualOperator, &memory_, "dual_operator");
     const DenseStorage storage = parseDenseStorage(params_.get<std::string>("Explicit storage"));
     collectively(*comm_, [&] {
-      ex = std::make_shared<const ExplicitDualOperator>(tearing_, subdomains_, storage,
-                                                        previous.get(), device);
+      ex = std::make_shared<const ExplicitDualOperator>(
+          tearing_, subdomains_, storage, previous.get(), device,
+          parseBlockAssembly(params_.get<std::string>("Explicit assembly")), releaseStiffness);
     });
   }
   previous.reset();

@@ -3,7 +3,9 @@
 
 #include <cholmod.h>
 #include <dlfcn.h>
+#include <Teuchos_LAPACK.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -233,6 +235,55 @@ class CholmodSolver final : public LocalSolver {
     if (repack) pack();
   }
 
+  bool inverseBlock(const CsrMatrix& A, const std::vector<int>& dofs,
+                    std::vector<double>& inv) override {
+    if (!L_ || !analysis_->matches(kind_, A)) return false;
+    const std::size_t k = dofs.size();
+    const int n = A.rows;
+    std::vector<int> at(n, -1);  // a dof's place in dofs
+    for (std::size_t i = 0; i < k; ++i) {
+      if (dofs[i] < 0 || dofs[i] >= n || at[dofs[i]] >= 0)
+        throw std::logic_error("cholmod: inverseBlock: dof " + std::to_string(dofs[i]) +
+                               " is out of range or given twice");
+      at[dofs[i]] = static_cast<int>(i);
+    }
+    inv.assign(k * k, 0.0);
+    if (k == 0) return true;
+    cholmod_factor* F = trailingFactor(A, at, k);
+    if (!F) return false;
+    // The trailing k x k triangle of L, dense: the Schur complement's Cholesky factor.
+    std::vector<double> Lkk(k * k, 0.0);
+    const std::size_t first = static_cast<std::size_t>(n) - k;
+    const int* super = static_cast<const int*>(F->super);
+    const int* pi = static_cast<const int*>(F->pi);
+    const int* px = static_cast<const int*>(F->px);
+    const int* rows = static_cast<const int*>(F->s);
+    const double* x = static_cast<const double*>(F->x);
+    for (std::size_t sn = 0; sn < F->nsuper; ++sn) {
+      const std::size_t k1 = super[sn], k2 = super[sn + 1];
+      if (k2 <= first) continue;
+      const std::size_t nsrow = pi[sn + 1] - pi[sn];
+      for (std::size_t j = std::max(k1, first); j < k2; ++j)
+        for (std::size_t ii = j - k1; ii < nsrow; ++ii)
+          Lkk[(rows[pi[sn] + ii] - first) + (j - first) * k] = x[px[sn] + ii + (j - k1) * nsrow];
+    }
+    std::vector<int> order(static_cast<const int*>(F->Perm) + first,
+                           static_cast<const int*>(F->Perm) + n);
+    cholmod_free_factor(&F, common());
+    int info = 0;
+    Teuchos::LAPACK<int, double>().POTRI('L', static_cast<int>(k), Lkk.data(), static_cast<int>(k),
+                                         &info);
+    if (info != 0)
+      throw std::runtime_error("cholmod: inverseBlock: LAPACK potri failed (info " +
+                               std::to_string(info) + ")");
+    for (std::size_t j = 0; j < k; ++j)
+      for (std::size_t i = j; i < k; ++i) {
+        const std::size_t r = at[order[i]], c = at[order[j]];
+        inv[r + c * k] = inv[c + r * k] = Lkk[i + j * k];
+      }
+    return true;
+  }
+
   std::size_t factorBytes() const override {
     if (!L_) return 0;
     if (L_->is_super)
@@ -268,6 +319,50 @@ class CholmodSolver final : public LocalSolver {
       packedBackwardSolve(*L_, analysis_->packed, w.y.data(), w.w.data());
       for (std::size_t i = 0; i < n; ++i) xj[perm[i]] = w.y[i];
     }
+  }
+
+  // A supernodal factorization of A (not kept) in the order of L_ with the k dofs where at[] >= 0
+  // moved to the end: the other dofs keep their fill-reducing order. Null where CHOLMOD did not
+  // keep that order (the trailing columns would not be the dofs).
+  cholmod_factor* trailingFactor(const CsrMatrix& A, const std::vector<int>& at, std::size_t k) {
+    const int n = A.rows;
+    const int* perm = static_cast<const int*>(analysis_->symbolic->Perm);
+    std::vector<int> order;
+    order.reserve(n);
+    for (int i = 0; i < n; ++i)
+      if (at[perm[i]] < 0) order.push_back(perm[i]);
+    for (int i = 0; i < n; ++i)
+      if (at[perm[i]] >= 0) order.push_back(perm[i]);
+    cholmod_sparse S;
+    cholmodUpperView(A, S);
+    cholmod_common* c = common();
+    const int nmethods = c->nmethods, ordering = c->method[0].ordering, postorder = c->postorder,
+              supernodal = c->supernodal;
+    // The given order exactly (a postorder could move interior columns behind the dofs), and
+    // supernodal: the trailing block is dense, BLAS-3's work.
+    c->nmethods = 1;
+    c->method[0].ordering = CHOLMOD_GIVEN;
+    c->postorder = 0;
+    c->supernodal = CHOLMOD_SUPERNODAL;
+    cholmod_factor* F = cholmod_analyze_p(&S, order.data(), nullptr, 0, c);
+    c->nmethods = nmethods;
+    c->method[0].ordering = ordering;
+    c->postorder = postorder;
+    c->supernodal = supernodal;
+    if (!F) throw std::runtime_error("cholmod: symbolic analysis with the dofs last failed");
+    if (!cholmod_factorize(&S, F, c) || c->status != CHOLMOD_OK) {
+      const long minor = static_cast<long>(F->minor);
+      cholmod_free_factor(&F, c);
+      throw std::runtime_error("cholmod: the subdomain matrix is not positive definite (column " +
+                               std::to_string(minor) + " of " + std::to_string(n) +
+                               ", ordered with the dual rows' dofs last)");
+    }
+    const int* fp = static_cast<const int*>(F->Perm);
+    bool trailing = F->is_super;
+    for (std::size_t i = n - k; trailing && i < static_cast<std::size_t>(n); ++i)
+      trailing = at[fp[i]] >= 0;
+    if (!trailing) cholmod_free_factor(&F, c);
+    return F;
   }
 
   // Supernodal factors are kept packed between solves.

@@ -19,6 +19,17 @@ class LocalSolver {
   virtual void factorize(const CsrMatrix& A) = 0;
   // x = A^{-1} b for nrhs right-hand sides stored column by column with leading dimension n.
   virtual void solve(const double* b, double* x, int nrhs = 1) = 0;
+  // The block of A^{-1} on the given distinct dofs (dense, k x k column-major, in their order)
+  // into inv, for the matrix A last factorized (same values): the inverse of the Schur complement
+  // of A onto those dofs, from a factorization of A with them ordered last, whose trailing
+  // triangle is the Schur complement's Cholesky factor (dense LAPACK: potri). It does not touch
+  // the factor of factorize(). Returns false where the solver cannot (then use solve() with the
+  // unit columns); the base class cannot.
+  virtual bool inverseBlock(const CsrMatrix& A, const std::vector<int>& dofs,
+                            std::vector<double>& inv) {
+    (void)A, (void)dofs, (void)inv;
+    return false;
+  }
   // Memory held by the factor (values and indices), in bytes: what one solve streams.
   virtual std::size_t factorBytes() const = 0;
   virtual std::string name() const = 0;

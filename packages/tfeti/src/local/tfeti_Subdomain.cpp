@@ -289,6 +289,27 @@ void Subdomain::applyPseudoInverse(const double* b, double* x, int nrhs) {
     for (int d : fixing_) x[static_cast<std::size_t>(j) * n + d] = 0.0;
 }
 
+bool Subdomain::pseudoInverseBlock(const std::vector<int>& dofs, std::vector<double>& block) {
+  if (!hasStiffness()) return false;
+  std::vector<char> fixed(numDofs_, 0);
+  for (int d : fixing_) fixed[d] = 1;
+  std::vector<int> kept, at;  // the dofs K+ is not zero on, and their places in dofs
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    if (!fixed.at(dofs[i])) {
+      kept.push_back(dofs[i]);
+      at.push_back(static_cast<int>(i));
+    }
+  std::vector<double> inv;
+  const bool done = fixing_.empty() ? factor_->inverseBlock(K_, kept, inv)
+                                    : factor_->inverseBlock(decoupleDofs(K_, fixing_), kept, inv);
+  if (!done) return false;
+  const std::size_t k = dofs.size(), kk = kept.size();
+  block.assign(k * k, 0.0);
+  for (std::size_t j = 0; j < kk; ++j)
+    for (std::size_t i = 0; i < kk; ++i) block[at[i] + at[j] * k] = inv[i + j * kk];
+  return true;
+}
+
 void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs, PreconditionerType type,
                                     const std::string& localSolver) {
   if (type != PreconditionerType::None && !hasStiffness())

@@ -86,6 +86,13 @@ class Subdomain {
   // x = K+ b for nrhs columns (leading dimension numDofs()).
   void applyPseudoInverse(const double* b, double* x, int nrhs = 1);
 
+  // The block of K+ on the given distinct dofs (k x k, column-major, in their order) into
+  // block: zero in the fixing dofs' rows and columns (K+ is zero there), elsewhere the inverse of
+  // the Schur complement of K_reg onto those dofs (LocalSolver::inverseBlock: one factorization
+  // of K_reg with them ordered last, not kept). Returns false where K was released or the local
+  // solver cannot: applyPseudoInverse() on the unit columns gives the same block then.
+  bool pseudoInverseBlock(const std::vector<int>& dofs, std::vector<double>& block);
+
   // The dofs the multipliers act on, in the order the preconditioner block uses them.
   void setupPreconditioner(const std::vector<int>& interfaceDofs, PreconditionerType type,
                            const std::string& localSolver);
