@@ -27,6 +27,10 @@
                                           on the device and explicit_device_work reported);
                                           a QP's multiplications to F (0.01); schur_blocks
                                           in (0, blocks] (schur) or 0 (solves)
+  check_summary.py dual_operator_auto DIR --chosen implicit|explicit
+                                          FETI "Dual operator" = auto: converged with that
+                                          operator, which the rule gives from the reported
+                                          dual_operator_auto (QP, F_s and factor bytes)
   check_summary.py explicit_export DIR FILE [FILE ...]
                                           the F_s blocks a run exported (FETI "Explicit
                                           export file"), read as gpu/ reads them: header, one
@@ -437,6 +441,29 @@ def same_dual_operator(dirs, tol, device="host", partial=False, mult_tol=0.01, a
                         fail(f"{d}: {name} column {k}: {b[k]:.15e} vs {a[k]:.15e}")
         print(f"OK: {d}: explicit F_s {total} bytes ({most} on the largest rank), counts "
               f"{counts(s)} and the solution as implicit to {tol}")
+
+
+def dual_operator_auto(d, chosen):
+    """FETI "Dual operator" = auto: the run converged with the expected operator, and the choice
+    follows the rule from what summary.json says it rested on: explicit exactly when the dual
+    problem is a QP and the F_s take fewer bytes than the subdomain factors (on the host)."""
+    s = load(d)
+    a = s.get("dual_operator_auto")
+    if not s.get("converged") or a is None:
+        fail(f"{d}: converged {s.get('converged')}, dual_operator_auto {a}: expected a converged "
+             "run with Dual operator = auto")
+    rule = "explicit" if a["qp"] and a["explicit_bytes"] < a["factor_bytes"] else "implicit"
+    if a["chosen"] != chosen or s["dual_operator"] != chosen or rule != chosen:
+        fail(f"{d}: dual_operator {s['dual_operator']}, dual_operator_auto {a} (the rule gives "
+             f"{rule}): expected {chosen}")
+    if "factor_bytes" in s and a["factor_bytes"] != s["factor_bytes"]:
+        fail(f"{d}: dual_operator_auto factor_bytes {a['factor_bytes']} against factor_bytes "
+             f"{s['factor_bytes']}")
+    if chosen == "explicit" and a["explicit_bytes"] != s["explicit_dual_bytes"]:
+        fail(f"{d}: dual_operator_auto explicit_bytes {a['explicit_bytes']} against the F_s "
+             f"held, explicit_dual_bytes {s['explicit_dual_bytes']}")
+    print(f"{d}: {chosen} (qp {a['qp']}, F_s {a['explicit_bytes']:.0f} bytes against factors "
+          f"{a['factor_bytes']:.0f})")
 
 
 def explicit_export(d, files):
@@ -1516,6 +1543,8 @@ if __name__ == "__main__":
                            "--partial" in args, option(args, "--mult-tol", 0.01),
                            args[args.index("--assembly") + 1] if "--assembly" in args
                            else "schur")
+    elif mode == "dual_operator_auto":
+        dual_operator_auto(args[0], args[args.index("--chosen") + 1])
     elif mode == "explicit_export":
         explicit_export(args[0], args[1:])
     elif mode == "factorizations_reused":

@@ -8,6 +8,7 @@
 //  - after update() with other contact rows on the same factors, only the changed rows' columns
 //    are solved for, and the blocks are still B_s K_s+ B_s^T;
 //  - the Schur assembly (the default) and the solves' give the same blocks, also with K freed;
+//  - "Dual operator" = auto chooses by the QP and the bytes;
 //  - an unknown "Dual operator" is an error listing the valid values.
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
@@ -342,6 +343,46 @@ TEUCHOS_UNIT_TEST(ExplicitDual, SchurAndSolvesAssembliesAgree) {
         << tfeti_test::globalMax(*comm, diff) << "\n";
     TEST_COMPARE(tfeti_test::globalMax(*comm, diff), <, 1e-12);
   }
+}
+
+// "Dual operator" = auto: explicit exactly where the dual problem is a QP and the F_s take fewer
+// bytes than the factors. The bytes it compared are the F_s an explicit run holds and the
+// factors the solver reports; a linear problem stays implicit, a QP goes either way with how much
+// of the subdomains' surface carries rows (3D, 2^3 elements each: two subdomains glued on one
+// face, F_s smaller than their factors; 3 x 3 x 3 of them, larger).
+TEUCHOS_UNIT_TEST(ExplicitDual, AutoChoosesByQpAndBytes) {
+  auto comm = Tpetra::getDefaultComm();
+  {
+    tfeti::FetiSolver solver(comm, square().numSubdomains(), local2d(tfeti_test::elasticity()),
+                             parameters("auto", "dirichlet"));
+    const auto& c = solver.dualOperatorChoice();
+    TEST_ASSERT(c.automatic);
+    TEST_ASSERT(!c.qp);
+    TEST_EQUALITY(c.chosen, std::string("implicit"));
+    TEST_EQUALITY(solver.dualOperatorKind(), std::string("implicit"));
+  }
+  std::vector<std::string> chosen;
+  for (const int s : {2, 3}) {
+    const tfeti_test::Box3d box(s, s == 2 ? 1 : s, s == 2 ? 1 : s, 2, 2, 2, false);
+    const auto rows = tfeti_test::floorRows(
+        box, [](double) { return 0.0; }, 0.0, true);
+    tfeti::FetiSolver solver(comm, box.numSubdomains(), local3d(box), parameters("auto", "lumped"),
+                             rows);
+    const auto c = solver.dualOperatorChoice();
+    tfeti::FetiSolver forced(comm, box.numSubdomains(), local3d(box),
+                             parameters("explicit", "lumped"), rows);
+    out << box.numSubdomains() << " subdomains: qp " << c.qp << ", F_s " << c.explicitBytes
+        << " bytes, factors " << c.factorBytes << " bytes: " << c.chosen << "\n";
+    TEST_ASSERT(c.automatic && c.qp);
+    TEST_EQUALITY(c.explicitBytes, static_cast<double>(forced.explicitDualBytes().total));
+    TEST_EQUALITY(c.factorBytes, static_cast<double>(solver.globalFactorBytes()));
+    const std::string expected = c.explicitBytes < c.factorBytes ? "explicit" : "implicit";
+    TEST_EQUALITY(c.chosen, expected);
+    TEST_EQUALITY(solver.dualOperatorKind(), expected);
+    chosen.push_back(c.chosen);
+  }
+  TEST_EQUALITY(chosen.front(), std::string("explicit"));
+  TEST_EQUALITY(chosen.back(), std::string("implicit"));
 }
 
 TEUCHOS_UNIT_TEST(ExplicitDual, UnknownValueIsAnError) {

@@ -67,6 +67,8 @@ struct FetiDimensions {
   tfeti::FetiSolver::ExplicitDeviceWork explicitDevice;
   // When explicit: the F_s assemblies of the run (tfeti::FetiSolver::explicitAssembly).
   tfeti::FetiSolver::ExplicitAssembly explicitAssembly;
+  // How the dual operator was chosen ("Dual operator" = auto: why).
+  tfeti::FetiSolver::DualOperatorChoice dualChoice;
 };
 
 // nonlinear_contact: how the load steps went ("nonlinear" object; the steps are in history).

@@ -177,6 +177,7 @@ FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::Pa
   d.explicitDualBytesMaxRank = bytes.maxPerRank;
   d.explicitDevice = solver.explicitDeviceWork();
   d.explicitAssembly = solver.explicitAssembly();
+  d.dualChoice = solver.dualOperatorChoice();
   return d;
 }
 
@@ -194,6 +195,15 @@ void addDualOperatorSummary(Json& s, const FetiDimensions& feti) {
     a["columns_full"] = feti.explicitAssembly.columnsFull;
     a["schur_blocks"] = feti.explicitAssembly.schurBlocks;
     s["explicit_dual_assembly"] = a;
+  }
+  if (feti.dualChoice.automatic) {
+    // "Dual operator" = auto: the last set-up's choice and what it rested on.
+    Json a = Json::object();
+    a["chosen"] = feti.dualChoice.chosen;
+    a["qp"] = feti.dualChoice.qp;
+    a["explicit_bytes"] = feti.dualChoice.explicitBytes;
+    a["factor_bytes"] = feti.dualChoice.factorBytes;
+    s["dual_operator_auto"] = a;
   }
   const auto& dev = feti.explicitDevice;
   s["explicit_device"] = dev.device;

@@ -34,9 +34,10 @@ VtuPiece vtuPiece(const tfeti::FetiSolver& solver);
 FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::ParameterList& feti);
 // "dual_operator" (implicit | explicit), "explicit_dual_bytes" (the dense local F_s on all ranks)
 // and "explicit_dual_bytes_max_rank" (the largest rank's): 0 when implicit; when explicit,
-// "explicit_dual_assembly" (blocks, columns_solved, columns_full, schur_blocks); "explicit_device"
-// (host | gpu) and, with gpu, "explicit_device_work" (applies, kernel_seconds, apply_seconds,
-// kernel_bytes_per_apply, transfer_bytes_per_apply, kernel_bandwidth_gb_per_s).
+// "explicit_dual_assembly" (blocks, columns_solved, columns_full, schur_blocks); with "Dual
+// operator" = auto, "dual_operator_auto" (chosen, qp, explicit_bytes, factor_bytes);
+// "explicit_device" (host | gpu) and, with gpu, "explicit_device_work" (applies, kernel_seconds,
+// apply_seconds, kernel_bytes_per_apply, transfer_bytes_per_apply, kernel_bandwidth_gb_per_s).
 void addDualOperatorSummary(Json& summary, const FetiDimensions& feti);
 // The keys every single-run summary of a structured problem or the two membranes shares:
 // formulation, preconditioner, local and dual solver, dimensions, convergence, iterations,

@@ -82,10 +82,10 @@ ExplicitDevice parseExplicitDevice(const std::string& name) {
 
 void checkExplicitDevice(const std::string& dualOperator, ExplicitDevice device) {
   if (device != ExplicitDevice::Gpu) return;
-  if (dualOperator != "explicit")
+  if (dualOperator != "explicit" && dualOperator != "auto")
     throw std::invalid_argument(
         "FETI \"Explicit device\" = gpu applies the explicit F_s: it needs \"Dual operator\" = "
-        "explicit (this run has " +
+        "explicit or auto (this run has " +
         dualOperator + ")");
 #ifdef TFETI_HAVE_CUDA
   std::string why;

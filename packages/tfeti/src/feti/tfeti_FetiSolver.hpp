@@ -287,6 +287,19 @@ class FetiSolver {
   ExplicitAssembly explicitAssembly() const;
   // "implicit" or "explicit": how F is applied.
   std::string dualOperatorKind() const;
+  // How the last set-up chose the dual operator. With "Dual operator" = auto: explicit where it
+  // was measured to pay (docs/dual_operator.md): on a device; on the host when the dual problem
+  // is a QP (inequality rows with bounds: SMALBE or penalty, many multiplications per
+  // factorization) and the F_s, in the chosen storage, take fewer bytes than the subdomain
+  // factors (the apply of either reads its bytes once or twice: memory bound), as in 2D and on
+  // unstructured 3D meshes, not on structured 3D ones. The bytes are of all ranks.
+  struct DualOperatorChoice {
+    bool automatic = false;
+    bool qp = false;
+    double explicitBytes = 0.0, factorBytes = 0.0;
+    std::string chosen = "implicit";
+  };
+  const DualOperatorChoice& dualOperatorChoice() const { return dualChoice_; }
   const Tearing& tearing() const { return tearing_; }
   const Teuchos::RCP<DualOperator>& dualOperator() const { return F_; }
   const CoarseSpace& coarseSpace() const { return *coarse_; }
@@ -339,6 +352,8 @@ class FetiSolver {
   // releaseStiffness: the explicit operator frees every subdomain's K once its F_s is assembled
   // (the Schur assembly needs K; "Keep subdomain matrices" = false).
   void buildDualOperator(bool releaseStiffness = false);
+  // Sets dualChoice_ from "Dual operator" and, for auto, the tearing and the factors. Collective.
+  void chooseDualOperator();
   // The dual solve: PCPG (tfeti_FetiSolverSolve.cpp), the QP of the inequality rows
   // (tfeti_FetiSolverQp.cpp).
   DualResult solvePcpg();
@@ -391,6 +406,7 @@ class FetiSolver {
   // current one's).
   ExplicitDualOperator::DeviceWork deviceWorkDone_;
   ExplicitAssembly explicitAssemblyDone_;  // this rank's, of the explicit operators replaced
+  DualOperatorChoice dualChoice_;
   Teuchos::RCP<std::ostream> out_;
   double toleranceFactor_ = 1.0;
   bool loadStepStart_ = false;

@@ -58,8 +58,10 @@ void addMethodChoices(Teuchos::ParameterList& pl) {
   pl.set("Dual operator", "implicit",
          "how F = B K+ B^T is applied: implicit: B^T, the subdomain factors' triangular solves, "
          "B; explicit: every subdomain's F_s = B_s K_s+ B_s^T assembled once as a dense "
-         "matrix and applied by BLAS-2 (docs/dual_operator.md)",
-         choice({"implicit", "explicit"}));
+         "matrix and applied by BLAS-2; auto: explicit with Explicit device = gpu, and on the "
+         "host when the dual problem is a QP (inequality rows) and the F_s take fewer bytes "
+         "than the subdomain factors, implicit otherwise (docs/dual_operator.md)",
+         choice({"implicit", "explicit", "auto"}));
   pl.set("Explicit storage", "packed",
          "Dual operator = explicit: the dense F_s as the packed upper triangle (half the "
          "bytes) or the full square; with Explicit device = gpu, packed is the upper triangle "

@@ -197,10 +197,11 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
   const bool kept = keepOrBuildTearing(inequalities, subdomainsKept);
   // The explicit operator's Schur assembly factorizes K_reg again with the dual rows' dofs last:
   // then K is freed by the operator, a subdomain's once its F_s is assembled.
+  chooseDualOperator();
   const bool release = !params_.get<bool>("Keep subdomain matrices");
   const bool releaseNow =
       release &&
-      !(params_.get<std::string>("Dual operator") == "explicit" &&
+      !(dualChoice_.chosen == "explicit" &&
         parseBlockAssembly(params_.get<std::string>("Explicit assembly")) == BlockAssembly::Schur);
   if (!kept) {
     PhaseTimer t(*comm_, timings_.coarse, &memory_, "coarse");
@@ -233,6 +234,33 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
   countAnalyses();
 }
 
+void FetiSolver::chooseDualOperator() {
+  DualOperatorChoice c;
+  c.chosen = params_.get<std::string>("Dual operator");
+  c.automatic = c.chosen == "auto";
+  if (c.automatic) {
+    c.qp = dualSolverFor(params_, tearing_.numInequalityRows) != "PCPG";
+    const bool packed =
+        parseDenseStorage(params_.get<std::string>("Explicit storage")) == DenseStorage::Packed;
+    double mine[2] = {0.0, 0.0}, all[2] = {0.0, 0.0};
+    for (std::size_t i = 0; i < subdomains_.size(); ++i) {
+      std::vector<GO> rows;
+      for (const auto& e : tearing_.subdomainRows[i]) rows.push_back(e.row);
+      std::sort(rows.begin(), rows.end());
+      const double m = static_cast<double>(std::unique(rows.begin(), rows.end()) - rows.begin());
+      mine[0] += packed ? 4.0 * m * (m + 1.0) : 8.0 * m * m;
+      mine[1] += static_cast<double>(subdomains_[i]->factorBytes());
+    }
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, mine, all);
+    c.explicitBytes = all[0];
+    c.factorBytes = all[1];
+    const bool device =
+        parseExplicitDevice(params_.get<std::string>("Explicit device")) == ExplicitDevice::Gpu;
+    c.chosen = device || (c.qp && c.explicitBytes < c.factorBytes) ? "explicit" : "implicit";
+  }
+  dualChoice_ = c;
+}
+
 void FetiSolver::buildDualOperator(bool releaseStiffness) {
   const ExplicitDevice device = parseExplicitDevice(params_.get<std::string>("Explicit device"));
   if (!F_.is_null() && F_->explicitPart()) {
@@ -243,7 +271,7 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     explicitAssemblyDone_.columnsFull += ex->assembledRows();
     explicitAssemblyDone_.schurBlocks += ex->schurAssemblies();
   }
-  if (params_.get<std::string>("Dual operator") != "explicit") {
+  if (dualChoice_.chosen != "explicit") {
     F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
     return;
   }
