@@ -15,8 +15,8 @@ membranes:  the two-membrane contact benchmark, H/h = 8, 16, 32 up to about 4M u
 cylinders_convergence: the two-cylinder problem against Hertz on 4 refinements, linear and
             quadratic elements
 cylinders:  the two-cylinder problem refined to about 100k, 1M and 4M unknowns
-cylinders_tied: the two-cylinder problem at about 100k, 500k, 1M and 4M unknowns (up to
-            --contact-max-dofs) solved with the frictionless pair (SMALBE) and with the same
+cylinders_tied: the two-cylinder problem at about 100k, 500k, 1M and 4M unknowns (between
+            --contact-min-dofs and --contact-max-dofs) solved with the frictionless pair (SMALBE) and with the same
             pair tied (Contact type = tied, PCPG): Hessian multiplications, solve times, ratios
 hertz_sphere: the elastic Hertz sphere (examples/hertz_sphere_elastic.xml, Hex8) refined to about
             0.1M and 1M unknowns (up to --max-dofs): Hessian multiplications, setup and solve
@@ -410,7 +410,7 @@ def cylinders_tied(o):
           "| tied mults | tied solve s | mults ratio | time ratio | p_max error |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|")
     for sf, subs in ((0.22, 16), (0.1, 80), (0.07, 160), (0.035, 650)):
-        if 78e3 * (0.25 / sf) ** 2 > o.contact_max_dofs:
+        if not o.contact_min_dofs <= 78e3 * (0.25 / sf) ** 2 <= o.contact_max_dofs:
             continue
         progress(f"two cylinders, size factor {sf} (about {78e3 * (0.25 / sf) ** 2:,.0f} "
                  f"unknowns): contact, then tied")
@@ -759,8 +759,8 @@ if __name__ == "__main__":
                    help="largest 3D case solved by KLU2 (its fill grows fast in 3D: at 32^3 "
                    "cells, 107,811 unknowns, it did not finish in 9 minutes on a quiet machine)")
     p.add_argument("--contact-min-dofs", type=float, default=0,
-                   help="smallest case of the cattaneo and cattaneo_sphere sets (with "
-                   "--contact-max-dofs: one size)")
+                   help="smallest case of the cattaneo, cattaneo_sphere and cylinders_tied "
+                   "sets (with --contact-max-dofs: one size)")
     p.add_argument("--contact-max-dofs", type=float, default=1.5e6,
                    help="largest two-cylinder case; the 4M one takes over an hour (docs)")
     p.add_argument("--set", action="append", default=[], metavar="LIST/NAME=VALUE",

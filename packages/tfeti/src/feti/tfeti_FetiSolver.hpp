@@ -111,10 +111,11 @@ class FetiSolver {
   // "Formulation" (TFETI | FETI), "Kernel tolerance" (1e-8), "Gluing" (nonredundant | redundant),
   // "Gluing at Dirichlet nodes" (true), "Inequality row scaling" (joined | separate),
   // "Preconditioner" (none | lumped | dirichlet), "Local solver" (cholmod | klu2 | tacho), "Dual
-  // solver" (auto | PCPG | SMALBE | penalty), "Dual operator" (implicit | explicit, with
-  // "Explicit storage" and "Explicit export file"; docs/dual_operator.md), "Keep subdomain
-  // matrices" (true; false frees K after the preconditioner's set-up) and the
-  // sublists "PCPG", "MPRGP", "SMALBE" and "Penalty".
+  // solver" (auto | PCPG | SMALBE | penalty), "Dual operator" (implicit | explicit | auto, with
+  // "Explicit assembly", "Explicit storage", "Explicit device" and "Explicit export file";
+  // docs/dual_operator.md), "Keep subdomain matrices" (true; false frees K after the
+  // preconditioner's set-up, or after the F_s's Schur assembly) and the sublists "PCPG",
+  // "MPRGP", "SMALBE" and "Penalty".
   static Teuchos::RCP<const Teuchos::ParameterList> validParameters();
   // "Preconditioning in face" is a parameter of the FETI list only: the solver sets it for MPRGP
   // (alone or inside SMALBE). Throws std::invalid_argument, saying where it belongs, when it is
