@@ -70,11 +70,12 @@ std::string explicitDualLine(const Teuchos::RCP<const tfeti::Comm>& comm, int nu
     return feti.isParameter(name) ? feti.get<std::string>(name) : std::string(fallback);
   };
   const bool packed = param("Explicit storage", "packed") == "packed";
+  const tfeti::DenseStorage storage =
+      packed ? tfeti::DenseStorage::Packed : tfeti::DenseStorage::Full;
   double mine[2] = {0.0, 0.0}, total = 0.0, maxRank = 0.0, largest = 0.0;  // bytes, largest m_s
   for (long long m : rows) {
-    const double md = static_cast<double>(m);
-    mine[0] += packed ? 4.0 * md * (md + 1.0) : 8.0 * md * md;
-    mine[1] = std::max(mine[1], md);
+    mine[0] += static_cast<double>(tfeti::explicitBlockBytes(storage, static_cast<std::size_t>(m)));
+    mine[1] = std::max(mine[1], static_cast<double>(m));
   }
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine[0], &total);
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &mine[0], &maxRank);

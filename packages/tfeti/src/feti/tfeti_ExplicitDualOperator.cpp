@@ -55,10 +55,11 @@ bool samePattern(const ExplicitDualOperator::Block& a, const ExplicitDualOperato
   return a.entryRow == b.entryRow && a.entryDof == b.entryDof && a.entryCoef == b.entryCoef;
 }
 
-std::size_t storedSize(DenseStorage s, std::size_t m) {
-  return s == DenseStorage::Packed ? m * (m + 1) / 2 : m * m;
-}
 }  // namespace
+
+std::size_t explicitBlockBytes(DenseStorage storage, std::size_t m) {
+  return sizeof(double) * (storage == DenseStorage::Packed ? m * (m + 1) / 2 : m * m);
+}
 
 DenseStorage parseDenseStorage(const std::string& name) {
   if (name == "packed") return DenseStorage::Packed;
@@ -327,7 +328,8 @@ bool schurColumns(const Block& b, const std::vector<std::size_t>& first, Subdoma
 // F_s in the given storage from full, symmetric to rounding: the mean of the two triangles.
 std::shared_ptr<std::vector<double>> symmetricStorage(const std::vector<double>& full, int m,
                                                       DenseStorage storage) {
-  auto F = std::make_shared<std::vector<double>>(storedSize(storage, m), 0.0);
+  auto F =
+      std::make_shared<std::vector<double>>(explicitBlockBytes(storage, m) / sizeof(double), 0.0);
   for (int j = 0; j < m; ++j)
     for (int r = 0; r <= j; ++r) {
       const double v = 0.5 * (full[static_cast<std::size_t>(j) * m + r] +

@@ -63,14 +63,7 @@ std::vector<long long> FetiSolver::dualRowsPerSubdomain(
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &localDpn, &dpn);
   const Tearing t = buildTearing(comm, numSubdomains, tearingInput(local), dpn,
                                  tearingOptions(valid), inequalities, equalities);
-  std::vector<long long> rows;
-  for (const auto& entries : t.subdomainRows) {
-    std::vector<GO> r;
-    for (const auto& e : entries) r.push_back(e.row);
-    std::sort(r.begin(), r.end());
-    rows.push_back(std::unique(r.begin(), r.end()) - r.begin());
-  }
-  return rows;
+  return subdomainRowCounts(t);
 }
 
 FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
@@ -240,15 +233,11 @@ void FetiSolver::chooseDualOperator() {
   c.automatic = c.chosen == "auto";
   if (c.automatic) {
     c.qp = dualSolverFor(params_, tearing_.numInequalityRows) != "PCPG";
-    const bool packed =
-        parseDenseStorage(params_.get<std::string>("Explicit storage")) == DenseStorage::Packed;
+    const DenseStorage storage = parseDenseStorage(params_.get<std::string>("Explicit storage"));
+    const std::vector<long long> rows = subdomainRowCounts(tearing_);
     double mine[2] = {0.0, 0.0}, all[2] = {0.0, 0.0};
     for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-      std::vector<GO> rows;
-      for (const auto& e : tearing_.subdomainRows[i]) rows.push_back(e.row);
-      std::sort(rows.begin(), rows.end());
-      const double m = static_cast<double>(std::unique(rows.begin(), rows.end()) - rows.begin());
-      mine[0] += packed ? 4.0 * m * (m + 1.0) : 8.0 * m * m;
+      mine[0] += static_cast<double>(explicitBlockBytes(storage, rows[i]));
       mine[1] += static_cast<double>(subdomains_[i]->factorBytes());
     }
     Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 2, mine, all);

@@ -608,4 +608,15 @@ void ScalingGroups::apply(double* x) const {
   }
 }
 
+std::vector<long long> subdomainRowCounts(const Tearing& t) {
+  std::vector<long long> counts;
+  for (const auto& entries : t.subdomainRows) {
+    std::vector<GO> rows;
+    for (const auto& e : entries) rows.push_back(e.row);
+    std::sort(rows.begin(), rows.end());
+    counts.push_back(std::unique(rows.begin(), rows.end()) - rows.begin());
+  }
+  return counts;
+}
+
 }  // namespace tfeti

@@ -163,6 +163,9 @@ struct Tearing {
   }
 };
 
+// m_s of every local subdomain: the distinct rows of B that touch it (t.subdomainRows).
+std::vector<long long> subdomainRowCounts(const Tearing& t);
+
 // inequalities, equalities: the caller's rows this rank contributes (any rank may contribute any
 // row; they are gathered and numbered in a canonical order independent of the rank count).
 // Throws std::invalid_argument, on every rank alike, for a row that refers to a dof that does

@@ -238,37 +238,16 @@ class CholmodSolver final : public LocalSolver {
   bool inverseBlock(const CsrMatrix& A, const std::vector<int>& dofs,
                     std::vector<double>& inv) override {
     if (!L_ || !analysis_->matches(kind_, A)) return false;
+    const std::vector<int> at = placesIn(dofs, A.rows);
     const std::size_t k = dofs.size();
-    const int n = A.rows;
-    std::vector<int> at(n, -1);  // a dof's place in dofs
-    for (std::size_t i = 0; i < k; ++i) {
-      if (dofs[i] < 0 || dofs[i] >= n || at[dofs[i]] >= 0)
-        throw std::logic_error("cholmod: inverseBlock: dof " + std::to_string(dofs[i]) +
-                               " is out of range or given twice");
-      at[dofs[i]] = static_cast<int>(i);
-    }
     inv.assign(k * k, 0.0);
     if (k == 0) return true;
     cholmod_factor* F = trailingFactor(A, at, k);
     if (!F) return false;
-    // The trailing k x k triangle of L, dense: the Schur complement's Cholesky factor.
-    std::vector<double> Lkk(k * k, 0.0);
-    const std::size_t first = static_cast<std::size_t>(n) - k;
-    const int* super = static_cast<const int*>(F->super);
-    const int* pi = static_cast<const int*>(F->pi);
-    const int* px = static_cast<const int*>(F->px);
-    const int* rows = static_cast<const int*>(F->s);
-    const double* x = static_cast<const double*>(F->x);
-    for (std::size_t sn = 0; sn < F->nsuper; ++sn) {
-      const std::size_t k1 = super[sn], k2 = super[sn + 1];
-      if (k2 <= first) continue;
-      const std::size_t nsrow = pi[sn + 1] - pi[sn];
-      for (std::size_t j = std::max(k1, first); j < k2; ++j)
-        for (std::size_t ii = j - k1; ii < nsrow; ++ii)
-          Lkk[(rows[pi[sn] + ii] - first) + (j - first) * k] = x[px[sn] + ii + (j - k1) * nsrow];
-    }
-    std::vector<int> order(static_cast<const int*>(F->Perm) + first,
-                           static_cast<const int*>(F->Perm) + n);
+    std::vector<double> Lkk = trailingTriangle(*F, k);
+    // The factor's order of the dofs: Lkk's rows and columns.
+    const std::vector<int> order(static_cast<const int*>(F->Perm) + (A.rows - k),
+                                 static_cast<const int*>(F->Perm) + A.rows);
     cholmod_free_factor(&F, common());
     int info = 0;
     Teuchos::LAPACK<int, double>().POTRI('L', static_cast<int>(k), Lkk.data(), static_cast<int>(k),
@@ -319,6 +298,40 @@ class CholmodSolver final : public LocalSolver {
       packedBackwardSolve(*L_, analysis_->packed, w.y.data(), w.w.data());
       for (std::size_t i = 0; i < n; ++i) xj[perm[i]] = w.y[i];
     }
+  }
+
+  // For each of the n dofs its place in dofs, -1 where it is not among them. Throws
+  // std::logic_error for a dof out of range or given twice.
+  static std::vector<int> placesIn(const std::vector<int>& dofs, int n) {
+    std::vector<int> at(n, -1);
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      if (dofs[i] < 0 || dofs[i] >= n || at[dofs[i]] >= 0)
+        throw std::logic_error("cholmod: inverseBlock: dof " + std::to_string(dofs[i]) +
+                               " is out of range or given twice");
+      at[dofs[i]] = static_cast<int>(i);
+    }
+    return at;
+  }
+
+  // The trailing k x k triangle of the supernodal factor F, dense (column-major, the upper part
+  // zero): with the dofs last, the Schur complement's Cholesky factor.
+  static std::vector<double> trailingTriangle(const cholmod_factor& F, std::size_t k) {
+    std::vector<double> Lkk(k * k, 0.0);
+    const std::size_t first = F.n - k;
+    const int* super = static_cast<const int*>(F.super);
+    const int* pi = static_cast<const int*>(F.pi);
+    const int* px = static_cast<const int*>(F.px);
+    const int* rows = static_cast<const int*>(F.s);
+    const double* x = static_cast<const double*>(F.x);
+    for (std::size_t sn = 0; sn < F.nsuper; ++sn) {
+      const std::size_t k1 = super[sn], k2 = super[sn + 1];
+      if (k2 <= first) continue;
+      const std::size_t nsrow = pi[sn + 1] - pi[sn];
+      for (std::size_t j = std::max(k1, first); j < k2; ++j)
+        for (std::size_t ii = j - k1; ii < nsrow; ++ii)
+          Lkk[(rows[pi[sn] + ii] - first) + (j - first) * k] = x[px[sn] + ii + (j - k1) * nsrow];
+    }
+    return Lkk;
   }
 
   // A supernodal factorization of A (not kept) in the order of L_ with the k dofs where at[] >= 0
