@@ -298,30 +298,58 @@ TEUCHOS_UNIT_TEST(ExplicitDual, OnlyChangedRowsAreSolvedFor) {
   }
 }
 
+// The floor rows spread as mortar contact rows are, over several entries each: half of a row on
+// its node's z dof, the other half shared by the z dofs of the subdomain's bottom nodes within one
+// element. The Schur assembly forms such columns through w = Z C^T (schurColumns' second way),
+// the one-entry rows entry by entry.
+std::vector<tfeti::InequalityRow> spreadRows(const tfeti_test::Box3d& box,
+                                             std::vector<tfeti::InequalityRow> rows) {
+  for (auto& r : rows) {
+    const tfeti::ConstraintEntry c = r.entries.front();
+    const tfeti::SubdomainMesh m = box.subdomain(c.subdomain);
+    const int node = c.dof / 3;
+    std::vector<int> near;
+    for (int n = 0; n < m.numNodes(); ++n)
+      if (n != node && m.coords[3 * n + 2] == 0.0 &&
+          std::abs(m.coords[3 * n] - m.coords[3 * node]) <= 1.0 &&
+          std::abs(m.coords[3 * n + 1] - m.coords[3 * node + 1]) <= 1.0)
+        near.push_back(n);
+    r.entries = {{c.subdomain, c.dof, 0.5 * c.coef}};
+    for (int n : near)
+      r.entries.push_back(
+          {c.subdomain, 3 * n + 2, 0.5 * c.coef / static_cast<double>(near.size())});
+  }
+  return rows;
+}
+
 // "Explicit assembly": schur (the default) assembles every block from the Schur complement of
 // K_reg onto the dofs B_s touches (fixing dofs among them in 3D: the box's Dirichlet rows),
-// solves by the columns of B_s^T; both give B_s K_s+ B_s^T column by column, in 2D and 3D, with
-// contact rows. With "Keep subdomain matrices" = false the Schur assembly still takes place, and
-// K is freed after it.
+// solves by the columns of B_s^T; both give B_s K_s+ B_s^T column by column, in 2D, and in 3D
+// with contact rows of one entry each and spread over several (spreadRows). With "Keep subdomain
+// matrices" = false the Schur assembly still takes place, and K is freed after it.
 TEUCHOS_UNIT_TEST(ExplicitDual, SchurAndSolvesAssembliesAgree) {
   auto comm = Tpetra::getDefaultComm();
   const tfeti_test::Box3d box(4, 2, 1, 3, 3, 3, false);
-  for (const int dim : {2, 3}) {
+  for (const std::string rowKind : {"2D", "3D floor", "3D spread floor"}) {
+    const int dim = rowKind == "2D" ? 2 : 3;
+    const std::vector<tfeti::InequalityRow> rows =
+        rowKind == "2D"         ? std::vector<tfeti::InequalityRow>{}
+        : rowKind == "3D floor" ? floorRows(box, 3.0, 0.5)
+                                : spreadRows(box, floorRows(box, 3.0, 0.5));
     std::vector<std::vector<double>> blocks[2];
     for (const std::string assembly : {"schur", "solves"})
       for (const bool keep : {true, false}) {
         Teuchos::ParameterList params = parameters("explicit", "dirichlet");
         params.set("Explicit assembly", assembly);
         params.set("Keep subdomain matrices", keep);
-        tfeti::FetiSolver solver(
-            comm, dim == 2 ? square().numSubdomains() : box.numSubdomains(),
-            dim == 2 ? local2d(tfeti_test::elasticity()) : local3d(box), params,
-            dim == 2 ? std::vector<tfeti::InequalityRow>{} : floorRows(box, 3.0, 0.5));
+        tfeti::FetiSolver solver(comm, dim == 2 ? square().numSubdomains() : box.numSubdomains(),
+                                 dim == 2 ? local2d(tfeti_test::elasticity()) : local3d(box),
+                                 params, rows);
         const auto ex = solver.dualOperator()->explicitPart();
         long long nonEmpty = 0;
         for (const auto& b : ex->blocks()) nonEmpty += b.rows() > 0 ? 1 : 0;
         const double err = blockError(solver, *ex);
-        out << dim << "D, " << assembly << (keep ? "" : ", K freed") << ": "
+        out << rowKind << ", " << assembly << (keep ? "" : ", K freed") << ": "
             << tfeti_test::globalSum(*comm, ex->schurAssemblies()) << " of "
             << tfeti_test::globalSum(*comm, ex->assemblies())
             << " blocks from the Schur complement; max |F_s - B_s K_s+ B_s^T| / max |F_s| = " << err
@@ -339,7 +367,7 @@ TEUCHOS_UNIT_TEST(ExplicitDual, SchurAndSolvesAssembliesAgree) {
     TEST_EQUALITY(blocks[0].size(), blocks[1].size());
     for (std::size_t i = 0; i < blocks[0].size() && i < blocks[1].size(); ++i)
       diff = std::max(diff, relativeDifference(blocks[0][i], blocks[1][i]));
-    out << dim << "D: schur against solves, max relative difference "
+    out << rowKind << ": schur against solves, max relative difference "
         << tfeti_test::globalMax(*comm, diff) << "\n";
     TEST_COMPARE(tfeti_test::globalMax(*comm, diff), <, 1e-12);
   }

@@ -300,8 +300,13 @@ void solveColumns(const Block& b, const std::vector<std::size_t>& first,
 }
 
 // The whole of F_s = B_s K+ B_s^T into full (m x m, column-major, zero on entry) from the block
-// of K+ on the dofs B_s touches: F_s(r, q) = sum of c_k c_l Z(dof_k, dof_l) over row r's entries
-// k and row q's entries l. False where the subdomain cannot give that block.
+// Z of K+ on the k dofs B_s touches: F_s = C Z C^T, C the rows of B_s on those dofs (E entries).
+// Column q is sum over its entries l of c_l C Z(:, dof_l), taken the cheaper way: entry by entry
+// (E multiply-adds per entry l) or through w = sum of c_l Z(:, dof_l) and then C w (k per entry l,
+// E once). A gluing row has one entry, and its column goes the first way; a mortar contact row
+// has tens, and its column the second: on a 3D tetrahedral subdomain with 37,040 entries in 2429
+// rows the first way alone made the larger part of the assembly. False where the subdomain cannot
+// give Z.
 bool schurColumns(const Block& b, const std::vector<std::size_t>& first, Subdomain& s,
                   std::vector<double>& full) {
   std::vector<int> dofs(b.entryDof);
@@ -313,13 +318,25 @@ bool schurColumns(const Block& b, const std::vector<std::size_t>& first, Subdoma
   std::vector<std::size_t> at(b.entryDof.size());  // entry -> its dof's place in dofs
   for (std::size_t e = 0; e < at.size(); ++e)
     at[e] = std::lower_bound(dofs.begin(), dofs.end(), b.entryDof[e]) - dofs.begin();
+  const std::size_t E = at.size();
+  std::vector<double> w(k);
   for (std::size_t q = 0; q < m; ++q) {
     double* f = full.data() + q * m;
-    for (std::size_t l = first[q]; l < first[q + 1]; ++l) {
-      const double* z = Z.data() + at[l] * k;
-      const double cl = b.entryCoef[l];
-      for (std::size_t e = 0; e < at.size(); ++e)
-        f[b.entryRow[e]] += cl * b.entryCoef[e] * z[at[e]];
+    const std::size_t Eq = first[q + 1] - first[q];
+    if (Eq * E <= Eq * k + E) {
+      for (std::size_t l = first[q]; l < first[q + 1]; ++l) {
+        const double* z = Z.data() + at[l] * k;
+        const double cl = b.entryCoef[l];
+        for (std::size_t e = 0; e < E; ++e) f[b.entryRow[e]] += cl * b.entryCoef[e] * z[at[e]];
+      }
+    } else {
+      std::fill(w.begin(), w.end(), 0.0);
+      for (std::size_t l = first[q]; l < first[q + 1]; ++l) {
+        const double* z = Z.data() + at[l] * k;
+        const double cl = b.entryCoef[l];
+        for (std::size_t i = 0; i < k; ++i) w[i] += cl * z[i];
+      }
+      for (std::size_t e = 0; e < E; ++e) f[b.entryRow[e]] += b.entryCoef[e] * w[at[e]];
     }
   }
   return true;
