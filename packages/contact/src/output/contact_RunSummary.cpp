@@ -181,35 +181,33 @@ FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::Pa
   return d;
 }
 
-void addDualOperatorSummary(Json& s, const FetiDimensions& feti) {
-  s["dual_operator"] = feti.dualOperator;
-  s["explicit_dual_bytes"] = feti.explicitDualBytes;
-  s["explicit_dual_bytes_max_rank"] = feti.explicitDualBytesMaxRank;
-  if (feti.dualOperator == "explicit") {
-    // Blocks assembled in the run, the columns solved for, and those that assembling each
-    // block anew would have solved: fewer where update() kept the unchanged rows' part; the
-    // blocks of those assembled from the Schur complement (their columns count as solved).
-    Json a = Json::object();
-    a["blocks"] = feti.explicitAssembly.blocks;
-    a["columns_solved"] = feti.explicitAssembly.columnsSolved;
-    a["columns_full"] = feti.explicitAssembly.columnsFull;
-    a["schur_blocks"] = feti.explicitAssembly.schurBlocks;
-    s["explicit_dual_assembly"] = a;
-  }
-  if (feti.dualChoice.automatic) {
-    // "Dual operator" = auto: the last set-up's choice and what it rested on.
-    Json a = Json::object();
-    a["chosen"] = feti.dualChoice.chosen;
-    a["qp"] = feti.dualChoice.qp;
-    a["explicit_bytes"] = feti.dualChoice.explicitBytes;
-    a["factor_bytes"] = feti.dualChoice.factorBytes;
-    s["dual_operator_auto"] = a;
-  }
-  const auto& dev = feti.explicitDevice;
-  s["explicit_device"] = dev.device;
-  if (dev.device != "gpu") return;
-  // The batched applies on the device: per apply, what the kernel streams and what crosses
-  // between host and device (all ranks), and the bandwidth of the slowest rank's kernels.
+namespace {
+
+// Blocks assembled in the run, the columns solved for, and those that assembling each block anew
+// would have solved: fewer where update() kept the unchanged rows' part; the blocks of those
+// assembled from the Schur complement (their columns count as solved).
+Json explicitAssemblyJson(const tfeti::FetiSolver::ExplicitAssembly& e) {
+  Json a = Json::object();
+  a["blocks"] = e.blocks;
+  a["columns_solved"] = e.columnsSolved;
+  a["columns_full"] = e.columnsFull;
+  a["schur_blocks"] = e.schurBlocks;
+  return a;
+}
+
+// "Dual operator" = auto: the last set-up's choice and what it rested on.
+Json dualChoiceJson(const tfeti::FetiSolver::DualOperatorChoice& c) {
+  Json a = Json::object();
+  a["chosen"] = c.chosen;
+  a["qp"] = c.qp;
+  a["explicit_bytes"] = c.explicitBytes;
+  a["factor_bytes"] = c.factorBytes;
+  return a;
+}
+
+// The batched applies on the device: per apply, what the kernel streams and what crosses between
+// host and device (all ranks), and the bandwidth of the slowest rank's kernels.
+Json deviceWorkJson(const tfeti::FetiSolver::ExplicitDeviceWork& dev) {
   Json w = Json::object();
   w["applies"] = dev.applies;
   w["kernel_seconds"] = dev.kernelSeconds;
@@ -218,7 +216,21 @@ void addDualOperatorSummary(Json& s, const FetiDimensions& feti) {
   w["transfer_bytes_per_apply"] = dev.transferBytes;
   w["kernel_bandwidth_gb_per_s"] =
       dev.kernelSeconds > 0 ? dev.kernelBytes * dev.applies / dev.kernelSeconds / 1e9 : 0.0;
-  s["explicit_device_work"] = w;
+  return w;
+}
+
+}  // namespace
+
+void addDualOperatorSummary(Json& s, const FetiDimensions& feti) {
+  s["dual_operator"] = feti.dualOperator;
+  s["explicit_dual_bytes"] = feti.explicitDualBytes;
+  s["explicit_dual_bytes_max_rank"] = feti.explicitDualBytesMaxRank;
+  if (feti.dualOperator == "explicit")
+    s["explicit_dual_assembly"] = explicitAssemblyJson(feti.explicitAssembly);
+  if (feti.dualChoice.automatic) s["dual_operator_auto"] = dualChoiceJson(feti.dualChoice);
+  s["explicit_device"] = feti.explicitDevice.device;
+  if (feti.explicitDevice.device == "gpu")
+    s["explicit_device_work"] = deviceWorkJson(feti.explicitDevice);
 }
 
 void addSolverSummary(Json& s, const FetiDimensions& feti, const tfeti::DualResult& result,

@@ -299,26 +299,25 @@ void solveColumns(const Block& b, const std::vector<std::size_t>& first,
   }
 }
 
-// The whole of F_s = B_s K+ B_s^T into full (m x m, column-major, zero on entry) from the block
-// Z of K+ on the k dofs B_s touches: F_s = C Z C^T, C the rows of B_s on those dofs (E entries).
-// Column q is sum over its entries l of c_l C Z(:, dof_l), taken the cheaper way: entry by entry
-// (E multiply-adds per entry l) or through w = sum of c_l Z(:, dof_l) and then C w (k per entry l,
-// E once). A gluing row has one entry, and its column goes the first way; a mortar contact row
-// has tens, and its column the second: on a 3D tetrahedral subdomain with 37,040 entries in 2429
-// rows the first way alone made the larger part of the assembly. False where the subdomain cannot
-// give Z.
-bool schurColumns(const Block& b, const std::vector<std::size_t>& first, Subdomain& s,
-                  std::vector<double>& full) {
+// The distinct dofs a block's rows touch, in increasing order.
+std::vector<int> touchedDofs(const Block& b) {
   std::vector<int> dofs(b.entryDof);
   std::sort(dofs.begin(), dofs.end());
   dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
-  std::vector<double> Z;
-  if (!s.pseudoInverseBlock(dofs, Z)) return false;
-  const std::size_t k = dofs.size(), m = static_cast<std::size_t>(b.rows());
-  std::vector<std::size_t> at(b.entryDof.size());  // entry -> its dof's place in dofs
-  for (std::size_t e = 0; e < at.size(); ++e)
-    at[e] = std::lower_bound(dofs.begin(), dofs.end(), b.entryDof[e]) - dofs.begin();
-  const std::size_t E = at.size();
+  return dofs;
+}
+
+// full += C Z C^T (m x m, column-major), C the block's rows on the k dofs (E entries, each at its
+// dof's place at[e] in Z's k x k, column-major). Column q is the sum over its entries l of
+// c_l C Z(:, at_l), taken the cheaper way: entry by entry (E multiply-adds per entry l), or
+// through w = sum of c_l Z(:, at_l) and then C w (k per entry l, E once). A gluing row has one
+// entry, and its column goes the first way; a mortar contact row has tens, and its column the
+// second: on a 3D tetrahedral subdomain with 37,040 entries in 2429 rows the first way alone
+// made the larger part of the assembly.
+void addCongruence(const Block& b, const std::vector<std::size_t>& first,
+                   const std::vector<double>& Z, std::size_t k, const std::vector<std::size_t>& at,
+                   std::vector<double>& full) {
+  const std::size_t m = static_cast<std::size_t>(b.rows()), E = at.size();
   std::vector<double> w(k);
   for (std::size_t q = 0; q < m; ++q) {
     double* f = full.data() + q * m;
@@ -339,6 +338,20 @@ bool schurColumns(const Block& b, const std::vector<std::size_t>& first, Subdoma
       for (std::size_t e = 0; e < E; ++e) f[b.entryRow[e]] += b.entryCoef[e] * w[at[e]];
     }
   }
+}
+
+// The whole of F_s = B_s K+ B_s^T into full (m x m, column-major, zero on entry) from the block
+// Z of K+ on the dofs B_s touches: F_s = C Z C^T, C the rows of B_s on those dofs. False where
+// the subdomain cannot give Z.
+bool schurColumns(const Block& b, const std::vector<std::size_t>& first, Subdomain& s,
+                  std::vector<double>& full) {
+  const std::vector<int> dofs = touchedDofs(b);
+  std::vector<double> Z;
+  if (!s.pseudoInverseBlock(dofs, Z)) return false;
+  std::vector<std::size_t> at(b.entryDof.size());  // entry -> its dof's place in dofs
+  for (std::size_t e = 0; e < at.size(); ++e)
+    at[e] = std::lower_bound(dofs.begin(), dofs.end(), b.entryDof[e]) - dofs.begin();
+  addCongruence(b, first, Z, dofs.size(), at, full);
   return true;
 }
 

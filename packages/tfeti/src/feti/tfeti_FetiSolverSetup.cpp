@@ -188,14 +188,15 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
       parsePreconditioner(params_.get<std::string>("Preconditioner"));
   const std::string solver = params_.get<std::string>("Local solver");
   const bool kept = keepOrBuildTearing(inequalities, subdomainsKept);
-  // The explicit operator's Schur assembly factorizes K_reg again with the dual rows' dofs last:
-  // then K is freed by the operator, a subdomain's once its F_s is assembled.
   chooseDualOperator();
+  // K is freed after the preconditioner's set-up, unless the explicit operator's Schur assembly
+  // still needs it (it factorizes K_reg again with the dual rows' dofs last): then the operator
+  // frees each subdomain's K once its F_s is assembled.
   const bool release = !params_.get<bool>("Keep subdomain matrices");
-  const bool releaseNow =
-      release &&
-      !(dualChoice_.chosen == "explicit" &&
-        parseBlockAssembly(params_.get<std::string>("Explicit assembly")) == BlockAssembly::Schur);
+  const bool schurNeedsK =
+      dualChoice_.chosen == "explicit" &&
+      parseBlockAssembly(params_.get<std::string>("Explicit assembly")) == BlockAssembly::Schur;
+  const bool releaseNow = release && !schurNeedsK;
   if (!kept) {
     PhaseTimer t(*comm_, timings_.coarse, &memory_, "coarse");
     coarse_ = std::make_unique<CoarseSpace>(tearing_, subdomains_,
@@ -223,7 +224,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
       M_ = Teuchos::rcp(new DualPreconditioner(tearing_, subdomains_));
   }
   Kplus_ = Teuchos::rcp(new PseudoInverseOperator(tearing_.primalMap, subdomains_));
-  buildDualOperator(release && !releaseNow);
+  buildDualOperator(release && schurNeedsK);
   countAnalyses();
 }
 
