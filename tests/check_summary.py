@@ -27,10 +27,11 @@
                                           on the device and explicit_device_work reported);
                                           a QP's multiplications to F (0.01); schur_blocks
                                           in (0, blocks] (schur) or 0 (solves)
-  check_summary.py dual_operator_auto DIR --chosen implicit|explicit
+  check_summary.py dual_operator_auto DIR --chosen implicit|explicit [--fits-memory true|false]
                                           FETI "Dual operator" = auto: converged with that
                                           operator, which the rule gives from the reported
-                                          dual_operator_auto (QP, F_s and factor bytes)
+                                          dual_operator_auto (QP, F_s and factor bytes, F_s
+                                          within the nodes' memory: --fits-memory, default true)
   check_summary.py explicit_export DIR FILE [FILE ...]
                                           the F_s blocks a run exported (FETI "Explicit
                                           export file"), read as gpu/ reads them: header, one
@@ -443,16 +444,23 @@ def same_dual_operator(dirs, tol, device="host", partial=False, mult_tol=0.01, a
               f"{counts(s)} and the solution as implicit to {tol}")
 
 
-def dual_operator_auto(d, chosen):
+def dual_operator_auto(d, chosen, fits_memory=True):
     """FETI "Dual operator" = auto: the run converged with the expected operator, and the choice
     follows the rule from what summary.json says it rested on: explicit exactly when the dual
-    problem is a QP and the F_s take fewer bytes than the subdomain factors (on the host)."""
+    problem is a QP, the F_s take fewer bytes than the subdomain factors (on the host) and they
+    fit the nodes' available memory (explicit_fits_memory, as expected)."""
     s = load(d)
     a = s.get("dual_operator_auto")
     if not s.get("converged") or a is None:
         fail(f"{d}: converged {s.get('converged')}, dual_operator_auto {a}: expected a converged "
              "run with Dual operator = auto")
-    rule = "explicit" if a["qp"] and a["explicit_bytes"] < a["factor_bytes"] else "implicit"
+    fits = a["explicit_fits_memory"]
+    if fits != fits_memory:
+        fail(f"{d}: dual_operator_auto {a}: expected explicit_fits_memory {fits_memory}")
+    if not fits and not 0 <= a["node_available_bytes"] < a["node_need_bytes"]:
+        fail(f"{d}: dual_operator_auto {a}: F_s that do not fit need more than is available")
+    rule = ("explicit" if a["qp"] and a["explicit_bytes"] < a["factor_bytes"] and fits
+            else "implicit")
     if a["chosen"] != chosen or s["dual_operator"] != chosen or rule != chosen:
         fail(f"{d}: dual_operator {s['dual_operator']}, dual_operator_auto {a} (the rule gives "
              f"{rule}): expected {chosen}")
@@ -1544,7 +1552,10 @@ if __name__ == "__main__":
                            args[args.index("--assembly") + 1] if "--assembly" in args
                            else "schur")
     elif mode == "dual_operator_auto":
-        dual_operator_auto(args[0], args[args.index("--chosen") + 1])
+        fits = args[args.index("--fits-memory") + 1] if "--fits-memory" in args else "true"
+        if fits not in ("true", "false"):
+            fail(f"--fits-memory {fits}: expected true or false")
+        dual_operator_auto(args[0], args[args.index("--chosen") + 1], fits == "true")
     elif mode == "explicit_export":
         explicit_export(args[0], args[1:])
     elif mode == "factorizations_reused":

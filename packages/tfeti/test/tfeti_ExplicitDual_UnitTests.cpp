@@ -9,17 +9,26 @@
 //    are solved for, and the blocks are still B_s K_s+ B_s^T;
 //  - the Schur assembly (the default) and the solves' give the same blocks, also with K freed;
 //  - "Dual operator" = auto chooses by the QP and the bytes;
+//  - F_s that do not fit the node's available memory: explicit stops with an error naming the
+//    parameter, auto falls back to implicit (TFETI_MEMINFO gives a node with little memory);
 //  - an unknown "Dual operator" is an error listing the valid values.
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "tfeti_FetiSolver.hpp"
+#include "tfeti_NodeMemory.hpp"
 #include "tfeti_Test3d.hpp"
 #include "tfeti_TestHelpers.hpp"
 
@@ -411,6 +420,117 @@ TEUCHOS_UNIT_TEST(ExplicitDual, AutoChoosesByQpAndBytes) {
   }
   TEST_EQUALITY(chosen.front(), std::string("explicit"));
   TEST_EQUALITY(chosen.back(), std::string("implicit"));
+}
+
+namespace {
+
+// A meminfo file of this process with the given lines, removed again at the end.
+class MeminfoFile {
+ public:
+  explicit MeminfoFile(const std::string& text)
+      : path_(
+            (std::filesystem::temp_directory_path() / ("tfeti_meminfo_" + std::to_string(getpid())))
+                .string()) {
+    std::ofstream(path_) << text;
+  }
+  ~MeminfoFile() { std::remove(path_.c_str()); }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+// TFETI_MEMINFO names a meminfo file with the given MemAvailable while this lives.
+class FakeNodeMemory {
+ public:
+  explicit FakeNodeMemory(long long availableKib)
+      : file_("MemTotal:       24000000 kB\nMemAvailable:   " + std::to_string(availableKib) +
+              " kB\n") {
+    setenv("TFETI_MEMINFO", file_.path().c_str(), 1);
+  }
+  ~FakeNodeMemory() { unsetenv("TFETI_MEMINFO"); }
+
+ private:
+  MeminfoFile file_;
+};
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(ExplicitDual, NodeMemoryAddsTheNeedsOfANodesRanks) {
+  auto comm = Tpetra::getDefaultComm();
+  const int P = comm->getSize(), rank = comm->getRank();
+  {
+    MeminfoFile good("MemTotal:       100 kB\nMemAvailable:    4096 kB\nBuffers: 1 kB\n");
+    TEST_EQUALITY(tfeti::availableBytesIn(good.path()), 4096.0 * 1024.0);
+  }
+  {
+    MeminfoFile none("MemTotal:       100 kB\nMemFree:    4096 kB\n");
+    TEST_COMPARE(tfeti::availableBytesIn(none.path()), <, 0.0);
+  }
+  TEST_COMPARE(tfeti::availableBytesIn("/nonexistent/meminfo"), <, 0.0);
+  // Every rank of this test runs on one machine: one node, whose available memory is the least
+  // its ranks read, and whose need is the sum of theirs.
+  FakeNodeMemory fake(1000 + rank);
+  for (const double perRank : {100000.0, 400000.0}) {
+    const tfeti::NodeMemory m = tfeti::nodeMemory(*comm, perRank * (rank + 1));
+    const double need = perRank * P * (P + 1) / 2;
+    out << P << " ranks, " << perRank << " bytes per rank: " << tfeti::describe(m) << "\n";
+    TEST_ASSERT(m.known);
+    TEST_EQUALITY(m.ranks, P);
+    TEST_EQUALITY(m.firstRank, 0);
+    TEST_EQUALITY(m.needBytes, need);
+    TEST_EQUALITY(m.availableBytes, 1000.0 * 1024.0);
+    TEST_EQUALITY(m.fits, need <= 1000.0 * 1024.0);
+  }
+  TEST_EQUALITY(tfeti::bytesText(1536.0), std::string("1.5 KiB"));
+  TEST_EQUALITY(tfeti::bytesText(3.0 * 1024 * 1024 * 1024), std::string("3.00 GiB"));
+}
+
+TEUCHOS_UNIT_TEST(ExplicitDual, FsBeyondTheNodesMemory) {
+  auto comm = Tpetra::getDefaultComm();
+  // A 3D QP whose F_s take fewer bytes than the factors: auto chooses explicit
+  // (AutoChoosesByQpAndBytes).
+  const tfeti_test::Box3d box(2, 1, 1, 2, 2, 2, false);
+  const auto rows = tfeti_test::floorRows(
+      box, [](double) { return 0.0; }, 0.0, true);
+  const auto make = [&](const std::string& kind, bool keep) {
+    Teuchos::ParameterList params = parameters(kind, "lumped");
+    params.set("Keep subdomain matrices", keep);
+    return tfeti::FetiSolver(comm, box.numSubdomains(), local3d(box), params, rows);
+  };
+  {
+    const tfeti::FetiSolver roomy = make("auto", true);
+    const auto& c = roomy.dualOperatorChoice();
+    out << "this machine: " << c.nodeNeedBytes << " of " << c.nodeAvailableBytes << " bytes\n";
+    TEST_EQUALITY(c.chosen, std::string("explicit"));
+    TEST_ASSERT(c.fitsMemory);
+    TEST_COMPARE(c.nodeNeedBytes, >, c.explicitBytes / comm->getSize());
+    TEST_COMPARE(c.nodeAvailableBytes, >, c.nodeNeedBytes);
+  }
+  FakeNodeMemory fake(1);  // 1 KiB available
+  const std::string msg = tfeti_test::messageOf([&] { make("explicit", true); });
+  out << msg << "\n";
+  TEST_ASSERT(tfeti_test::contains(msg, "\"Dual operator\" = explicit"));
+  TEST_ASSERT(tfeti_test::contains(msg, "do not fit"));
+  TEST_ASSERT(tfeti_test::contains(msg, "1.0 KiB available (MemAvailable)"));
+  TEST_ASSERT(tfeti_test::contains(msg, "implicit"));
+  for (const bool keep : {true, false}) {
+    tfeti::FetiSolver fallback = make("auto", keep), implicit = make("implicit", keep);
+    const auto& c = fallback.dualOperatorChoice();
+    TEST_EQUALITY(c.chosen, std::string("implicit"));
+    TEST_ASSERT(!c.fitsMemory);
+    TEST_EQUALITY(c.nodeAvailableBytes, 1024.0);
+    TEST_EQUALITY(fallback.dualOperatorKind(), std::string("implicit"));
+    // The K kept for the Schur assembly are freed as the implicit operator would have.
+    for (std::size_t i = 0; i < fallback.subdomains().size(); ++i)
+      TEST_EQUALITY(fallback.subdomains()[i]->hasStiffness(),
+                    implicit.subdomains()[i]->hasStiffness());
+    const tfeti::DualResult rf = fallback.solve(), ri = implicit.solve();
+    TEST_ASSERT(rf.converged && ri.converged);
+    TEST_EQUALITY(rf.iterations, ri.iterations);
+    for (std::size_t i = 0; i < fallback.data().size(); ++i)
+      TEST_COMPARE_FLOATING_ARRAYS(fallback.solution(i), implicit.solution(i), 1e-14);
+  }
 }
 
 TEUCHOS_UNIT_TEST(ExplicitDual, UnknownValueIsAnError) {

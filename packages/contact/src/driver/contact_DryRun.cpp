@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "tfeti_Gather.hpp"
+#include "tfeti_NodeMemory.hpp"
 
 namespace contact {
 
@@ -87,6 +88,11 @@ std::string explicitDualLine(const Teuchos::RCP<const tfeti::Comm>& comm, int nu
     << "dense local F_s (" << (packed ? "packed" : "full") << ") " << std::fixed
     << std::setprecision(3) << total / mb << " MiB, largest rank " << maxRank / mb
     << " MiB, largest F_s " << static_cast<long long>(largest) << " rows";
+  // Nothing is factorized yet: what a node has now is an upper bound of what the F_s will find.
+  const tfeti::NodeMemory node = tfeti::nodeMemory(*comm, mine[0]);
+  if (node.known)
+    s << "; " << tfeti::describe(node) << " now, before the factorizations"
+      << (node.fits ? "" : ": explicit would stop with an error");
   return s.str();
 }
 

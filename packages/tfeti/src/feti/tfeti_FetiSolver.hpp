@@ -293,12 +293,18 @@ class FetiSolver {
   // is a QP (inequality rows with bounds: SMALBE or penalty, many multiplications per
   // factorization) and the F_s, in the chosen storage, take fewer bytes than the subdomain
   // factors (the apply of either reads its bytes once or twice: memory bound), as in 2D and on
-  // unstructured 3D meshes, not on structured 3D ones. The bytes are of all ranks.
+  // unstructured 3D meshes, not on structured 3D ones. The bytes are of all ranks. And only
+  // where the F_s fit the nodes' memory (checked before the assembly, below): else implicit.
   struct DualOperatorChoice {
     bool automatic = false;
     bool qp = false;
     double explicitBytes = 0.0, factorBytes = 0.0;
     std::string chosen = "implicit";
+    // The memory check before the last assembly of the F_s from scratch (explicitMemory()):
+    // what the node with the least room needs and has; availableBytes < 0 when not checked
+    // or unknown (no /proc/meminfo).
+    bool fitsMemory = true;
+    double nodeNeedBytes = 0.0, nodeAvailableBytes = -1.0;
   };
   const DualOperatorChoice& dualOperatorChoice() const { return dualChoice_; }
   const Tearing& tearing() const { return tearing_; }
@@ -353,6 +359,12 @@ class FetiSolver {
   // releaseStiffness: the explicit operator frees every subdomain's K once its F_s is assembled
   // (the Schur assembly needs K; "Keep subdomain matrices" = false).
   void buildDualOperator(bool releaseStiffness = false);
+  // Before the explicit F_s are assembled with no block to take over (fromScratch; a rank that
+  // takes its blocks over takes part with no need): whether they fit, with the Schur assembly's
+  // largest transient (a second factor, Z and the m x m block) and less the K freed meanwhile.
+  // Where they do not, auto falls back to implicit (true: go on implicit) and explicit is an
+  // error naming the parameter. Collective.
+  bool explicitDoesNotFit(DenseStorage storage, bool releaseStiffness, bool fromScratch);
   // Sets dualChoice_ from "Dual operator" and, for auto, the tearing and the factors. Collective.
   void chooseDualOperator();
   // The dual solve: PCPG (tfeti_FetiSolverSolve.cpp), the QP of the inequality rows

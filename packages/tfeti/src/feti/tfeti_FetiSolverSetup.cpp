@@ -10,6 +10,7 @@
 
 #include "tfeti_FetiSolver.hpp"
 #include "tfeti_InputChecks.hpp"
+#include "tfeti_NodeMemory.hpp"
 #include "tfeti_PhaseTimer.hpp"
 #include "tfeti_TpetraInterface.hpp"
 
@@ -230,6 +231,10 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
 
 void FetiSolver::chooseDualOperator() {
   DualOperatorChoice c;
+  // The last memory check stands until the next assembly from scratch checks again.
+  c.fitsMemory = dualChoice_.fitsMemory;
+  c.nodeNeedBytes = dualChoice_.nodeNeedBytes;
+  c.nodeAvailableBytes = dualChoice_.nodeAvailableBytes;
   c.chosen = params_.get<std::string>("Dual operator");
   c.automatic = c.chosen == "auto";
   if (c.automatic) {
@@ -281,10 +286,19 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     previous.reset();
     F_ = Teuchos::null;
   }
+  const DenseStorage storage = parseDenseStorage(params_.get<std::string>("Explicit storage"));
+  // Whether blocks can be taken over is a rank's own matter (a refactorized plastic subdomain
+  // here, elastic ones kept there); the check is collective, so every rank takes part in it
+  // where any assembles from scratch.
+  int fresh = previous ? 0 : 1, anyFresh = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, fresh, Teuchos::outArg(anyFresh));
+  if (anyFresh && explicitDoesNotFit(storage, releaseStiffness, fresh == 1)) {
+    F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
+    return;
+  }
   std::shared_ptr<const ExplicitDualOperator> ex;
   {
     PhaseTimer t(*comm_, timings_.dualOperator, &memory_, "dual_operator");
-    const DenseStorage storage = parseDenseStorage(params_.get<std::string>("Explicit storage"));
     collectively(*comm_, [&] {
       ex = std::make_shared<const ExplicitDualOperator>(
           tearing_, subdomains_, storage, previous.get(), device,
@@ -299,6 +313,41 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     collectively(*comm_, [&] {
       ex->exportBlocks(file + ".rank" + std::to_string(comm_->getRank()) + ".bin");
     });
+}
+
+bool FetiSolver::explicitDoesNotFit(DenseStorage storage, bool releaseStiffness, bool fromScratch) {
+  const std::vector<long long> rows = subdomainRowCounts(tearing_);
+  double need = 0.0, transient = 0.0;
+  for (std::size_t i = 0; fromScratch && i < subdomains_.size(); ++i) {
+    const double m = static_cast<double>(rows[i]);
+    std::vector<int> dofs;
+    for (const auto& e : tearing_.subdomainRows[i]) dofs.push_back(e.dof);
+    std::sort(dofs.begin(), dofs.end());
+    const double k = static_cast<double>(std::unique(dofs.begin(), dofs.end()) - dofs.begin());
+    need += static_cast<double>(explicitBlockBytes(storage, rows[i]));
+    transient = std::max(transient, static_cast<double>(subdomains_[i]->factorBytes()) +
+                                        sizeof(double) * (k * k + m * m));
+    const CsrMatrix& K = subdomains_[i]->stiffness();
+    if (releaseStiffness)
+      need -= K.nnz() * (sizeof(double) + sizeof(int)) + (K.rows + 1.0) * sizeof(int);
+  }
+  const NodeMemory node = nodeMemory(*comm_, need + transient);
+  dualChoice_.fitsMemory = node.fits;
+  dualChoice_.nodeNeedBytes = node.needBytes;
+  dualChoice_.nodeAvailableBytes = node.known ? node.availableBytes : -1.0;
+  if (node.fits) return false;
+  if (!dualChoice_.automatic)
+    throw std::invalid_argument(
+        "FETI \"Dual operator\" = explicit: the dense local F_s (" +
+        params_.get<std::string>("Explicit storage") + ") do not fit: " + describe(node) +
+        " after the factorizations and the preconditioner; use \"Dual operator\" = implicit "
+        "(or auto, which falls back to implicit), or more nodes (--check prints the F_s bytes "
+        "before anything is factorized)");
+  // auto: implicit after all; the K kept for the Schur assembly go now.
+  dualChoice_.chosen = "implicit";
+  if (releaseStiffness)
+    for (auto& s : subdomains_) s->releaseStiffness();
+  return true;
 }
 
 void FetiSolver::buildDualRhs() {

@@ -1,0 +1,48 @@
+#pragma once
+// Whether what the ranks are about to allocate fits the machines they run on. Ranks on the same
+// machine (a node: the same host name) share its memory, so their needs add up; a node offers
+// MemAvailable of /proc/meminfo, what the kernel can hand out without swapping once everything
+// the run holds so far is counted. The explicit dual operator asks before it assembles its F_s
+// (in 3D they take 1.5-2.8x the factors' bytes, docs/dual_operator.md): a run that cannot hold
+// them stops with an error naming the parameter, instead of being killed by the kernel's OOM
+// killer after its factorizations, with nothing written.
+//
+// The environment variable TFETI_MEMINFO names another file to read instead of /proc/meminfo
+// (the tests give one with little memory available).
+#include <string>
+
+#include "tfeti_Types.hpp"
+
+namespace tfeti {
+
+// Bytes of the "MemAvailable:" line (kB) of a meminfo file; negative where the file cannot be
+// read or has no such line.
+double availableBytesIn(const std::string& meminfoFile);
+// availableBytesIn of $TFETI_MEMINFO where set, else of /proc/meminfo.
+double availableNodeBytes();
+
+struct NodeMemory {
+  // Every rank read its node's available memory; where some could not, nothing is known and
+  // everything fits.
+  bool known = false;
+  // On every node the ranks' needs together are within what the node has available.
+  bool fits = true;
+  // The node with the least room left (available minus need): its lowest rank, how many ranks
+  // it has, their needs summed and its available bytes (the least any of its ranks read).
+  int firstRank = 0;
+  int ranks = 0;
+  double needBytes = 0.0;
+  double availableBytes = -1.0;
+};
+
+// Collective: every rank gives the bytes it is about to allocate (less what it frees meanwhile);
+// every rank returns the same answer.
+NodeMemory nodeMemory(const Comm& comm, double needBytes);
+
+// "the 2 ranks on the node of rank 0 need 1.50 GiB and it has 980.2 MiB available
+// (MemAvailable)": for errors.
+std::string describe(const NodeMemory& m);
+// "57.5 KiB" below a MiB, "980.2 MiB" below a GiB, "1.50 GiB" from there.
+std::string bytesText(double bytes);
+
+}  // namespace tfeti
