@@ -11,6 +11,7 @@
 //  - "Dual operator" = auto chooses by the QP and the bytes;
 //  - F_s that do not fit the node's available memory: explicit stops with an error naming the
 //    parameter, auto falls back to implicit (TFETI_MEMINFO gives a node with little memory);
+//    every rank takes part in that check, also where only some assemble from scratch;
 //  - an unknown "Dual operator" is an error listing the valid values.
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
@@ -531,6 +532,45 @@ TEUCHOS_UNIT_TEST(ExplicitDual, FsBeyondTheNodesMemory) {
     for (std::size_t i = 0; i < fallback.data().size(); ++i)
       TEST_COMPARE_FLOATING_ARRAYS(fallback.solution(i), implicit.solution(i), 1e-14);
   }
+}
+
+// updateStiffness() with a new K on rank 0's subdomains only: rank 0 assembles its blocks from
+// scratch, the others take theirs over, and the memory check, which is collective, must still
+// be reached by every rank (it once hung there); the solve then matches implicit's.
+TEUCHOS_UNIT_TEST(ExplicitDual, MemoryCheckWhenOnlySomeRanksAssembleAnew) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(2, 2, 2, 2, 2, 2, false);
+  const auto make = [&](const std::string& kind) {
+    return tfeti::FetiSolver(comm, box.numSubdomains(), local3d(box), parameters(kind, "lumped"));
+  };
+  tfeti::FetiSolver im = make("implicit"), ex = make("explicit");
+  const auto changed = local3d(box, comm->getRank() == 0 ? 2.0 : 1.0);
+  std::vector<tfeti::CsrMatrix> K;
+  std::vector<std::vector<double>> coords, loads;
+  for (const auto& d : changed) {
+    K.push_back(d.K);
+    coords.push_back(d.mesh.coords);
+    loads.push_back(d.f);
+  }
+  im.updateStiffness(K, coords, loads, {});
+  ex.updateStiffness(K, coords, loads, {});
+  const long long assembled = ex.dualOperator()->explicitPart()->assemblies();
+  out << "rank " << comm->getRank() << ": " << assembled << " blocks assembled anew\n";
+  TEST_EQUALITY(assembled, comm->getRank() == 0 || comm->getSize() == 1
+                               ? static_cast<long long>(ex.subdomains().size())
+                               : 0LL);
+  TEST_ASSERT(ex.dualOperatorChoice().fitsMemory);
+  TEST_COMPARE(ex.dualOperatorChoice().nodeAvailableBytes, >, 0.0);
+  const tfeti::DualResult ri = im.solve(), re = ex.solve();
+  TEST_ASSERT(ri.converged && re.converged);
+  TEST_EQUALITY(ri.iterations, re.iterations);
+  double diff = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < im.data().size(); ++i)
+    for (std::size_t k = 0; k < im.solution(i).size(); ++k) {
+      diff = std::max(diff, std::abs(im.solution(i)[k] - ex.solution(i)[k]));
+      scale = std::max(scale, std::abs(im.solution(i)[k]));
+    }
+  TEST_COMPARE(tfeti_test::globalMax(*comm, diff) / tfeti_test::globalMax(*comm, scale), <, 1e-10);
 }
 
 TEUCHOS_UNIT_TEST(ExplicitDual, UnknownValueIsAnError) {
