@@ -545,15 +545,9 @@ TEUCHOS_UNIT_TEST(ExplicitDual, MemoryCheckWhenOnlySomeRanksAssembleAnew) {
   };
   tfeti::FetiSolver im = make("implicit"), ex = make("explicit");
   const auto changed = local3d(box, comm->getRank() == 0 ? 2.0 : 1.0);
-  std::vector<tfeti::CsrMatrix> K;
-  std::vector<std::vector<double>> coords, loads;
-  for (const auto& d : changed) {
-    K.push_back(d.K);
-    coords.push_back(d.mesh.coords);
-    loads.push_back(d.f);
-  }
-  im.updateStiffness(K, coords, loads, {});
-  ex.updateStiffness(K, coords, loads, {});
+  const tfeti_test::StiffnessUpdate up = tfeti_test::stiffnessUpdate(changed);
+  im.updateStiffness(up.K, up.coords, up.loads, {});
+  ex.updateStiffness(up.K, up.coords, up.loads, {});
   const long long assembled = ex.dualOperator()->explicitPart()->assemblies();
   out << "rank " << comm->getRank() << ": " << assembled << " blocks assembled anew\n";
   TEST_EQUALITY(assembled, comm->getRank() == 0 || comm->getSize() == 1

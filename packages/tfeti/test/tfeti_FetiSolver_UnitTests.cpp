@@ -883,13 +883,10 @@ TEUCHOS_UNIT_TEST(FetiSolver, UpdateStiffnessRefactorizesOnlyTheChangedSubdomain
   Options o;
   tfeti::FetiSolver updated(comm, N, localBoxSubdomains(box, soft), solverParameters(o));
   TEST_ASSERT(updated.solve().converged);
-  std::vector<tfeti::CsrMatrix> K;
-  std::vector<std::vector<double>> coords, loads;
-  for (const auto& d : mixed) {
-    K.push_back(d.K);
-    coords.push_back(d.mesh.coords);
-    loads.push_back(d.f);
-  }
+  const tfeti_test::StiffnessUpdate up = tfeti_test::stiffnessUpdate(mixed);
+  const std::vector<tfeti::CsrMatrix>& K = up.K;
+  const std::vector<std::vector<double>>& coords = up.coords;
+  const std::vector<std::vector<double>>& loads = up.loads;
   updated.updateStiffness(K, coords, loads, {});
   TEST_EQUALITY(updated.timings().factorizations, static_cast<long long>(N + changed));
   TEST_EQUALITY(updated.timings().factorizationsReused, static_cast<long long>(N - changed));

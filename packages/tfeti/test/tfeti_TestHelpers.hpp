@@ -165,4 +165,20 @@ inline bool contains(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;
 }
 
+// The arguments of FetiSolver::updateStiffness from every local subdomain in data: its K,
+// coordinates and load.
+struct StiffnessUpdate {
+  std::vector<tfeti::CsrMatrix> K;
+  std::vector<std::vector<double>> coords, loads;
+};
+inline StiffnessUpdate stiffnessUpdate(const std::vector<tfeti::SubdomainData>& data) {
+  StiffnessUpdate u;
+  for (const auto& d : data) {
+    u.K.push_back(d.K);
+    u.coords.push_back(d.mesh.coords);
+    u.loads.push_back(d.f);
+  }
+  return u;
+}
+
 }  // namespace tfeti_test
