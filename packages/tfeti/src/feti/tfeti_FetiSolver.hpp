@@ -300,7 +300,7 @@ class FetiSolver {
     bool qp = false;
     double explicitBytes = 0.0, factorBytes = 0.0;
     std::string chosen = "implicit";
-    // The memory check before the last assembly of the F_s from scratch (explicitMemory()):
+    // The memory check before the last assembly of the F_s from scratch (explicitDoesNotFit):
     // what the node with the least room needs and has; availableBytes < 0 when not checked
     // or unknown (no /proc/meminfo).
     bool fitsMemory = true;
