@@ -30,8 +30,9 @@
   check_summary.py dual_operator_auto DIR --chosen implicit|explicit [--fits-memory true|false]
                                           FETI "Dual operator" = auto: converged with that
                                           operator, which the rule gives from the reported
-                                          dual_operator_auto (QP, F_s and factor bytes, F_s
-                                          within the nodes' memory: --fits-memory, default true)
+                                          dual_operator_auto (QP, F_s and factor bytes) and
+                                          explicit_memory_check (the F_s within the nodes'
+                                          memory: --fits-memory, default true)
   check_summary.py explicit_export DIR FILE [FILE ...]
                                           the F_s blocks a run exported (FETI "Explicit
                                           export file"), read as gpu/ reads them: header, one
@@ -444,6 +445,11 @@ def same_dual_operator(dirs, tol, device="host", partial=False, mult_tol=0.01, a
               f"{counts(s)} and the solution as implicit to {tol}")
 
 
+def rule_without_memory(a):
+    """auto's rule on the bytes: explicit for a QP whose F_s take fewer than the factors."""
+    return "explicit" if a["qp"] and a["explicit_bytes"] < a["factor_bytes"] else "implicit"
+
+
 def dual_operator_auto(d, chosen, fits_memory=True):
     """FETI "Dual operator" = auto: the run converged with the expected operator, and the choice
     follows the rule from what summary.json says it rested on: explicit exactly when the dual
@@ -455,12 +461,18 @@ def dual_operator_auto(d, chosen, fits_memory=True):
         fail(f"{d}: converged {s.get('converged')}, dual_operator_auto {a}: expected a converged "
              "run with Dual operator = auto")
     fits = a["explicit_fits_memory"]
-    if fits != fits_memory:
-        fail(f"{d}: dual_operator_auto {a}: expected explicit_fits_memory {fits_memory}")
-    if not fits and not 0 <= a["node_available_bytes"] < a["node_need_bytes"]:
-        fail(f"{d}: dual_operator_auto {a}: F_s that do not fit need more than is available")
-    rule = ("explicit" if a["qp"] and a["explicit_bytes"] < a["factor_bytes"] and fits
-            else "implicit")
+    mem = s.get("explicit_memory_check", {})
+    if fits != fits_memory or mem.get("fits") != fits:
+        fail(f"{d}: dual_operator_auto {a}, explicit_memory_check {mem}: expected fits "
+             f"{fits_memory} in both")
+    if not fits and not 0 <= mem["node_available_bytes"] < mem["node_need_bytes"]:
+        fail(f"{d}: explicit_memory_check {mem}: F_s that do not fit need more than is "
+             "available")
+    if fits and rule_without_memory(a) == "explicit" and mem["node_available_bytes"] >= 0 and \
+            not 0 < mem["node_need_bytes"] <= mem["node_available_bytes"]:
+        fail(f"{d}: explicit_memory_check {mem}: explicit held, yet its need is not within the "
+             "node's available memory")
+    rule = rule_without_memory(a) if fits else "implicit"
     if a["chosen"] != chosen or s["dual_operator"] != chosen or rule != chosen:
         fail(f"{d}: dual_operator {s['dual_operator']}, dual_operator_auto {a} (the rule gives "
              f"{rule}): expected {chosen}")

@@ -469,6 +469,13 @@ TEUCHOS_UNIT_TEST(ExplicitDual, NodeMemoryAddsTheNeedsOfANodesRanks) {
     TEST_COMPARE(tfeti::availableBytesIn(none.path()), <, 0.0);
   }
   TEST_COMPARE(tfeti::availableBytesIn("/nonexistent/meminfo"), <, 0.0);
+  // A file named by TFETI_MEMINFO must give the line: else the check would check nothing.
+  setenv("TFETI_MEMINFO", "/nonexistent/meminfo", 1);
+  const std::string msg = tfeti_test::messageOf([&] { tfeti::nodeMemory(*comm, 1.0); });
+  unsetenv("TFETI_MEMINFO");
+  out << msg << "\n";
+  TEST_ASSERT(tfeti_test::contains(msg, "TFETI_MEMINFO=/nonexistent/meminfo"));
+  TEST_ASSERT(tfeti_test::contains(msg, "MemAvailable"));
   // Every rank of this test runs on one machine: one node, whose available memory is the least
   // its ranks read, and whose need is the sum of theirs.
   FakeNodeMemory fake(1000 + rank);
@@ -505,7 +512,8 @@ TEUCHOS_UNIT_TEST(ExplicitDual, FsBeyondTheNodesMemory) {
     out << "this machine: " << c.nodeNeedBytes << " of " << c.nodeAvailableBytes << " bytes\n";
     TEST_EQUALITY(c.chosen, std::string("explicit"));
     TEST_ASSERT(c.fitsMemory);
-    TEST_COMPARE(c.nodeNeedBytes, >, c.explicitBytes / comm->getSize());
+    // Every rank on this one node: all the F_s, and each rank's transient on top (K is kept).
+    TEST_COMPARE(c.nodeNeedBytes, >, c.explicitBytes);
     TEST_COMPARE(c.nodeAvailableBytes, >, c.nodeNeedBytes);
   }
   FakeNodeMemory fake(1);  // 1 KiB available

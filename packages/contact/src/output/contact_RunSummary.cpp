@@ -185,16 +185,21 @@ namespace {
 
 // Blocks assembled in the run, the columns solved for, and those that assembling each block anew
 // would have solved: fewer where update() kept the unchanged rows' part; the blocks of those
-// assembled from the Schur complement (their columns count as solved); the memory check before
-// the last assembly from scratch (the node with the least room: its need and available bytes,
-// -1 where unknown).
-Json explicitAssemblyJson(const tfeti::FetiSolver::ExplicitAssembly& e,
-                          const tfeti::FetiSolver::DualOperatorChoice& c) {
+// assembled from the Schur complement (their columns count as solved).
+Json explicitAssemblyJson(const tfeti::FetiSolver::ExplicitAssembly& e) {
   Json a = Json::object();
   a["blocks"] = e.blocks;
   a["columns_solved"] = e.columnsSolved;
   a["columns_full"] = e.columnsFull;
   a["schur_blocks"] = e.schurBlocks;
+  return a;
+}
+
+// The F_s against the nodes' memory before the last assembly from scratch: whether they fit, and
+// for the node with the least room its need and available bytes (-1: unknown or not checked).
+Json memoryCheckJson(const tfeti::FetiSolver::DualOperatorChoice& c) {
+  Json a = Json::object();
+  a["fits"] = c.fitsMemory;
   a["node_need_bytes"] = c.nodeNeedBytes;
   a["node_available_bytes"] = c.nodeAvailableBytes;
   return a;
@@ -208,8 +213,6 @@ Json dualChoiceJson(const tfeti::FetiSolver::DualOperatorChoice& c) {
   a["explicit_bytes"] = c.explicitBytes;
   a["factor_bytes"] = c.factorBytes;
   a["explicit_fits_memory"] = c.fitsMemory;
-  a["node_need_bytes"] = c.nodeNeedBytes;
-  a["node_available_bytes"] = c.nodeAvailableBytes;
   return a;
 }
 
@@ -234,8 +237,10 @@ void addDualOperatorSummary(Json& s, const FetiDimensions& feti) {
   s["explicit_dual_bytes"] = feti.explicitDualBytes;
   s["explicit_dual_bytes_max_rank"] = feti.explicitDualBytesMaxRank;
   if (feti.dualOperator == "explicit")
-    s["explicit_dual_assembly"] = explicitAssemblyJson(feti.explicitAssembly, feti.dualChoice);
+    s["explicit_dual_assembly"] = explicitAssemblyJson(feti.explicitAssembly);
   if (feti.dualChoice.automatic) s["dual_operator_auto"] = dualChoiceJson(feti.dualChoice);
+  if (feti.dualOperator == "explicit" || feti.dualChoice.automatic)
+    s["explicit_memory_check"] = memoryCheckJson(feti.dualChoice);
   s["explicit_device"] = feti.explicitDevice.device;
   if (feti.explicitDevice.device == "gpu")
     s["explicit_device_work"] = deviceWorkJson(feti.explicitDevice);

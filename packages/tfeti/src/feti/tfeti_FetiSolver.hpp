@@ -365,6 +365,8 @@ class FetiSolver {
   // Where they do not, auto falls back to implicit (true: go on implicit) and explicit is an
   // error naming the parameter. Collective.
   bool explicitDoesNotFit(DenseStorage storage, bool releaseStiffness, bool fromScratch);
+  // This rank's bytes for that: its F_s, the largest transient, less the K freed.
+  double explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness) const;
   // Sets dualChoice_ from "Dual operator" and, for auto, the tearing and the factors. Collective.
   void chooseDualOperator();
   // The dual solve: PCPG (tfeti_FetiSolverSolve.cpp), the QP of the inequality rows

@@ -207,10 +207,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
     PhaseTimer t(*comm_, timings_.preconditioner, &memory_, "preconditioner");
     collectively(*comm_, [&] {
       for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-        std::vector<int> dofs;
-        for (const auto& e : tearing_.subdomainRows[i]) dofs.push_back(e.dof);
-        std::sort(dofs.begin(), dofs.end());
-        dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+        const std::vector<int> dofs = subdomainDualDofs(tearing_, i);
         // Contact rows that move between iterations of a nonlinear solve mostly keep the same
         // dofs, and most subdomains of a plastic body keep their K: the interior factorization
         // is redone only when either changes.
@@ -315,23 +312,25 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     });
 }
 
-bool FetiSolver::explicitDoesNotFit(DenseStorage storage, bool releaseStiffness, bool fromScratch) {
+double FetiSolver::explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness) const {
   const std::vector<long long> rows = subdomainRowCounts(tearing_);
-  double need = 0.0, transient = 0.0;
-  for (std::size_t i = 0; fromScratch && i < subdomains_.size(); ++i) {
+  double blocks = 0.0, transient = 0.0, freed = 0.0;
+  for (std::size_t i = 0; i < subdomains_.size(); ++i) {
     const double m = static_cast<double>(rows[i]);
-    std::vector<int> dofs;
-    for (const auto& e : tearing_.subdomainRows[i]) dofs.push_back(e.dof);
-    std::sort(dofs.begin(), dofs.end());
-    const double k = static_cast<double>(std::unique(dofs.begin(), dofs.end()) - dofs.begin());
-    need += static_cast<double>(explicitBlockBytes(storage, rows[i]));
+    const double k = static_cast<double>(subdomainDualDofs(tearing_, i).size());
+    blocks += static_cast<double>(explicitBlockBytes(storage, rows[i]));
     transient = std::max(transient, static_cast<double>(subdomains_[i]->factorBytes()) +
                                         sizeof(double) * (k * k + m * m));
     const CsrMatrix& K = subdomains_[i]->stiffness();
     if (releaseStiffness)
-      need -= K.nnz() * (sizeof(double) + sizeof(int)) + (K.rows + 1.0) * sizeof(int);
+      freed += K.nnz() * (sizeof(double) + sizeof(int)) + (K.rows + 1.0) * sizeof(int);
   }
-  const NodeMemory node = nodeMemory(*comm_, need + transient);
+  return blocks + transient - freed;
+}
+
+bool FetiSolver::explicitDoesNotFit(DenseStorage storage, bool releaseStiffness, bool fromScratch) {
+  const NodeMemory node =
+      nodeMemory(*comm_, fromScratch ? explicitAssemblyNeed(storage, releaseStiffness) : 0.0);
   dualChoice_.fitsMemory = node.fits;
   dualChoice_.nodeNeedBytes = node.needBytes;
   dualChoice_.nodeAvailableBytes = node.known ? node.availableBytes : -1.0;

@@ -619,4 +619,12 @@ std::vector<long long> subdomainRowCounts(const Tearing& t) {
   return counts;
 }
 
+std::vector<int> subdomainDualDofs(const Tearing& t, std::size_t i) {
+  std::vector<int> dofs;
+  for (const auto& e : t.subdomainRows.at(i)) dofs.push_back(e.dof);
+  std::sort(dofs.begin(), dofs.end());
+  dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+  return dofs;
+}
+
 }  // namespace tfeti

@@ -165,6 +165,9 @@ struct Tearing {
 
 // m_s of every local subdomain: the distinct rows of B that touch it (t.subdomainRows).
 std::vector<long long> subdomainRowCounts(const Tearing& t);
+// The distinct dofs of local subdomain i that rows of B touch, in increasing order (the
+// preconditioner's interface; the dofs of the explicit F_s's Schur complement).
+std::vector<int> subdomainDualDofs(const Tearing& t, std::size_t i);
 
 // inequalities, equalities: the caller's rows this rank contributes (any rank may contribute any
 // row; they are gathered and numbered in a canonical order independent of the rank count).

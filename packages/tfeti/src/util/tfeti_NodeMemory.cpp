@@ -9,8 +9,10 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
+#include "tfeti_CollectiveError.hpp"
 #include "tfeti_Gather.hpp"
 
 namespace tfeti {
@@ -30,7 +32,12 @@ double availableBytesIn(const std::string& meminfoFile) {
 
 double availableNodeBytes() {
   const char* file = std::getenv("TFETI_MEMINFO");
-  return availableBytesIn(file && *file ? file : "/proc/meminfo");
+  if (!file || !*file) return availableBytesIn("/proc/meminfo");
+  const double bytes = availableBytesIn(file);
+  if (bytes < 0)
+    throw std::invalid_argument(std::string("TFETI_MEMINFO=") + file +
+                                ": no \"MemAvailable: N kB\" line to read there");
+  return bytes;
 }
 
 namespace {
@@ -50,9 +57,16 @@ long long hostKey() {
 }  // namespace
 
 NodeMemory nodeMemory(const Comm& comm, double needBytes) {
+  double available = -1.0;
+  std::string error;
+  try {
+    available = availableNodeBytes();
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  throwIfAnyRankFailed(comm, error);
   const std::vector<long long> hosts = allGather(comm, std::vector<long long>{hostKey()});
-  const std::vector<double> values =
-      allGather(comm, std::vector<double>{needBytes, availableNodeBytes()});
+  const std::vector<double> values = allGather(comm, std::vector<double>{needBytes, available});
   struct Node {
     int firstRank = 0, ranks = 0;
     double need = 0.0, available = std::numeric_limits<double>::max();

@@ -18,7 +18,8 @@ namespace tfeti {
 // Bytes of the "MemAvailable:" line (kB) of a meminfo file; negative where the file cannot be
 // read or has no such line.
 double availableBytesIn(const std::string& meminfoFile);
-// availableBytesIn of $TFETI_MEMINFO where set, else of /proc/meminfo.
+// availableBytesIn of /proc/meminfo, or of $TFETI_MEMINFO where set: then a file without the
+// line is std::invalid_argument naming the variable (a test that would check nothing).
 double availableNodeBytes();
 
 struct NodeMemory {
@@ -36,7 +37,8 @@ struct NodeMemory {
 };
 
 // Collective: every rank gives the bytes it is about to allocate (less what it frees meanwhile);
-// every rank returns the same answer.
+// every rank returns the same answer, or throws CollectiveError where some rank's
+// availableNodeBytes() did.
 NodeMemory nodeMemory(const Comm& comm, double needBytes);
 
 // "the 2 ranks on the node of rank 0 need 1.50 GiB and it has 980.2 MiB available
