@@ -33,6 +33,14 @@
                                           dual_operator_auto (QP, F_s and factor bytes) and
                                           explicit_memory_check (the F_s within the nodes'
                                           memory: --fits-memory, default true)
+  check_summary.py factor_memory DIR --checked true|false [--write-meminfo FILE]
+                                          factor_memory_check: made or not as expected; where
+                                          made, the subdomain factors' held bytes at least the
+                                          bytes they stream (factor_bytes), and fits exactly when
+                                          the need is within the available bytes; the same of
+                                          preconditioner_memory_check where made; FILE: a
+                                          meminfo whose MemAvailable is that need to the KiB
+                                          above (a node with room for the factors alone)
   check_summary.py explicit_export DIR FILE [FILE ...]
                                           the F_s blocks a run exported (FETI "Explicit
                                           export file"), read as gpu/ reads them: header, one
@@ -448,6 +456,39 @@ def same_dual_operator(dirs, tol, device="host", partial=False, mult_tol=0.01, a
 def rule_without_memory(a):
     """auto's rule on the bytes: explicit for a QP whose F_s take fewer than the factors."""
     return "explicit" if a["qp"] and a["explicit_bytes"] < a["factor_bytes"] else "implicit"
+
+
+def factor_memory(d, checked, meminfo=None):
+    """factor_memory_check: the subdomain factors against the nodes' memory before they were
+    made (FETI "Memory check"), as expected; its figures consistent with factor_bytes."""
+    s = load(d)
+    m = s.get("factor_memory_check")
+    if m is None or m.get("checked") != checked:
+        fail(f"{d}: factor_memory_check {m}: expected checked {checked}")
+    if checked:
+        need, available = m["node_need_bytes"], m["node_available_bytes"]
+        if not need >= s["factor_bytes"] > 0:
+            fail(f"{d}: factor_memory_check {m}: the need is below the factors' bytes "
+                 f"{s['factor_bytes']}")
+        if available < 0 or m["fits"] != (need <= available) or m["node_ranks"] < 1:
+            fail(f"{d}: factor_memory_check {m}: fits must say whether the need is within the "
+                 "available bytes")
+    p = s.get("preconditioner_memory_check")
+    if p is None or (not checked and p.get("checked")):
+        fail(f"{d}: preconditioner_memory_check {p}: expected it, and unchecked where the factors "
+             "were")
+    if p["checked"] and not (p["node_need_bytes"] > 0 and p["node_ranks"] >= 1 and
+                             p["fits"] == (p["node_need_bytes"] <= p["node_available_bytes"])):
+        fail(f"{d}: preconditioner_memory_check {p}: fits must say whether the need is within "
+             "the available bytes")
+    if meminfo:
+        if not checked:
+            fail("--write-meminfo needs a run whose factors were checked")
+        kib = -(-int(m["node_need_bytes"]) // 1024)
+        with open(meminfo, "w") as f:
+            f.write(f"MemTotal:       24000000 kB\nMemAvailable:   {kib} kB\n")
+    print(f"OK: {d}: factor_memory_check {m}, preconditioner_memory_check {p}" +
+          (f"; {meminfo} written" if meminfo else ""))
 
 
 def dual_operator_auto(d, chosen, fits_memory=True):
@@ -1568,6 +1609,13 @@ if __name__ == "__main__":
         if fits not in ("true", "false"):
             fail(f"--fits-memory {fits}: expected true or false")
         dual_operator_auto(args[0], args[args.index("--chosen") + 1], fits == "true")
+    elif mode == "factor_memory":
+        checked = args[args.index("--checked") + 1] if "--checked" in args else None
+        if checked not in ("true", "false"):
+            fail(f"--checked {checked}: expected true or false")
+        factor_memory(args[0], checked == "true",
+                      args[args.index("--write-meminfo") + 1] if "--write-meminfo" in args
+                      else None)
     elif mode == "explicit_export":
         explicit_export(args[0], args[1:])
     elif mode == "factorizations_reused":

@@ -313,6 +313,52 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodFactorsOfOnePatternShareTheAnalysis) {
   TEST_EQUALITY(tfeti::localAnalysisCounts().shared - start.shared, 0);
 }
 
+// predictFactorMemory tells, from the symbolic analysis alone, the bytes the factorization then
+// allocates by CHOLMOD's own count, to the byte: for a new pattern (the analysis made by the
+// prediction and not again by factorize), for a second factor of that pattern (shared), and 0 for
+// a refactorization in place. Amesos2's solvers cannot tell.
+TEUCHOS_UNIT_TEST(LocalSolver, CholmodPredictsItsFactor) {
+  for (const std::string type : {"cholmod", "cholmod-simplicial", "cholmod-supernodal"}) {
+    for (const int g : {12, 40}) {
+      const tfeti::CsrMatrix A = laplacian2d(g, 1.0), B = laplacian2d(g, 2.0);
+      const tfeti::LocalAnalysisCounts start = tfeti::localAnalysisCounts();
+      auto first = tfeti::createLocalSolver(type), second = tfeti::createLocalSolver(type);
+      // A first factorization of this size grows CHOLMOD's workspace: not the factor's bytes.
+      auto warm = tfeti::createLocalSolver(type);
+      warm->factorize(A);
+      for (auto* s : {first.get(), second.get()}) {
+        const std::ptrdiff_t predicted = s->predictFactorMemory(A);
+        const std::size_t before = tfeti::localSolverMemoryInUse();
+        s->factorize(A);
+        const std::size_t after = tfeti::localSolverMemoryInUse();
+        out << type << " " << g * g << " rows: predicted " << predicted << ", allocated "
+            << after - before << ", factorBytes " << s->factorBytes() << "\n";
+        TEST_EQUALITY(static_cast<std::size_t>(predicted), after - before);
+        TEST_EQUALITY(s->factorMemory(), after - before);
+        TEST_COMPARE(static_cast<std::size_t>(predicted), >=, s->factorBytes());
+      }
+      // One analysis made per kind and pattern (by the first factor), the later ones sharing it
+      // as before: the predictions made none.
+      TEST_EQUALITY(tfeti::localAnalysisCounts().made - start.made, 1);
+      TEST_EQUALITY(tfeti::localAnalysisCounts().shared - start.shared, 2);
+      TEST_EQUALITY(first->predictFactorMemory(B), 0);
+      const std::size_t before = tfeti::localSolverMemoryInUse();
+      first->factorize(B);
+      TEST_EQUALITY(tfeti::localSolverMemoryInUse(), before);
+      TEST_COMPARE(solveAndMeasure(*first, B, 2, 21).residual, <, 1e-12);
+      TEST_COMPARE(solveAndMeasure(*second, A, 2, 22).residual, <, 1e-12);
+    }
+  }
+  // A prediction for a matrix that is then not factorized is dropped by the next factorization.
+  const tfeti::CsrMatrix A = laplacian2d(20, 1.0), other = laplacian2d(21, 1.0);
+  auto s = tfeti::createLocalSolver("cholmod");
+  TEST_COMPARE(s->predictFactorMemory(other), >, 0);
+  s->factorize(A);
+  TEST_COMPARE(solveAndMeasure(*s, A, 1, 23).residual, <, 1e-12);
+  for (const std::string type : {"klu2", "tacho"})
+    TEST_COMPARE(tfeti::createLocalSolver(type)->predictFactorMemory(A), <, 0);
+}
+
 // ------------------------------------------------------------------------------------------
 // Supernodal factors are kept packed for one right-hand side at a time
 // (tfeti_PackedSupernodal.hpp); more than eight go through CHOLMOD's own solve on its own layout,

@@ -391,3 +391,41 @@ TEUCHOS_UNIT_TEST(Subdomain, RefactorizeKeepsTheFactorOfAnUnchangedK) {
               tfeti::csrFromTriplets(2, 2, {0, 0, 1}, {0, 1, 1}, {1.0, 0.0, 1.0}).digest());
   TEST_ASSERT(identity == tfeti::csrFromTriplets(2, 2, {1, 0}, {1, 0}, {1.0, 1.0}).digest());
 }
+
+// Factorization::Deferred: the subdomain is built (kernel, fixing dofs) without its factor;
+// predictFactorMemory tells the factor's bytes (CHOLMOD, exactly what factorize() then
+// allocates; negative for Amesos2's), K+ is an error before factorize(), and after it K+ is the
+// one the immediate construction gives, bitwise.
+TEUCHOS_UNIT_TEST(Subdomain, DeferredFactorizationIsTheSame) {
+  const tfeti::SubdomainMesh mesh = distortedLShape();
+  const tfeti::SubdomainData data = tfeti_test::subdomainData(mesh, tfeti_test::elasticity());
+  for (const auto& solver : tfeti::localSolverTypes()) {
+    tfeti::Subdomain now(mesh.id, 2, mesh.coords, data.K, data.f, {}, Formulation::TFETI, solver);
+    tfeti::KernelOptions kernel;
+    tfeti::Subdomain later(mesh.id, 2, mesh.coords, kernel, data.K, data.f, {}, Formulation::TFETI,
+                           solver, tfeti::Factorization::Deferred);
+    TEST_ASSERT(now.factorized() && !later.factorized());
+    TEST_ASSERT(later.fixingDofs() == now.fixingDofs());
+    const int n = later.numDofs();
+    std::vector<double> b(n), x(n), y(n);
+    for (int i = 0; i < n; ++i) b[i] = std::sin(1.0 + i);
+    const std::string msg =
+        tfeti_test::messageOf([&] { later.applyPseudoInverse(b.data(), x.data()); });
+    TEST_ASSERT(tfeti_test::contains(msg, "before factorize()"));
+    const std::ptrdiff_t predicted = later.predictFactorMemory();
+    const std::size_t before = tfeti::localSolverMemoryInUse();
+    later.factorize();
+    const std::size_t allocated = tfeti::localSolverMemoryInUse() - before;
+    out << solver << ": predicted " << predicted << " bytes, CHOLMOD allocated " << allocated
+        << "\n";
+    if (solver.rfind("cholmod", 0) == 0) {
+      TEST_EQUALITY(static_cast<std::size_t>(predicted), allocated);
+    } else {
+      TEST_COMPARE(predicted, <, 0);
+    }
+    TEST_EQUALITY(later.predictFactorMemory(), 0);  // factorized: nothing more to allocate
+    now.applyPseudoInverse(b.data(), x.data());
+    later.applyPseudoInverse(b.data(), y.data());
+    TEST_COMPARE_FLOATING_ARRAYS(x, y, 0.0);
+  }
+}

@@ -167,7 +167,7 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   lines.push_back(explicitDualLine(comm, problem.numSubdomains(), problem.local,
                                    fetiParameters(params, spec), problem.inequalities,
                                    problem.equalities));
-  printDryRunReport(*comm, lines, problem.local, rows, out);
+  printDryRunReport(*comm, lines, problem.local, rows, fetiParameters(params, spec), out);
 }
 
 }  // namespace contact

@@ -60,6 +60,13 @@ std::size_t choleskyFactorEntries(const tfeti::CsrMatrix& K, const std::vector<i
   return entries;
 }
 
+namespace {
+// FETI "Memory check" as the full run will read it (its default where the list does not set it).
+bool memoryChecked(const Teuchos::ParameterList& feti) {
+  return !feti.isParameter("Memory check") || feti.get<bool>("Memory check");
+}
+}  // namespace
+
 std::string explicitDualLine(const Teuchos::RCP<const tfeti::Comm>& comm, int numSubdomains,
                              const std::vector<tfeti::SubdomainData>& local,
                              const Teuchos::ParameterList& feti,
@@ -92,13 +99,13 @@ std::string explicitDualLine(const Teuchos::RCP<const tfeti::Comm>& comm, int nu
   const tfeti::NodeMemory node = tfeti::nodeMemory(*comm, mine[0]);
   if (node.known)
     s << "; " << tfeti::describe(node) << " now, before the factorizations"
-      << (node.fits ? "" : ": explicit would stop with an error");
+      << (node.fits || !memoryChecked(feti) ? "" : ": explicit would stop with an error");
   return s.str();
 }
 
 void printDryRunReport(const tfeti::Comm& comm, const std::vector<std::string>& lines,
                        const std::vector<tfeti::SubdomainData>& local, long long contactRows,
-                       std::ostream& out) {
+                       const Teuchos::ParameterList& feti, std::ostream& out) {
   // Per subdomain of this rank: id, unknowns, bytes of K (CSR) and of its factor (values and
   // row indices, as CHOLMOD's simplicial factor stores them).
   std::vector<double> mine;
@@ -111,6 +118,9 @@ void printDryRunReport(const tfeti::Comm& comm, const std::vector<std::string>& 
                              static_cast<double>(s.K.rows), kBytes, lBytes});
   }
   const std::vector<double> all = tfeti::allGather(comm, mine);
+  double factors = 0.0;
+  for (std::size_t k = 4; k < mine.size(); k += 5) factors += mine[k];
+  const tfeti::NodeMemory node = tfeti::nodeMemory(comm, factors);
   if (comm.getRank() != 0) return;
   const int P = comm.getSize();
   std::vector<std::vector<int>> ids(P);
@@ -142,8 +152,13 @@ void printDryRunReport(const tfeti::Comm& comm, const std::vector<std::string>& 
   out << "\nestimated memory: subdomain matrices " << std::fixed << std::setprecision(1)
       << kTotal / mb << " MiB + Cholesky factors " << lTotal / mb
       << " MiB (METIS order, symbolic count), largest rank "
-      << *std::max_element(rankBytes.begin(), rankBytes.end()) / mb << " MiB" << std::defaultfloat
-      << "\n";
+      << *std::max_element(rankBytes.begin(), rankBytes.end()) / mb << " MiB" << std::defaultfloat;
+  // Nothing is factorized yet: what a node has now is what the factorizations will find.
+  if (node.known)
+    out << "; for the factors " << tfeti::describe(node) << " now"
+        << (node.fits || !memoryChecked(feti) ? ""
+                                              : ": the factorizations would stop with an error");
+  out << "\n";
 }
 
 }  // namespace contact

@@ -34,9 +34,11 @@ std::string explicitDualLine(const Teuchos::RCP<const tfeti::Comm>& comm, int nu
 
 // Rank 0 prints `lines` (the problem's own report), then the subdomains of every rank, the
 // unknowns and the estimated memory of the subdomain matrices and their Cholesky factors (the
-// largest per rank and the total), from this rank's subdomains. `contactRows` < 0: no contact.
+// largest per rank and the total), from this rank's subdomains, and against the memory each node
+// has available now (the fullest node: whether the full run's check, FETI "Memory check", would
+// stop it). `contactRows` < 0: no contact. Collective.
 void printDryRunReport(const tfeti::Comm& comm, const std::vector<std::string>& lines,
                        const std::vector<tfeti::SubdomainData>& local, long long contactRows,
-                       std::ostream& out);
+                       const Teuchos::ParameterList& feti, std::ostream& out);
 
 }  // namespace contact

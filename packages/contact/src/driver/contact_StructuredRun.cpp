@@ -279,7 +279,7 @@ void reportStructured(const Teuchos::RCP<const tfeti::Comm>& comm, const Paramet
                     " (one per subdomain copy of a prescribed node and component)");
   lines.push_back(explicitDualLine(comm, sp.numSubdomains(), local, run.sublist("FETI"), {},
                                    prescribedRows(sp, local)));
-  printDryRunReport(*comm, lines, local, -1, out);
+  printDryRunReport(*comm, lines, local, -1, run.sublist("FETI"), out);
 }
 
 }  // namespace

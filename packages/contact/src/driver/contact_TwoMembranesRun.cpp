@@ -212,7 +212,7 @@ void reportMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, const Paramete
   lines.push_back(s.str());
   lines.push_back(explicitDualLine(comm, tm.numSubdomains(), data.local, params.sublist("FETI"),
                                    data.inequalities));
-  printDryRunReport(*comm, lines, data.local, rows, out);
+  printDryRunReport(*comm, lines, data.local, rows, params.sublist("FETI"), out);
 }
 
 }  // namespace

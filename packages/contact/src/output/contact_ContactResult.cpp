@@ -97,7 +97,7 @@ Json elasticSummary(const ContactResult& r) {
   for (double h : r.qp.history) history.push(h);
   s["residual_history"] = std::move(history);
   s["dual_operator_applies"] = r.feti.dualOperatorApplies;
-  s["factor_bytes"] = r.feti.factorBytes;
+  addFactorSummary(s, r.feti);
   addDualOperatorSummary(s, r.feti);
   s["contact_type"] = r.contactType;
   s["contact_discretization"] = r.contactDiscretization;

@@ -59,6 +59,12 @@ struct FetiDimensions {
   long long largestScalingGroup = 0;
   long long dualOperatorApplies = 0;
   unsigned long long factorBytes = 0;
+  // The subdomain factors' bytes against the nodes' memory before the last factorizations of
+  // new subdomains (tfeti::FetiSolver::factorMemoryCheck).
+  tfeti::NodeMemory factorMemory;
+  // The same for the Dirichlet preconditioner's interior factors, at the last set-up that made
+  // some (tfeti::FetiSolver::preconditionerMemoryCheck).
+  tfeti::NodeMemory preconditionerMemory;
   // FETI "Dual operator" and, when explicit, the bytes of the dense local F_s (all ranks, and
   // the largest rank's).
   std::string dualOperator = "implicit";

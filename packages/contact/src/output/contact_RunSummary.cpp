@@ -171,6 +171,8 @@ FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::Pa
   d.largestScalingGroup = solver.largestScalingGroup();
   d.dualOperatorApplies = solver.dualOperatorApplies();
   d.factorBytes = static_cast<unsigned long long>(solver.globalFactorBytes());
+  d.factorMemory = solver.factorMemoryCheck();
+  d.preconditionerMemory = solver.preconditionerMemoryCheck();
   d.dualOperator = solver.dualOperatorKind();
   const auto bytes = solver.explicitDualBytes();
   d.explicitDualBytes = bytes.total;
@@ -232,6 +234,28 @@ Json deviceWorkJson(const tfeti::FetiSolver::ExplicitDeviceWork& dev) {
 
 }  // namespace
 
+namespace {
+// A memory check of the set-up (tfeti::NodeMemory): whether it was made, and then whether the
+// node with the least room had it, what its ranks needed and what it had available.
+Json nodeMemoryJson(const tfeti::NodeMemory& m) {
+  Json check = Json::object();
+  check["checked"] = m.known;
+  if (m.known) {
+    check["fits"] = m.fits;
+    check["node_need_bytes"] = m.needBytes;
+    check["node_available_bytes"] = m.availableBytes;
+    check["node_ranks"] = m.ranks;
+  }
+  return check;
+}
+}  // namespace
+
+void addFactorSummary(Json& s, const FetiDimensions& feti) {
+  s["factor_bytes"] = feti.factorBytes;
+  s["factor_memory_check"] = nodeMemoryJson(feti.factorMemory);
+  s["preconditioner_memory_check"] = nodeMemoryJson(feti.preconditionerMemory);
+}
+
 void addDualOperatorSummary(Json& s, const FetiDimensions& feti) {
   s["dual_operator"] = feti.dualOperator;
   s["explicit_dual_bytes"] = feti.explicitDualBytes;
@@ -266,7 +290,7 @@ void addSolverSummary(Json& s, const FetiDimensions& feti, const tfeti::DualResu
   for (double h : result.history) history.push(h);
   s["residual_history"] = std::move(history);
   s["dual_operator_applies"] = feti.dualOperatorApplies;
-  s["factor_bytes"] = feti.factorBytes;
+  addFactorSummary(s, feti);
   addDualOperatorSummary(s, feti);
   s["memory"] = memoryJson(memory, feti.primal);
 }

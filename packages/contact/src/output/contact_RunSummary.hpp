@@ -32,6 +32,12 @@ VtuPiece vtuPiece(const tfeti::FetiSolver& solver);
 // The solver's dimensions and counters after a solve; feti: its FETI parameters (formulation,
 // preconditioner, local solver).
 FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::ParameterList& feti);
+// "factor_bytes" (the subdomain factors of all ranks) and "factor_memory_check": checked (false:
+// "Memory check" = false, a local solver that cannot tell its bytes before it factorizes, or no
+// /proc/meminfo), and then fits, node_need_bytes, node_available_bytes and node_ranks of the node
+// with the least room; "preconditioner_memory_check" the same for the Dirichlet preconditioner's
+// interior factors at the last set-up that made some (checked false without any).
+void addFactorSummary(Json& summary, const FetiDimensions& feti);
 // "dual_operator" (implicit | explicit), "explicit_dual_bytes" (the dense local F_s on all ranks)
 // and "explicit_dual_bytes_max_rank" (the largest rank's): 0 when implicit; when explicit,
 // "explicit_dual_assembly" (blocks, columns_solved, columns_full, schur_blocks); with "Dual

@@ -39,6 +39,7 @@
 #include "tfeti_DualOperators.hpp"
 #include "tfeti_LocalSolver.hpp"
 #include "tfeti_MemoryUsage.hpp"
+#include "tfeti_NodeMemory.hpp"
 #include "tfeti_Pcpg.hpp"
 #include "tfeti_QpProblem.hpp"
 #include "tfeti_RowCarryOver.hpp"
@@ -307,6 +308,15 @@ class FetiSolver {
     double nodeNeedBytes = 0.0, nodeAvailableBytes = -1.0;
   };
   const DualOperatorChoice& dualOperatorChoice() const { return dualChoice_; }
+  // The memory check before the last factorizations of new subdomains (the constructor's, and
+  // updateStiffness's where the kernels moved): the subdomain factors' bytes, told by their
+  // symbolic analyses, summed per node, against the node's MemAvailable. known = false where it
+  // was not made ("Memory check" = false, a local solver that cannot tell, no /proc/meminfo).
+  const NodeMemory& factorMemoryCheck() const { return factorMemory_; }
+  // The same before the Dirichlet preconditioner's interior factors are made (at every set-up
+  // that makes some: the interior factors to be made, less those they replace and the K freed
+  // meanwhile, at their peak during the set-up); known = false where none was made or checked.
+  const NodeMemory& preconditionerMemoryCheck() const { return preconditionerMemory_; }
   const Tearing& tearing() const { return tearing_; }
   const Teuchos::RCP<DualOperator>& dualOperator() const { return F_; }
   const CoarseSpace& coarseSpace() const { return *coarse_; }
@@ -330,6 +340,19 @@ class FetiSolver {
 
   // Set-up (tfeti_FetiSolverSetup.cpp).
   void buildSubdomains(const std::vector<std::vector<double>>& coords);
+  // Between the subdomains' construction and their factorization: the factors' bytes against
+  // the nodes' memory (factorMemory_); throws std::runtime_error on every rank where some node
+  // falls short. Collective.
+  void checkFactorMemory();
+  NodeMemory factorMemory_;
+  // Before the preconditioner's set-up: its interior factors against the nodes' memory
+  // (preconditionerMemory_). rebuild: the subdomains whose preconditioner is set up again, with
+  // their interface dofs; releaseStiffness: K freed after each. Throws std::runtime_error on
+  // every rank where some node falls short. Collective.
+  void checkPreconditionerMemory(const std::vector<std::vector<int>>& dofs,
+                                 const std::vector<char>& rebuild, PreconditionerType type,
+                                 bool releaseStiffness);
+  NodeMemory preconditionerMemory_;
   void refactorizeSubdomains();  // data_'s new K and f into the existing subdomains
   std::vector<std::vector<double>> kernelCoords_;  // the positions of the subdomains' kernels
   // Per local subdomain: K (re)factorized since the last buildConstraints, whose preconditioner

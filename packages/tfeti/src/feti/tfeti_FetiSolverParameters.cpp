@@ -226,6 +226,13 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiSolver::validParameters() {
             "false: free each subdomain matrix K once its preconditioner is set up (a linear "
             "solve needs it no more; about 200 bytes per unknown in 2D); update() then cannot "
             "rebuild a preconditioner whose interface dofs changed");
+    pl->set("Memory check", true,
+            "before the subdomain factorizations and before the explicit F_s are allocated, "
+            "compare what the ranks of each node (host) need with its MemAvailable "
+            "(/proc/meminfo) and stop with an error where some node falls short (auto: implicit "
+            "instead of explicit), rather than be killed by the kernel's OOM killer; false: go "
+            "on regardless (swap, or memory the kernel will free that it does not count as "
+            "available)");
     pl->set("Warm power iterations", 0,
             "after a refactorization (a Newton method's new tangent) estimate ||P F P|| by this "
             "many power iterations from the last estimate's vector, when the dual dimension is "

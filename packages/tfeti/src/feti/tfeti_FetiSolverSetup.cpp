@@ -112,6 +112,8 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
   subdomains_.clear();
   kernelCoords_ = coords;
   // An error in one subdomain is reported on every rank (no rank left waiting in a collective).
+  // The kernels first, then what the factors will take against the nodes' memory, then the
+  // factorizations: a problem too large for its nodes stops before any factor is allocated.
   collectively(*comm_, [&] {
     for (std::size_t i = 0; i < data_.size(); ++i) {
       auto& sd = data_[i];
@@ -122,13 +124,85 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
       kernel.residualTolerance = params_.get<double>("Kernel tolerance");
       const std::vector<int> dirichletDofs = sd.mesh.dirichletDofs(sd.dofsPerNode);
       // K and f move into the subdomain (data_ keeps the mesh, the kernel and the sizes).
-      subdomains_.push_back(std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, coords[i],
-                                                        kernel, std::move(sd.K), std::move(sd.f),
-                                                        dirichletDofs, formulation, solver));
+      subdomains_.push_back(std::make_shared<Subdomain>(
+          sd.mesh.id, sd.dofsPerNode, coords[i], kernel, std::move(sd.K), std::move(sd.f),
+          dirichletDofs, formulation, solver, Factorization::Deferred));
     }
+  });
+  checkFactorMemory();
+  collectively(*comm_, [&] {
+    for (auto& s : subdomains_) s->factorize();
   });
   stiffnessChanged_.assign(subdomains_.size(), 1);
   countFactorizations();
+}
+
+void FetiSolver::checkFactorMemory() {
+  factorMemory_ = NodeMemory{};
+  if (!params_.get<bool>("Memory check")) return;
+  // The predictions make the symbolic analyses (kept for the factorizations): their memory is
+  // then in use, and what is available is read after them.
+  double need = 0.0;
+  int cannotTell = 0, anyCannot = 0;
+  collectively(*comm_, [&] {
+    for (auto& s : subdomains_) {
+      const std::ptrdiff_t bytes = s->predictFactorMemory();
+      if (bytes < 0) cannotTell = 1;
+      need += static_cast<double>(std::max<std::ptrdiff_t>(bytes, 0));
+    }
+  });
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, cannotTell, Teuchos::outArg(anyCannot));
+  if (anyCannot) return;  // Amesos2's solvers: nothing known to check
+  factorMemory_ = nodeMemory(*comm_, need);
+  if (factorMemory_.fits) return;
+  throw std::runtime_error(
+      "the subdomain factors (\"Local solver\" = " + params_.get<std::string>("Local solver") +
+      ") do not fit: " + describe(factorMemory_) +
+      " before the factorizations; run on more nodes (or fewer ranks per node), or set FETI "
+      "\"Memory check\" = false to go on regardless (swap); --check estimates the factors' "
+      "bytes before anything is factorized");
+}
+
+void FetiSolver::checkPreconditionerMemory(const std::vector<std::vector<int>>& dofs,
+                                           const std::vector<char>& rebuild,
+                                           PreconditionerType type, bool releaseStiffness) {
+  preconditionerMemory_ = NodeMemory{};
+  int makes = 0, anyMakes = 0;
+  if (type == PreconditionerType::Dirichlet)
+    for (char r : rebuild) makes |= r;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, makes, Teuchos::outArg(anyMakes));
+  if (!anyMakes || !params_.get<bool>("Memory check")) return;
+  // The set-up goes subdomain by subdomain: an interior factor replaces the last one, then K
+  // goes (releaseStiffness). The need is the peak of that running sum.
+  const std::string solver = params_.get<std::string>("Local solver");
+  double running = 0.0, peak = 0.0;
+  int cannotTell = 0, anyCannot = 0;
+  collectively(*comm_, [&] {
+    for (std::size_t i = 0; i < subdomains_.size(); ++i) {
+      Subdomain& s = *subdomains_[i];
+      if (rebuild[i]) {
+        const std::ptrdiff_t bytes = s.predictPreconditionerMemory(dofs[i], type, solver);
+        if (bytes < 0) cannotTell = 1;
+        running += static_cast<double>(std::max<std::ptrdiff_t>(bytes, 0)) -
+                   static_cast<double>(s.preconditionerFactorMemory());
+        peak = std::max(peak, running);
+      }
+      if (releaseStiffness && s.hasStiffness()) {
+        const CsrMatrix& K = s.stiffness();
+        running -= K.nnz() * (sizeof(double) + sizeof(int)) + (K.rows + 1.0) * sizeof(int);
+      }
+    }
+  });
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, cannotTell, Teuchos::outArg(anyCannot));
+  if (anyCannot) return;  // Amesos2's solvers: nothing known to check
+  preconditionerMemory_ = nodeMemory(*comm_, peak);
+  if (preconditionerMemory_.fits) return;
+  throw std::runtime_error(
+      "the Dirichlet preconditioner's interior factors (\"Local solver\" = " + solver +
+      ") do not fit: " + describe(preconditionerMemory_) +
+      " after the subdomain factorizations; use FETI \"Preconditioner\" = lumped, run on more "
+      "nodes (or fewer ranks per node), or set FETI \"Memory check\" = false to go on "
+      "regardless (swap)");
 }
 
 void FetiSolver::countFactorizations() {
@@ -205,14 +279,19 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
   }
   {
     PhaseTimer t(*comm_, timings_.preconditioner, &memory_, "preconditioner");
+    // Contact rows that move between iterations of a nonlinear solve mostly keep the same dofs,
+    // and most subdomains of a plastic body keep their K: the interior factorization is redone
+    // only when either changes.
+    std::vector<std::vector<int>> dofs(subdomains_.size());
+    std::vector<char> rebuild(subdomains_.size(), 0);
+    for (std::size_t i = 0; i < subdomains_.size(); ++i) {
+      dofs[i] = subdomainDualDofs(tearing_, i);
+      rebuild[i] = stiffnessChanged_[i] || dofs[i] != subdomains_[i]->interfaceDofs();
+    }
+    checkPreconditionerMemory(dofs, rebuild, precType, releaseNow);
     collectively(*comm_, [&] {
       for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-        const std::vector<int> dofs = subdomainDualDofs(tearing_, i);
-        // Contact rows that move between iterations of a nonlinear solve mostly keep the same
-        // dofs, and most subdomains of a plastic body keep their K: the interior factorization
-        // is redone only when either changes.
-        if (stiffnessChanged_[i] || dofs != subdomains_[i]->interfaceDofs())
-          subdomains_[i]->setupPreconditioner(dofs, precType, solver);
+        if (rebuild[i]) subdomains_[i]->setupPreconditioner(dofs[i], precType, solver);
         // Freed one by one, so that K and the preconditioner's factors never coexist in full.
         if (releaseNow) subdomains_[i]->releaseStiffness();
       }
@@ -329,6 +408,12 @@ double FetiSolver::explicitAssemblyNeed(DenseStorage storage, bool releaseStiffn
 }
 
 bool FetiSolver::explicitDoesNotFit(DenseStorage storage, bool releaseStiffness, bool fromScratch) {
+  if (!params_.get<bool>("Memory check")) {
+    dualChoice_.fitsMemory = true;
+    dualChoice_.nodeNeedBytes = 0.0;
+    dualChoice_.nodeAvailableBytes = -1.0;
+    return false;
+  }
   const NodeMemory node =
       nodeMemory(*comm_, fromScratch ? explicitAssemblyNeed(storage, releaseStiffness) : 0.0);
   dualChoice_.fitsMemory = node.fits;

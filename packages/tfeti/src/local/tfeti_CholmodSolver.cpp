@@ -101,6 +101,7 @@ struct SymbolicAnalysis {
   std::vector<int> rowPtr, colInd;
   cholmod_factor* symbolic = nullptr;  // as cholmod_analyze returned it: no numerical values
   PackedLayout packed;                 // supernodal analyses: where the packed values go
+  std::size_t numericBytes = 0;        // what a numerical factor of this analysis holds
   SymbolicAnalysis(CholmodKind k, const CsrMatrix& A)
       : kind(k), n(A.rows), rowPtr(A.rowPtr), colInd(A.colInd) {}
   ~SymbolicAnalysis() {
@@ -146,6 +147,7 @@ class SymbolicAnalyses {
     auto made = std::make_shared<SymbolicAnalysis>(kind, A);
     made->symbolic = analyze(kind, A);
     if (made->symbolic->is_super) made->packed = packedLayout(*made->symbolic);
+    made->numericBytes = numericFactorBytes(*made->symbolic);
     ++counts_.made;
     table_.emplace(key, made);
     return made;
@@ -165,6 +167,18 @@ class SymbolicAnalyses {
     c->supernodal = defaultKind;
     if (!L) throw std::runtime_error("cholmod: symbolic analysis failed");
     return L;
+  }
+  // The bytes CHOLMOD allocates for a numerical factor copied from this symbolic one and
+  // factorized (its own count, Common->memory_inuse, agrees to the byte: CholmodPredictsItsFactor):
+  // the copy's integer arrays, then the values. Supernodal: Perm and ColCount, super, pi and px,
+  // the row indices s, and xsize values (the packed layout stays inside them). Simplicial L L^T:
+  // Perm and ColCount, then p, i, x (nzmax = the column counts' sum), nz, next and prev.
+  static std::size_t numericFactorBytes(const cholmod_factor& S) {
+    const std::size_t n = S.n, header = sizeof(cholmod_factor), i = sizeof(int), d = sizeof(double);
+    if (S.is_super) return header + i * (2 * n + 3 * (S.nsuper + 1) + S.ssize) + d * S.xsize;
+    std::size_t nnz = 0;
+    for (std::size_t j = 0; j < n; ++j) nnz += static_cast<const int*>(S.ColCount)[j];
+    return header + i * (2 * n + (n + 1) + n + 2 * (n + 2)) + (i + d) * nnz;
   }
   std::unordered_multimap<std::uint64_t, std::weak_ptr<SymbolicAnalysis>> table_;
   LocalAnalysisCounts counts_;
@@ -188,6 +202,7 @@ class CholmodSolver final : public LocalSolver {
     // ordering and the symbolic factor are kept, only the numbers are factorized again.
     // The factorization overwrites every value, packed or not.
     if (L_ && analysis_->matches(kind_, A)) {
+      pending_.reset();
       packed_ = false;
       if (!cholmod_factorize(&S, L_, c) || c->status != CHOLMOD_OK) {
         const long minor = static_cast<long>(L_->minor);
@@ -199,7 +214,9 @@ class CholmodSolver final : public LocalSolver {
       return;
     }
     release();
-    analysis_ = analyses().get(kind_, A);
+    // The analysis that predictFactorMemory(A) made, or one made (or shared) now.
+    analysis_ = pending_ && pending_->matches(kind_, A) ? pending_ : analyses().get(kind_, A);
+    pending_.reset();
     // The numerical factorization fills a copy of the shared symbolic factor.
     L_ = cholmod_copy_factor(analysis_->symbolic, c);
     if (!L_) throw std::runtime_error("cholmod: out of memory copying a symbolic factor");
@@ -269,6 +286,14 @@ class CholmodSolver final : public LocalSolver {
       return analysis_->packed.offsets.back() * sizeof(double) + L_->ssize * sizeof(int) +
              L_->nsuper * 4 * sizeof(int);
     return L_->nzmax * (sizeof(double) + sizeof(int)) + 2 * (L_->n + 1) * sizeof(int);
+  }
+
+  std::size_t factorMemory() const override { return L_ ? analysis_->numericBytes : 0; }
+
+  std::ptrdiff_t predictFactorMemory(const CsrMatrix& A) override {
+    if (L_ && analysis_->matches(kind_, A)) return 0;  // refactorized in place
+    if (!pending_ || !pending_->matches(kind_, A)) pending_ = analyses().get(kind_, A);
+    return static_cast<std::ptrdiff_t>(pending_->numericBytes);
   }
 
   std::string name() const override {
@@ -393,6 +418,7 @@ class CholmodSolver final : public LocalSolver {
   bool packed_ = false;  // L_'s values are in the packed order
   CholmodKind kind_;
   std::shared_ptr<const SymbolicAnalysis> analysis_;  // the pattern L_ was analysed for
+  std::shared_ptr<const SymbolicAnalysis> pending_;   // predictFactorMemory's, for factorize
   cholmod_factor* L_ = nullptr;
 };
 
@@ -407,6 +433,10 @@ std::unique_ptr<LocalSolver> createCholmodSolver(const std::string& kind) {
 
 LocalAnalysisCounts cholmodAnalysisCounts() {
   return analyses().counts();
+}
+
+std::size_t cholmodMemoryInUse() {
+  return common()->memory_inuse;
 }
 
 }  // namespace tfeti

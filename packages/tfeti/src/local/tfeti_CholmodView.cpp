@@ -15,7 +15,8 @@ void cholmodUpperView(const CsrMatrix& A, cholmod_sparse& S) {
   S.x = const_cast<double*>(A.values.data());
   S.stype = 1;
   S.itype = CHOLMOD_INT;
-  S.xtype = CHOLMOD_REAL;
+  // A pattern without values (CsrMatrix::submatrix withValues = false): for an analysis only.
+  S.xtype = A.values.empty() && A.nnz() > 0 ? CHOLMOD_PATTERN : CHOLMOD_REAL;
   S.dtype = CHOLMOD_DOUBLE;
   S.sorted = 1;
   S.packed = 1;

@@ -17,6 +17,10 @@ LocalAnalysisCounts localAnalysisCounts() {
   return cholmodAnalysisCounts();
 }
 
+std::size_t localSolverMemoryInUse() {
+  return cholmodMemoryInUse();
+}
+
 std::unique_ptr<LocalSolver> createLocalSolver(const std::string& type) {
   if (type == "cholmod") return createCholmodSolver("auto");
   if (type == "cholmod-simplicial") return createCholmodSolver("simplicial");

@@ -32,6 +32,18 @@ class LocalSolver {
   }
   // Memory held by the factor (values and indices), in bytes: what one solve streams.
   virtual std::size_t factorBytes() const = 0;
+  // The bytes factorize(A) will allocate for its factor, told from A's symbolic analysis alone
+  // (made now and kept for factorize(A), so nothing is analysed twice): 0 where factorize(A)
+  // would refactorize the present factor in place; negative where the solver cannot tell before
+  // it factorizes (Amesos2's). FetiSolver compares the subdomains' sum with the nodes' memory
+  // before it factorizes any of them (tfeti_NodeMemory.hpp).
+  virtual std::ptrdiff_t predictFactorMemory(const CsrMatrix& A) {
+    (void)A;
+    return -1;
+  }
+  // The bytes the present factor holds, as predictFactorMemory counts them (CHOLMOD: its
+  // supernodal values unpacked, the index arrays); factorBytes() where the solver cannot tell.
+  virtual std::size_t factorMemory() const { return factorBytes(); }
   virtual std::string name() const = 0;
 };
 
@@ -42,6 +54,10 @@ struct LocalAnalysisCounts {
   long long made = 0, shared = 0;
 };
 LocalAnalysisCounts localAnalysisCounts();
+
+// The bytes CHOLMOD holds for this process's local solvers, by its own count (factors, symbolic
+// analyses and its workspace): what predictFactorMemory is checked against.
+std::size_t localSolverMemoryInUse();
 
 // Local solver types this build offers: "cholmod" (CHOLMOD choosing simplicial or supernodal
 // per matrix), "cholmod-simplicial", "cholmod-supernodal" (the kind forced), "klu2", "tacho".

@@ -65,7 +65,7 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
 Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
                      const KernelOptions& kernel, CsrMatrix K, std::vector<double> f,
                      const std::vector<int>& dirichletDofs, Formulation formulation,
-                     const std::string& localSolver)
+                     const std::string& localSolver, Factorization when)
     : id_(id),
       dofsPerNode_(dofsPerNode),
       formulation_(formulation),
@@ -117,6 +117,19 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
   checkKernelResidual(kernel.residualTolerance);
   chooseFixingDofs();
   factor_ = createLocalSolver(localSolver);
+  numDofs_ = K_.rows;
+  if (when == Factorization::Now) factorize();
+}
+
+std::ptrdiff_t Subdomain::predictFactorMemory() {
+  if (factorized()) return 0;
+  // The fixing dofs are decoupled by values alone (decoupleDofs keeps K's pattern), and an
+  // analysis reads the pattern alone: K itself, without a copy.
+  return factor_->predictFactorMemory(K_);
+}
+
+void Subdomain::factorize() {
+  if (factorized()) return;
   try {
     factor_->factorize(fixing_.empty() ? K_ : decoupleDofs(K_, fixing_));
     factorVersion_ = nextFactorVersion();
@@ -127,7 +140,6 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
                              "kernel than the " +
                              std::to_string(kernelDim_) + " modes found (" + e.what() + ")");
   }
-  numDofs_ = K_.rows;
   checkNoExtraKernel();
 }
 
@@ -275,6 +287,8 @@ void Subdomain::chooseFixingDofs() {
 }
 
 void Subdomain::applyPseudoInverse(const double* b, double* x, int nrhs) {
+  if (!factorized())
+    throw std::logic_error(name() + ": K+ applied before factorize() (Factorization::Deferred)");
   const int n = numDofs_;
   if (fixing_.empty()) {
     factor_->solve(b, x, nrhs);
@@ -310,6 +324,32 @@ bool Subdomain::pseudoInverseBlock(const std::vector<int>& dofs, std::vector<dou
   return true;
 }
 
+std::vector<int> Subdomain::interiorOf(const std::vector<int>& interfaceDofs) const {
+  std::vector<char> isB(K_.rows, 0);
+  for (int d : interfaceDofs) isB[d] = 1;
+  std::vector<int> interior;
+  for (int i = 0; i < K_.rows; ++i)
+    if (!isB[i]) interior.push_back(i);
+  return interior;
+}
+
+std::ptrdiff_t Subdomain::predictPreconditionerMemory(const std::vector<int>& interfaceDofs,
+                                                      PreconditionerType type,
+                                                      const std::string& localSolver) {
+  pendingInterior_.reset();
+  pendingInteriorDofs_.clear();
+  if (type != PreconditionerType::Dirichlet || !hasStiffness()) return 0;
+  std::vector<int> interior = interiorOf(interfaceDofs);
+  if (interior.empty()) return 0;
+  auto solver = createLocalSolver(localSolver);
+  const std::ptrdiff_t bytes =
+      solver->predictFactorMemory(K_.submatrix(interior, interior, /*withValues=*/false));
+  if (bytes < 0) return bytes;
+  pendingInterior_ = std::move(solver);
+  pendingInteriorDofs_ = std::move(interior);
+  return bytes;
+}
+
 void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs, PreconditionerType type,
                                     const std::string& localSolver) {
   if (type != PreconditionerType::None && !hasStiffness())
@@ -321,16 +361,16 @@ void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs, Preco
   std::sort(interface_.begin(), interface_.end());
   interior_.clear();
   interiorFactor_.reset();
+  std::unique_ptr<LocalSolver> pending = std::move(pendingInterior_);
   if (type == PreconditionerType::None) return;
   Kbb_ = K_.submatrix(interface_, interface_);
   if (type == PreconditionerType::Lumped) return;
-  std::vector<char> isB(K_.rows, 0);
-  for (int d : interface_) isB[d] = 1;
-  for (int i = 0; i < K_.rows; ++i)
-    if (!isB[i]) interior_.push_back(i);
+  interior_ = interiorOf(interface_);
   if (interior_.empty()) return;
   Kbi_ = K_.submatrix(interface_, interior_);
-  interiorFactor_ = createLocalSolver(localSolver);
+  interiorFactor_ = pending && pendingInteriorDofs_ == interior_ ? std::move(pending)
+                                                                 : createLocalSolver(localSolver);
+  pendingInteriorDofs_.clear();
   try {
     interiorFactor_->factorize(K_.submatrix(interior_, interior_));
   } catch (const std::exception& e) {
@@ -374,6 +414,10 @@ std::size_t Subdomain::factorBytes() const {
 
 std::size_t Subdomain::preconditionerFactorBytes() const {
   return interiorFactor_ ? interiorFactor_->factorBytes() : 0;
+}
+
+std::size_t Subdomain::preconditionerFactorMemory() const {
+  return interiorFactor_ ? interiorFactor_->factorMemory() : 0;
 }
 
 }  // namespace tfeti

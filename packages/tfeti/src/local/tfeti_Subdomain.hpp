@@ -39,6 +39,10 @@ struct KernelOptions {
   double residualTolerance = 1e-8;
 };
 
+// When the constructor factorizes: at once, or later by factorize(), so that the memory of all
+// the factors can be told (predictFactorMemory) and checked before any is made.
+enum class Factorization { Now, Deferred };
+
 class Subdomain {
  public:
   // coords: kernel.dim per node; dofs are interleaved (dof = dofsPerNode * node + component).
@@ -46,11 +50,19 @@ class Subdomain {
   // and a K whose kernel is larger than the one found.
   Subdomain(int id, int dofsPerNode, const std::vector<double>& coords, const KernelOptions& kernel,
             CsrMatrix K, std::vector<double> f, const std::vector<int>& dirichletDofs,
-            Formulation formulation, const std::string& localSolver);
+            Formulation formulation, const std::string& localSolver,
+            Factorization when = Factorization::Now);
   // 2D, kernel from the graph of K (the release-1 interface).
   Subdomain(int id, int dofsPerNode, const std::vector<double>& coords, CsrMatrix K,
             std::vector<double> f, const std::vector<int>& dirichletDofs, Formulation formulation,
             const std::string& localSolver);
+
+  // Factorization::Deferred: the bytes factorize() will allocate for K+ (LocalSolver::
+  // predictFactorMemory; negative where the local solver cannot tell), and the factorization
+  // itself, which throws as the constructor would. Solves need it done.
+  std::ptrdiff_t predictFactorMemory();
+  void factorize();
+  bool factorized() const { return factorVersion_ != 0; }
 
   int id() const { return id_; }
   int numDofs() const { return numDofs_; }
@@ -93,6 +105,13 @@ class Subdomain {
   // solver cannot: applyPseudoInverse() on the unit columns gives the same block then.
   bool pseudoInverseBlock(const std::vector<int>& dofs, std::vector<double>& block);
 
+  // The bytes setupPreconditioner(interfaceDofs, type, localSolver) will allocate for the
+  // Dirichlet preconditioner's interior factor, from its symbolic analysis (kept for it, like
+  // predictFactorMemory's): 0 for the other types, without K or without interior dofs; negative
+  // where the local solver cannot tell.
+  std::ptrdiff_t predictPreconditionerMemory(const std::vector<int>& interfaceDofs,
+                                             PreconditionerType type,
+                                             const std::string& localSolver);
   // The dofs the multipliers act on, in the order the preconditioner block uses them.
   void setupPreconditioner(const std::vector<int>& interfaceDofs, PreconditionerType type,
                            const std::string& localSolver);
@@ -105,6 +124,8 @@ class Subdomain {
 
   std::size_t factorBytes() const;
   std::size_t preconditionerFactorBytes() const;
+  // What the Dirichlet preconditioner's interior factor holds (LocalSolver::factorMemory).
+  std::size_t preconditionerFactorMemory() const;
   // Identifies the factorization behind K+: unique over every subdomain of the process and
   // renewed by every (re)factorization, so that what is derived from K+ (the explicit local dual
   // operator B_s K_s+ B_s^T, tfeti_ExplicitDualOperator.hpp) can tell that it is stale.
@@ -139,6 +160,10 @@ class Subdomain {
   // K_ib = K_bi^T is applied as the transpose of K_bi, not stored.
   CsrMatrix Kbb_, Kbi_;
   std::unique_ptr<LocalSolver> interiorFactor_;
+  // predictPreconditionerMemory's solver, its analysis made, for those interior dofs.
+  std::unique_ptr<LocalSolver> pendingInterior_;
+  std::vector<int> pendingInteriorDofs_;
+  std::vector<int> interiorOf(const std::vector<int>& interfaceDofs) const;  // K's other dofs
 };
 
 }  // namespace tfeti

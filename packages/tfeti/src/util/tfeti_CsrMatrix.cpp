@@ -59,8 +59,8 @@ bool CsrMatrix::isSymmetric(double tol) const {
   return true;
 }
 
-CsrMatrix CsrMatrix::submatrix(const std::vector<int>& rowsKept,
-                               const std::vector<int>& colsKept) const {
+CsrMatrix CsrMatrix::submatrix(const std::vector<int>& rowsKept, const std::vector<int>& colsKept,
+                               bool withValues) const {
   std::vector<int> newCol(cols, -1);
   for (std::size_t j = 0; j < colsKept.size(); ++j) newCol[colsKept[j]] = static_cast<int>(j);
   CsrMatrix s;
@@ -77,15 +77,15 @@ CsrMatrix CsrMatrix::submatrix(const std::vector<int>& rowsKept,
     s.rowPtr[r + 1] = s.rowPtr[r] + kept;
   }
   s.colInd.resize(s.rowPtr[s.rows]);
-  s.values.resize(s.rowPtr[s.rows]);
+  if (withValues) s.values.resize(s.rowPtr[s.rows]);
   for (int r = 0; r < s.rows; ++r) {
     const int i = rowsKept[r];
     int at = s.rowPtr[r];
     for (int k = rowPtr[i]; k < rowPtr[i + 1]; ++k) {
       const int c = newCol[colInd[k]];
       if (c < 0) continue;
-      s.colInd[at] = c;
-      s.values[at++] = values[k];
+      if (withValues) s.values[at] = values[k];
+      s.colInd[at++] = c;
     }
   }
   return s;

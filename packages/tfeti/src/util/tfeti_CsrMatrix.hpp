@@ -31,8 +31,10 @@ struct CsrMatrix {
   // matrices with the same digest are taken to be equal: Subdomain::refactorize keeps the factor
   // of an unchanged K by it, without holding a copy of K.
   std::array<std::uint64_t, 2> digest() const;
-  // The submatrix A(rowsKept, colsKept); index lists must be sorted ascending.
-  CsrMatrix submatrix(const std::vector<int>& rowsKept, const std::vector<int>& colsKept) const;
+  // The submatrix A(rowsKept, colsKept); index lists must be sorted ascending. withValues =
+  // false: its pattern alone (values empty), all a symbolic analysis reads.
+  CsrMatrix submatrix(const std::vector<int>& rowsKept, const std::vector<int>& colsKept,
+                      bool withValues = true) const;
 };
 
 // Builds a CSR matrix from (row, col, value) triplets, summing duplicates.

@@ -2,13 +2,16 @@
 // Whether what the ranks are about to allocate fits the machines they run on. Ranks on the same
 // machine (a node: the same host name) share its memory, so their needs add up; a node offers
 // MemAvailable of /proc/meminfo, what the kernel can hand out without swapping once everything
-// the run holds so far is counted. The explicit dual operator asks before it assembles its F_s
-// (in 3D they take 1.5-2.8x the factors' bytes, docs/dual_operator.md): a run that cannot hold
-// them stops with an error naming the parameter, instead of being killed by the kernel's OOM
-// killer after its factorizations, with nothing written.
+// the run holds so far is counted. FetiSolver asks before each large allocation of its set-up:
+// the subdomain factors (their bytes told by the symbolic analyses), the Dirichlet
+// preconditioner's interior factors, and the explicit dual operator's F_s (in 3D they take
+// 1.5-2.8x the factors' bytes, docs/dual_operator.md). A run that cannot hold them stops with an
+// error naming the parameters to change, instead of being killed by the kernel's OOM killer
+// partway, with nothing written (FETI "Memory check" = false: no check).
 //
 // The environment variable TFETI_MEMINFO names another file to read instead of /proc/meminfo
 // (the tests give one with little memory available).
+#include <functional>
 #include <string>
 
 #include "tfeti_Types.hpp"
@@ -19,8 +22,14 @@ namespace tfeti {
 // read or has no such line.
 double availableBytesIn(const std::string& meminfoFile);
 // availableBytesIn of /proc/meminfo, or of $TFETI_MEMINFO where set: then a file without the
-// line is std::invalid_argument naming the variable (a test that would check nothing).
+// line is std::invalid_argument naming the variable (a test that would check nothing). Or what
+// the source set below returns.
 double availableNodeBytes();
+
+// A process-wide source of the available bytes instead of the file, for tests whose node must
+// change between two checks of one set-up (a file read by every check gives one value to all of
+// them); an empty function restores the file.
+void setAvailableBytesSource(std::function<double()> source);
 
 struct NodeMemory {
   // Every rank read its node's available memory; where some could not, nothing is known and

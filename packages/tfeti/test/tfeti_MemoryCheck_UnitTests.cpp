@@ -1,0 +1,238 @@
+// The memory checks of the set-up (tfeti_NodeMemory.hpp), on 1, 2 and 3 ranks of one node:
+//  - a node's need is its ranks' needs summed, against the least MemAvailable its ranks read;
+//  - the subdomain factors' bytes, told by their symbolic analyses, are checked before any
+//    factorization: a node without room for them stops the set-up with an error on every rank,
+//    naming FETI "Memory check"; with room to the KiB the set-up goes on; "Memory check" = false
+//    goes on regardless and checks nothing (nor the explicit F_s); a local solver that cannot
+//    tell its bytes (KLU2) is not checked;
+//  - the Dirichlet preconditioner's interior factors likewise, after the subdomain
+//    factorizations, at the set-up's peak (K kept or freed one by one).
+// The explicit F_s' own check: tfeti_ExplicitDual_UnitTests.cpp.
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_UnitTestHarness.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "tfeti_FakeNodeMemory.hpp"
+#include "tfeti_FetiSolver.hpp"
+#include "tfeti_NodeMemory.hpp"
+#include "tfeti_Test3d.hpp"
+#include "tfeti_TestHelpers.hpp"
+
+namespace {
+
+Teuchos::ParameterList parameters(const std::string& dualOperator, bool memoryCheck = true,
+                                  const std::string& localSolver = "cholmod") {
+  Teuchos::ParameterList params = tfeti_test::tightFetiParameters("dirichlet", dualOperator);
+  params.set("Memory check", memoryCheck);
+  params.set("Local solver", localSolver);
+  return params;
+}
+
+// 3D elasticity, 2 x 2 x 1 subdomains of 2 x 2 x 2 Hex8 elements under gravity.
+const tfeti_test::Box3d& box() {
+  static const tfeti_test::Box3d b(2, 2, 1, 2, 2, 2, false);
+  return b;
+}
+
+tfeti::FetiSolver make(const Teuchos::ParameterList& params) {
+  tfeti_test::Material3d mat;
+  mat.dofsPerNode = 3;
+  const auto local =
+      tfeti_test::localBoxSubdomains(box(), mat, {0.0, 0.0, -1.0}, *Tpetra::getDefaultComm());
+  return tfeti::FetiSolver(Tpetra::getDefaultComm(), box().numSubdomains(), local, params);
+}
+
+// max |u - v| / max |v| over every subdomain of every rank.
+double solutionDifference(const tfeti::FetiSolver& u, const tfeti::FetiSolver& v) {
+  double diff = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < v.data().size(); ++i)
+    for (std::size_t k = 0; k < v.solution(i).size(); ++k) {
+      diff = std::max(diff, std::abs(u.solution(i)[k] - v.solution(i)[k]));
+      scale = std::max(scale, std::abs(v.solution(i)[k]));
+    }
+  const tfeti::Comm& comm = *Tpetra::getDefaultComm();
+  return tfeti_test::globalMax(comm, diff) / tfeti_test::globalMax(comm, scale);
+}
+
+}  // namespace
+
+TEUCHOS_UNIT_TEST(MemoryCheck, NodeMemoryAddsTheNeedsOfANodesRanks) {
+  auto comm = Tpetra::getDefaultComm();
+  const int P = comm->getSize(), rank = comm->getRank();
+  {
+    tfeti_test::MeminfoFile good(
+        "MemTotal:       100 kB\nMemAvailable:    4096 kB\nBuffers: 1 kB\n");
+    TEST_EQUALITY(tfeti::availableBytesIn(good.path()), 4096.0 * 1024.0);
+  }
+  {
+    tfeti_test::MeminfoFile none("MemTotal:       100 kB\nMemFree:    4096 kB\n");
+    TEST_COMPARE(tfeti::availableBytesIn(none.path()), <, 0.0);
+  }
+  TEST_COMPARE(tfeti::availableBytesIn("/nonexistent/meminfo"), <, 0.0);
+  // A file named by TFETI_MEMINFO must give the line: else the check would check nothing.
+  setenv("TFETI_MEMINFO", "/nonexistent/meminfo", 1);
+  const std::string msg = tfeti_test::messageOf([&] { tfeti::nodeMemory(*comm, 1.0); });
+  unsetenv("TFETI_MEMINFO");
+  out << msg << "\n";
+  TEST_ASSERT(tfeti_test::contains(msg, "TFETI_MEMINFO=/nonexistent/meminfo"));
+  TEST_ASSERT(tfeti_test::contains(msg, "MemAvailable"));
+  // Every rank of this test runs on one machine: one node, whose available memory is the least
+  // its ranks read, and whose need is the sum of theirs.
+  tfeti_test::FakeNodeMemory fake(1000 + rank);
+  for (const double perRank : {100000.0, 400000.0}) {
+    const tfeti::NodeMemory m = tfeti::nodeMemory(*comm, perRank * (rank + 1));
+    const double need = perRank * P * (P + 1) / 2;
+    out << P << " ranks, " << perRank << " bytes per rank: " << tfeti::describe(m) << "\n";
+    TEST_ASSERT(m.known);
+    TEST_EQUALITY(m.ranks, P);
+    TEST_EQUALITY(m.firstRank, 0);
+    TEST_EQUALITY(m.needBytes, need);
+    TEST_EQUALITY(m.availableBytes, 1000.0 * 1024.0);
+    TEST_EQUALITY(m.fits, need <= 1000.0 * 1024.0);
+  }
+  TEST_EQUALITY(tfeti::bytesText(1536.0), std::string("1.5 KiB"));
+  TEST_EQUALITY(tfeti::bytesText(3.0 * 1024 * 1024 * 1024), std::string("3.00 GiB"));
+}
+
+TEUCHOS_UNIT_TEST(MemoryCheck, FactorsBeyondTheNodesMemory) {
+  auto comm = Tpetra::getDefaultComm();
+  const int P = comm->getSize();
+  tfeti::FetiSolver roomy = make(parameters("implicit"));
+  const tfeti::NodeMemory& m = roomy.factorMemoryCheck();
+  out << "this machine: " << tfeti::describe(m) << "; the factors stream "
+      << roomy.globalFactorBytes() << " bytes\n";
+  TEST_ASSERT(m.known && m.fits);
+  TEST_EQUALITY(m.ranks, P);
+  TEST_EQUALITY(m.firstRank, 0);
+  // What the factors hold (CHOLMOD's supernodal values unpacked, the index arrays) is at least
+  // what a solve streams, and the same on every rank count.
+  TEST_COMPARE(m.needBytes, >=, static_cast<double>(roomy.globalFactorBytes()));
+  TEST_COMPARE(m.needBytes, <, 2.0 * static_cast<double>(roomy.globalFactorBytes()));
+  TEST_COMPARE(m.availableBytes, >, m.needBytes);
+  const tfeti::DualResult reference = roomy.solve();
+  TEST_ASSERT(reference.converged);
+  const long long kib = tfeti_test::kibAtLeast(m.needBytes);
+  {
+    // One KiB short: every rank stops with the error, before anything is factorized.
+    tfeti_test::FakeNodeMemory fake(kib - 1);
+    const std::string msg = tfeti_test::messageOf([&] { make(parameters("implicit")); });
+    out << msg << "\n";
+    TEST_ASSERT(
+        tfeti_test::contains(msg, "the subdomain factors (\"Local solver\" = cholmod) do not fit"));
+    TEST_ASSERT(
+        tfeti_test::contains(msg, tfeti::bytesText(1024.0 * (kib - 1)) +
+                                      " available (MemAvailable) before the factorizations"));
+    TEST_ASSERT(tfeti_test::contains(msg, "\"Memory check\" = false"));
+    TEST_ASSERT(tfeti_test::contains(
+        msg, "the " + std::to_string(P) + (P == 1 ? " rank" : " ranks") +
+                 " on the node of rank 0 need " + tfeti::bytesText(m.needBytes)));
+  }
+  {
+    // Room to the KiB: it goes on, and solves as before.
+    tfeti_test::FakeNodeMemory fake(kib);
+    tfeti::FetiSolver tight = make(parameters("implicit"));
+    TEST_ASSERT(tight.factorMemoryCheck().fits);
+    TEST_EQUALITY(tight.factorMemoryCheck().needBytes, m.needBytes);
+    const tfeti::DualResult r = tight.solve();
+    TEST_EQUALITY(r.iterations, reference.iterations);
+    TEST_EQUALITY(solutionDifference(tight, roomy), 0.0);
+  }
+  {
+    // "Memory check" = false: no check at all, the explicit F_s' neither.
+    tfeti_test::FakeNodeMemory fake(1);
+    for (const std::string kind : {"implicit", "explicit"}) {
+      tfeti::FetiSolver unchecked = make(parameters(kind, false));
+      TEST_ASSERT(!unchecked.factorMemoryCheck().known);
+      TEST_EQUALITY(unchecked.dualOperatorKind(), kind);
+      TEST_ASSERT(unchecked.dualOperatorChoice().fitsMemory);
+      TEST_EQUALITY(unchecked.dualOperatorChoice().nodeAvailableBytes, -1.0);
+      const tfeti::DualResult r = unchecked.solve();
+      TEST_EQUALITY(r.iterations, reference.iterations);
+      TEST_COMPARE(solutionDifference(unchecked, roomy), <, 1e-10);
+    }
+    // KLU2 cannot tell its factor's bytes before it factorizes: nothing is checked.
+    tfeti::FetiSolver klu2 = make(parameters("implicit", true, "klu2"));
+    TEST_ASSERT(!klu2.factorMemoryCheck().known);
+    TEST_ASSERT(klu2.solve().converged);
+  }
+}
+
+// The Dirichlet preconditioner's interior factors, checked after the subdomain factorizations:
+// the need is what they hold at the set-up's peak (all of them with K kept; less with K freed one
+// by one), each told by a symbolic analysis that the factorization then uses. A node whose memory
+// runs out between the two checks (the available bytes' source gives plenty to the first, 1 KiB
+// to the next) stops there with an error on every rank naming the preconditioner.
+TEUCHOS_UNIT_TEST(MemoryCheck, PreconditionerBeyondTheNodesMemory) {
+  auto comm = Tpetra::getDefaultComm();
+  const int P = comm->getSize();
+  const auto globalSum = [&](double x) {
+    double sum = 0.0;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &x, &sum);
+    return sum;
+  };
+  double held = 0.0;
+  {
+    tfeti::FetiSolver roomy = make(parameters("implicit"));
+    const tfeti::NodeMemory& m = roomy.preconditionerMemoryCheck();
+    out << "this machine: " << tfeti::describe(m) << "\n";
+    TEST_ASSERT(m.known && m.fits);
+    TEST_EQUALITY(m.ranks, P);
+    double mine = 0.0;
+    for (const auto& s : roomy.subdomains()) mine += s->preconditionerFactorMemory();
+    held = globalSum(mine);
+    TEST_COMPARE(held, >, 0.0);
+    TEST_EQUALITY(m.needBytes, held);
+    // A prediction is the bytes a set-up then holds, and the set-up analyses nothing again.
+    for (std::size_t i = 0; i < roomy.subdomains().size(); ++i) {
+      tfeti::Subdomain& s = *roomy.subdomains()[i];
+      const std::vector<int> dofs = s.interfaceDofs();
+      const std::size_t before = s.preconditionerFactorMemory();
+      TEST_EQUALITY(
+          s.predictPreconditionerMemory(dofs, tfeti::PreconditionerType::Dirichlet, "cholmod"),
+          static_cast<std::ptrdiff_t>(before));
+      const tfeti::LocalAnalysisCounts counts = tfeti::localAnalysisCounts();
+      s.setupPreconditioner(dofs, tfeti::PreconditionerType::Dirichlet, "cholmod");
+      TEST_EQUALITY(tfeti::localAnalysisCounts().made, counts.made);
+      TEST_EQUALITY(tfeti::localAnalysisCounts().shared, counts.shared);
+      TEST_EQUALITY(s.preconditionerFactorMemory(), before);
+      TEST_EQUALITY(
+          s.predictPreconditionerMemory(dofs, tfeti::PreconditionerType::Lumped, "cholmod"), 0);
+    }
+    TEST_ASSERT(roomy.solve().converged);
+  }
+  {
+    // K freed after each interior factor: the peak is below all of them held at once.
+    Teuchos::ParameterList params = parameters("implicit");
+    params.set("Keep subdomain matrices", false);
+    tfeti::FetiSolver freeing = make(params);
+    out << "K freed: " << tfeti::describe(freeing.preconditionerMemoryCheck()) << "\n";
+    TEST_ASSERT(freeing.preconditionerMemoryCheck().known);
+    TEST_COMPARE(freeing.preconditionerMemoryCheck().needBytes, <, held);
+  }
+  {
+    // The lumped preconditioner makes no factor: nothing to check.
+    Teuchos::ParameterList params = parameters("implicit");
+    params.set("Preconditioner", "lumped");
+    TEST_ASSERT(!make(params).preconditionerMemoryCheck().known);
+  }
+  int reads = 0;
+  tfeti::setAvailableBytesSource([&reads] { return ++reads == 1 ? 1e15 : 1024.0; });
+  const std::string msg = tfeti_test::messageOf([&] { make(parameters("implicit")); });
+  tfeti::setAvailableBytesSource({});
+  out << msg << "\n";
+  TEST_EQUALITY(reads, 2);
+  TEST_ASSERT(tfeti_test::contains(
+      msg,
+      "the Dirichlet preconditioner's interior factors (\"Local solver\" = cholmod) do not fit"));
+  TEST_ASSERT(tfeti_test::contains(msg,
+                                   "1.0 KiB available (MemAvailable) after the subdomain "
+                                   "factorizations"));
+  TEST_ASSERT(tfeti_test::contains(msg, "\"Preconditioner\" = lumped"));
+  TEST_ASSERT(tfeti_test::contains(msg, "\"Memory check\" = false"));
+}
