@@ -12,7 +12,8 @@
 //  - F_s that do not fit the node's available memory: explicit stops with an error naming the
 //    parameter, auto falls back to implicit (TFETI_MEMINFO gives a node with room for the
 //    subdomain factors alone);
-//    every rank takes part in that check, also where only some assemble from scratch;
+//    every rank takes part in that check, also where only some assemble from scratch; the
+//    blocks that update() assembles anew in part are checked too;
 //  - an unknown "Dual operator" is an error listing the valid values.
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
@@ -510,6 +511,60 @@ TEUCHOS_UNIT_TEST(ExplicitDual, MemoryCheckWhenOnlySomeRanksAssembleAnew) {
       scale = std::max(scale, std::abs(im.solution(i)[k]));
     }
   TEST_COMPARE(tfeti_test::globalMax(*comm, diff) / tfeti_test::globalMax(*comm, scale), <, 1e-10);
+}
+
+// update() with other contact rows on the same factors (the coefficients changed from x = 9 on:
+// the blocks of the subdomains at 6 <= x <= 12): those blocks are assembled anew (in part) while
+// the old operator still holds its values, so they are checked too, needing less than the first
+// assembly of all of them; a node without room for them stops explicit with the error and makes
+// auto go on implicitly, as the implicit solver does.
+TEUCHOS_UNIT_TEST(ExplicitDual, PartialReassemblyIsChecked) {
+  auto comm = Tpetra::getDefaultComm();
+  const tfeti_test::Box3d box(4, 2, 1, 3, 3, 3, false);
+  const auto make = [&](const std::string& kind) {
+    return tfeti::FetiSolver(comm, box.numSubdomains(), local3d(box), parameters(kind, "lumped"),
+                             floorRows(box, 6.0, 1.0));
+  };
+  const auto update = [&](tfeti::FetiSolver& solver) {
+    std::vector<std::vector<double>> loads;
+    for (const auto& s : solver.subdomains()) loads.push_back(s->load());
+    solver.update(loads, floorRows(box, 6.0, 0.5));
+  };
+  {
+    tfeti::FetiSolver roomy = make("explicit");
+    const double first = roomy.dualOperatorChoice().nodeNeedBytes;
+    update(roomy);
+    const auto& c = roomy.dualOperatorChoice();
+    out << "first assembly needs " << first << " bytes, the partial one " << c.nodeNeedBytes
+        << "\n";
+    TEST_ASSERT(c.fitsMemory);
+    TEST_COMPARE(c.nodeNeedBytes, >, 0.0);
+    TEST_COMPARE(c.nodeNeedBytes, <, first);
+    const auto after = roomy.dualOperator()->explicitPart();
+    TEST_COMPARE(tfeti_test::globalSum(*comm, after->assemblies()), <,
+                 static_cast<long long>(box.numSubdomains()));
+    TEST_COMPARE(tfeti_test::globalSum(*comm, after->assemblies()), >, 0LL);
+    TEST_COMPARE(c.nodeAvailableBytes, >, 0.0);
+  }
+  tfeti::FetiSolver ex = make("explicit"), au = make("auto"), im = make("implicit");
+  out << "auto chose " << au.dualOperatorKind() << "\n";
+  TEST_EQUALITY(au.dualOperatorKind(), std::string("explicit"));
+  tfeti::setAvailableBytesSource([] { return 1024.0; });
+  const std::string msg = tfeti_test::messageOf([&] { update(ex); });
+  update(au);
+  tfeti::setAvailableBytesSource({});
+  update(im);
+  out << msg << "\n";
+  TEST_ASSERT(tfeti_test::contains(msg, "\"Dual operator\" = explicit"));
+  TEST_ASSERT(tfeti_test::contains(msg, "do not fit"));
+  TEST_ASSERT(tfeti_test::contains(msg, "1.0 KiB available (MemAvailable)"));
+  TEST_EQUALITY(au.dualOperatorKind(), std::string("implicit"));
+  TEST_ASSERT(!au.dualOperatorChoice().fitsMemory);
+  const tfeti::DualResult ra = au.solve(), ri = im.solve();
+  TEST_ASSERT(ra.converged && ri.converged);
+  TEST_EQUALITY(ra.iterations, ri.iterations);
+  for (std::size_t i = 0; i < au.data().size(); ++i)
+    TEST_COMPARE_FLOATING_ARRAYS(au.solution(i), im.solution(i), 1e-14);
 }
 
 TEUCHOS_UNIT_TEST(ExplicitDual, UnknownValueIsAnError) {

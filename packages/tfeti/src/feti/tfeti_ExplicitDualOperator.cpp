@@ -99,6 +99,23 @@ void checkExplicitDevice(const std::string& dualOperator, ExplicitDevice device)
 #endif
 }
 
+std::vector<char> ExplicitDualOperator::blocksTakenOver(
+    const Tearing& tearing, const std::vector<std::shared_ptr<Subdomain>>& subdomains,
+    DenseStorage storage, const ExplicitDualOperator* previous) {
+  std::vector<char> taken(subdomains.size(), 0);
+  if (!previous || previous->storage_ != storage) return taken;
+  std::map<int, const Block*> old;
+  for (const auto& b : previous->blocks_) old[b.subdomainId] = &b;
+  std::vector<GO> rows;
+  for (std::size_t i = 0; i < subdomains.size() && i < tearing.subdomainRows.size(); ++i) {
+    const auto it = old.find(subdomains[i]->id());
+    if (it == old.end() || it->second->version != subdomains[i]->factorVersion()) continue;
+    taken[i] =
+        samePattern(*it->second, blockPattern(subdomains[i]->id(), tearing.subdomainRows[i], rows));
+  }
+  return taken;
+}
+
 ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
                                            std::vector<std::shared_ptr<Subdomain>> subdomains,
                                            DenseStorage storage,

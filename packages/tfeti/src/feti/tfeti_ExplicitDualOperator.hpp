@@ -79,6 +79,14 @@ class ExplicitDualOperator {
                        BlockAssembly assembly = BlockAssembly::Schur,
                        bool releaseStiffness = false);
 
+  // Per local subdomain: whether an operator constructed with these arguments would take its
+  // block over from previous as it is (the same factor and the same rows of B, in the same
+  // storage), sharing its values; the others it assembles, wholly or in part, into new values
+  // while previous still holds the old ones (the memory check of FetiSolver counts them).
+  static std::vector<char> blocksTakenOver(
+      const Tearing& tearing, const std::vector<std::shared_ptr<Subdomain>>& subdomains,
+      DenseStorage storage, const ExplicitDualOperator* previous);
+
   // Y = alpha F X + beta Y on the multiplier map (collective: one Import and one Export).
   void apply(const MultiVector& X, MultiVector& Y, Scalar alpha, Scalar beta) const;
 

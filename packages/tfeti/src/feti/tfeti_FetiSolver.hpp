@@ -301,7 +301,7 @@ class FetiSolver {
     bool qp = false;
     double explicitBytes = 0.0, factorBytes = 0.0;
     std::string chosen = "implicit";
-    // The memory check before the last assembly of the F_s from scratch (explicitDoesNotFit):
+    // The memory check before the last assembly of new F_s (explicitDoesNotFit):
     // what the node with the least room needs and has; availableBytes < 0 when not checked
     // or unknown (no /proc/meminfo).
     bool fitsMemory = true;
@@ -382,14 +382,17 @@ class FetiSolver {
   // releaseStiffness: the explicit operator frees every subdomain's K once its F_s is assembled
   // (the Schur assembly needs K; "Keep subdomain matrices" = false).
   void buildDualOperator(bool releaseStiffness = false);
-  // Before the explicit F_s are assembled with no block to take over (fromScratch; a rank that
-  // takes its blocks over takes part with no need): whether they fit, with the Schur assembly's
-  // largest transient (a second factor, Z and the m x m block) and less the K freed meanwhile.
-  // Where they do not, auto falls back to implicit (true: go on implicit) and explicit is an
-  // error naming the parameter. Collective.
-  bool explicitDoesNotFit(DenseStorage storage, bool releaseStiffness, bool fromScratch);
-  // This rank's bytes for that: its F_s, the largest transient, less the K freed.
-  double explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness) const;
+  // Before the explicit F_s are assembled, where any rank assembles some (takenOver: the local
+  // blocks taken over from the previous operator as they are, ExplicitDualOperator::
+  // blocksTakenOver; a rank that takes all its blocks over takes part with no need): whether the
+  // new ones fit, with the Schur assembly's largest transient (a second factor, Z and the m x m
+  // block) and less the K freed meanwhile. Where they do not, auto falls back to implicit (true:
+  // go on implicit) and explicit is an error naming the parameter. Collective.
+  bool explicitDoesNotFit(DenseStorage storage, bool releaseStiffness,
+                          const std::vector<char>& takenOver);
+  // This rank's bytes for that: its new F_s, the largest transient, less the K freed.
+  double explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness,
+                              const std::vector<char>& takenOver) const;
   // Sets dualChoice_ from "Dual operator" and, for auto, the tearing and the factors. Collective.
   void chooseDualOperator();
   // The dual solve: PCPG (tfeti_FetiSolverSolve.cpp), the QP of the inequality rows

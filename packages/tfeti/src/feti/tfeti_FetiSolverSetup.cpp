@@ -307,7 +307,7 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
 
 void FetiSolver::chooseDualOperator() {
   DualOperatorChoice c;
-  // The last memory check stands until the next assembly from scratch checks again.
+  // The last memory check stands until the next assembly of new blocks checks again.
   c.fitsMemory = dualChoice_.fitsMemory;
   c.nodeNeedBytes = dualChoice_.nodeNeedBytes;
   c.nodeAvailableBytes = dualChoice_.nodeAvailableBytes;
@@ -363,12 +363,16 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     F_ = Teuchos::null;
   }
   const DenseStorage storage = parseDenseStorage(params_.get<std::string>("Explicit storage"));
-  // Whether blocks can be taken over is a rank's own matter (a refactorized plastic subdomain
-  // here, elastic ones kept there); the check is collective, so every rank takes part in it
-  // where any assembles from scratch.
-  int fresh = previous ? 0 : 1, anyFresh = 0;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, fresh, Teuchos::outArg(anyFresh));
-  if (anyFresh && explicitDoesNotFit(storage, releaseStiffness, fresh == 1)) {
+  // Every block the new operator assembles, wholly or in part, takes new memory while the
+  // previous operator still holds the old values: all of them after a set-up from scratch, the
+  // refactorized subdomains' and those whose rows moved after update(). Which ones is a rank's
+  // own matter (a refactorized plastic subdomain here, elastic ones kept there); the check is
+  // collective, so every rank takes part in it where any assembles.
+  const std::vector<char> taken =
+      ExplicitDualOperator::blocksTakenOver(tearing_, subdomains_, storage, previous.get());
+  int assembles = std::count(taken.begin(), taken.end(), 0) > 0 ? 1 : 0, anyAssembles = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, assembles, Teuchos::outArg(anyAssembles));
+  if (anyAssembles && explicitDoesNotFit(storage, releaseStiffness, taken)) {
     F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
     return;
   }
@@ -391,15 +395,18 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     });
 }
 
-double FetiSolver::explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness) const {
+double FetiSolver::explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness,
+                                        const std::vector<char>& takenOver) const {
   const std::vector<long long> rows = subdomainRowCounts(tearing_);
   double blocks = 0.0, transient = 0.0, freed = 0.0;
   for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-    const double m = static_cast<double>(rows[i]);
-    const double k = static_cast<double>(subdomainDualDofs(tearing_, i).size());
-    blocks += static_cast<double>(explicitBlockBytes(storage, rows[i]));
-    transient = std::max(transient, static_cast<double>(subdomains_[i]->factorBytes()) +
-                                        sizeof(double) * (k * k + m * m));
+    if (!takenOver[i]) {
+      const double m = static_cast<double>(rows[i]);
+      const double k = static_cast<double>(subdomainDualDofs(tearing_, i).size());
+      blocks += static_cast<double>(explicitBlockBytes(storage, rows[i]));
+      transient = std::max(transient, static_cast<double>(subdomains_[i]->factorBytes()) +
+                                          sizeof(double) * (k * k + m * m));
+    }
     const CsrMatrix& K = subdomains_[i]->stiffness();
     if (releaseStiffness)
       freed += K.nnz() * (sizeof(double) + sizeof(int)) + (K.rows + 1.0) * sizeof(int);
@@ -407,7 +414,8 @@ double FetiSolver::explicitAssemblyNeed(DenseStorage storage, bool releaseStiffn
   return blocks + transient - freed;
 }
 
-bool FetiSolver::explicitDoesNotFit(DenseStorage storage, bool releaseStiffness, bool fromScratch) {
+bool FetiSolver::explicitDoesNotFit(DenseStorage storage, bool releaseStiffness,
+                                    const std::vector<char>& takenOver) {
   if (!params_.get<bool>("Memory check")) {
     dualChoice_.fitsMemory = true;
     dualChoice_.nodeNeedBytes = 0.0;
@@ -415,7 +423,7 @@ bool FetiSolver::explicitDoesNotFit(DenseStorage storage, bool releaseStiffness,
     return false;
   }
   const NodeMemory node =
-      nodeMemory(*comm_, fromScratch ? explicitAssemblyNeed(storage, releaseStiffness) : 0.0);
+      nodeMemory(*comm_, explicitAssemblyNeed(storage, releaseStiffness, takenOver));
   dualChoice_.fitsMemory = node.fits;
   dualChoice_.nodeNeedBytes = node.needBytes;
   dualChoice_.nodeAvailableBytes = node.known ? node.availableBytes : -1.0;
