@@ -414,6 +414,33 @@ TEUCHOS_UNIT_TEST(ExplicitDual, AutoChoosesByQpAndBytes) {
   TEST_EQUALITY(chosen.back(), std::string("implicit"));
 }
 
+namespace {
+
+// The explicit operator's error where its F_s do not fit a node with `available` bytes.
+void checkDoesNotFitError(const std::string& msg, double available, Teuchos::FancyOStream& out,
+                          bool& success) {
+  out << msg << "\n";
+  TEST_ASSERT(tfeti_test::contains(msg, "\"Dual operator\" = explicit"));
+  TEST_ASSERT(tfeti_test::contains(msg, "do not fit"));
+  TEST_ASSERT(tfeti_test::contains(msg, tfeti::bytesText(available) + " available (MemAvailable)"));
+  TEST_ASSERT(tfeti_test::contains(msg, "implicit"));
+}
+
+// auto fallen back to implicit solves as the implicit solver: the same iterations, the same
+// solution to rounding.
+void checkSolvesAsImplicit(tfeti::FetiSolver& fallback, tfeti::FetiSolver& implicit,
+                           Teuchos::FancyOStream& out, bool& success) {
+  TEST_EQUALITY(fallback.dualOperatorKind(), std::string("implicit"));
+  TEST_ASSERT(!fallback.dualOperatorChoice().fitsMemory);
+  const tfeti::DualResult rf = fallback.solve(), ri = implicit.solve();
+  TEST_ASSERT(rf.converged && ri.converged);
+  TEST_EQUALITY(rf.iterations, ri.iterations);
+  for (std::size_t i = 0; i < fallback.data().size(); ++i)
+    TEST_COMPARE_FLOATING_ARRAYS(fallback.solution(i), implicit.solution(i), 1e-14);
+}
+
+}  // namespace
+
 TEUCHOS_UNIT_TEST(ExplicitDual, FsBeyondTheNodesMemory) {
   auto comm = Tpetra::getDefaultComm();
   // A 3D QP whose F_s take fewer bytes than the factors: auto chooses explicit
@@ -454,29 +481,17 @@ TEUCHOS_UNIT_TEST(ExplicitDual, FsBeyondTheNodesMemory) {
   for (const Case& k : {Case{true, "cholmod", kib}, Case{false, "klu2", 1}}) {
     out << "K kept " << k.keep << ", " << k.solver << ", " << k.kib << " KiB available\n";
     tfeti_test::FakeNodeMemory fake(k.kib);
-    const std::string msg = tfeti_test::messageOf([&] { make("explicit", k.keep, k.solver); });
-    out << msg << "\n";
-    TEST_ASSERT(tfeti_test::contains(msg, "\"Dual operator\" = explicit"));
-    TEST_ASSERT(tfeti_test::contains(msg, "do not fit"));
-    TEST_ASSERT(
-        tfeti_test::contains(msg, tfeti::bytesText(1024.0 * k.kib) + " available (MemAvailable)"));
-    TEST_ASSERT(tfeti_test::contains(msg, "implicit"));
+    checkDoesNotFitError(tfeti_test::messageOf([&] { make("explicit", k.keep, k.solver); }),
+                         1024.0 * k.kib, out, success);
     tfeti::FetiSolver fallback = make("auto", k.keep, k.solver),
                       implicit = make("implicit", k.keep, k.solver);
-    const auto& c = fallback.dualOperatorChoice();
-    TEST_EQUALITY(c.chosen, std::string("implicit"));
-    TEST_ASSERT(!c.fitsMemory);
-    TEST_EQUALITY(c.nodeAvailableBytes, 1024.0 * k.kib);
-    TEST_EQUALITY(fallback.dualOperatorKind(), std::string("implicit"));
+    TEST_EQUALITY(fallback.dualOperatorChoice().chosen, std::string("implicit"));
+    TEST_EQUALITY(fallback.dualOperatorChoice().nodeAvailableBytes, 1024.0 * k.kib);
     // The K kept for the Schur assembly are freed as the implicit operator would have.
     for (std::size_t i = 0; i < fallback.subdomains().size(); ++i)
       TEST_EQUALITY(fallback.subdomains()[i]->hasStiffness(),
                     implicit.subdomains()[i]->hasStiffness());
-    const tfeti::DualResult rf = fallback.solve(), ri = implicit.solve();
-    TEST_ASSERT(rf.converged && ri.converged);
-    TEST_EQUALITY(rf.iterations, ri.iterations);
-    for (std::size_t i = 0; i < fallback.data().size(); ++i)
-      TEST_COMPARE_FLOATING_ARRAYS(fallback.solution(i), implicit.solution(i), 1e-14);
+    checkSolvesAsImplicit(fallback, implicit, out, success);
   }
 }
 
@@ -554,17 +569,8 @@ TEUCHOS_UNIT_TEST(ExplicitDual, PartialReassemblyIsChecked) {
   update(au);
   tfeti::setAvailableBytesSource({});
   update(im);
-  out << msg << "\n";
-  TEST_ASSERT(tfeti_test::contains(msg, "\"Dual operator\" = explicit"));
-  TEST_ASSERT(tfeti_test::contains(msg, "do not fit"));
-  TEST_ASSERT(tfeti_test::contains(msg, "1.0 KiB available (MemAvailable)"));
-  TEST_EQUALITY(au.dualOperatorKind(), std::string("implicit"));
-  TEST_ASSERT(!au.dualOperatorChoice().fitsMemory);
-  const tfeti::DualResult ra = au.solve(), ri = im.solve();
-  TEST_ASSERT(ra.converged && ri.converged);
-  TEST_EQUALITY(ra.iterations, ri.iterations);
-  for (std::size_t i = 0; i < au.data().size(); ++i)
-    TEST_COMPARE_FLOATING_ARRAYS(au.solution(i), im.solution(i), 1e-14);
+  checkDoesNotFitError(msg, 1024.0, out, success);
+  checkSolvesAsImplicit(au, im, out, success);
 }
 
 TEUCHOS_UNIT_TEST(ExplicitDual, UnknownValueIsAnError) {

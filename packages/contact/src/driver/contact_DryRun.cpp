@@ -110,8 +110,7 @@ void printDryRunReport(const tfeti::Comm& comm, const std::vector<std::string>& 
   // row indices, as CHOLMOD's simplicial factor stores them).
   std::vector<double> mine;
   for (const auto& s : local) {
-    const double kBytes = static_cast<double>(s.K.nnz()) * (sizeof(double) + sizeof(int)) +
-                          (s.K.rows + 1.0) * sizeof(int);
+    const double kBytes = static_cast<double>(s.K.bytes());
     const double lBytes = static_cast<double>(choleskyFactorEntries(s.K, fillReducingOrder(s.K))) *
                           (sizeof(double) + sizeof(int));
     mine.insert(mine.end(), {static_cast<double>(comm.getRank()), static_cast<double>(s.mesh.id),

@@ -341,13 +341,16 @@ class FetiSolver {
   // Set-up (tfeti_FetiSolverSetup.cpp).
   void buildSubdomains(const std::vector<std::vector<double>>& coords);
   // Between the subdomains' construction and their factorization: the factors' bytes against
-  // the nodes' memory (factorMemory_); throws std::runtime_error on every rank where some node
-  // falls short. Collective.
+  // the nodes' memory (factorMemory_); throws std::invalid_argument (naming the parameters to
+  // change) on every rank where some node falls short. Collective.
   void checkFactorMemory();
+  // Collective: each rank's need against its node's memory (nodeMemory); nothing known (known =
+  // false, fits) where some rank's local solver cannot tell its bytes.
+  NodeMemory nodesHold(double need, bool cannotTell) const;
   NodeMemory factorMemory_;
   // Before the preconditioner's set-up: its interior factors against the nodes' memory
   // (preconditionerMemory_). rebuild: the subdomains whose preconditioner is set up again, with
-  // their interface dofs; releaseStiffness: K freed after each. Throws std::runtime_error on
+  // their interface dofs; releaseStiffness: K freed after each. Throws std::invalid_argument on
   // every rank where some node falls short. Collective.
   void checkPreconditionerMemory(const std::vector<std::vector<int>>& dofs,
                                  const std::vector<char>& rebuild, PreconditionerType type,
@@ -375,6 +378,9 @@ class FetiSolver {
   // subdomainsKept: the subdomains (and their kernels) are those of the last call, so rows whose
   // entries did not change keep the tearing and the coarse space (updateTearingValues).
   void buildConstraints(const std::vector<InequalityRow>& inequalities, bool subdomainsKept);
+  // buildConstraints' preconditioner step: the subdomains whose K or interface dofs changed set
+  // theirs up again (checkPreconditionerMemory first); releaseStiffness: K freed after each.
+  void setupPreconditioners(PreconditionerType type, bool releaseStiffness);
   // buildConstraints' first step: true where the tearing was kept (its values updated).
   bool keepOrBuildTearing(const std::vector<InequalityRow>& inequalities, bool subdomainsKept);
   void requireNoRowOnEliminatedDofs() const;
@@ -382,14 +388,14 @@ class FetiSolver {
   // releaseStiffness: the explicit operator frees every subdomain's K once its F_s is assembled
   // (the Schur assembly needs K; "Keep subdomain matrices" = false).
   void buildDualOperator(bool releaseStiffness = false);
-  // Before the explicit F_s are assembled, where any rank assembles some (takenOver: the local
-  // blocks taken over from the previous operator as they are, ExplicitDualOperator::
-  // blocksTakenOver; a rank that takes all its blocks over takes part with no need): whether the
-  // new ones fit, with the Schur assembly's largest transient (a second factor, Z and the m x m
-  // block) and less the K freed meanwhile. Where they do not, auto falls back to implicit (true:
-  // go on implicit) and explicit is an error naming the parameter. Collective.
-  bool explicitDoesNotFit(DenseStorage storage, bool releaseStiffness,
-                          const std::vector<char>& takenOver);
+  // Before the explicit F_s are assembled, where any rank assembles some (the blocks not taken
+  // over from previous as they are, ExplicitDualOperator::blocksTakenOver; a rank that takes all
+  // its blocks over takes part with no need): whether the new ones fit, with the Schur
+  // assembly's largest transient (a second factor, Z and the m x m block) and less the K freed
+  // meanwhile. Where they do not, auto falls back to implicit (true: go on implicit) and
+  // explicit is an error naming the parameter. Collective.
+  bool explicitDoesNotFit(DenseStorage storage, const ExplicitDualOperator* previous,
+                          bool releaseStiffness);
   // This rank's bytes for that: its new F_s, the largest transient, less the K freed.
   double explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness,
                               const std::vector<char>& takenOver) const;

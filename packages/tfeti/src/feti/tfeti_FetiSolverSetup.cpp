@@ -137,25 +137,30 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
   countFactorizations();
 }
 
+NodeMemory FetiSolver::nodesHold(double need, bool cannotTell) const {
+  int mine = cannotTell ? 1 : 0, any = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, mine, Teuchos::outArg(any));
+  if (any) return NodeMemory{};  // Amesos2's solvers: nothing known to check
+  return nodeMemory(*comm_, need);
+}
+
 void FetiSolver::checkFactorMemory() {
   factorMemory_ = NodeMemory{};
   if (!params_.get<bool>("Memory check")) return;
   // The predictions make the symbolic analyses (kept for the factorizations): their memory is
   // then in use, and what is available is read after them.
   double need = 0.0;
-  int cannotTell = 0, anyCannot = 0;
+  bool cannotTell = false;
   collectively(*comm_, [&] {
     for (auto& s : subdomains_) {
       const std::ptrdiff_t bytes = s->predictFactorMemory();
-      if (bytes < 0) cannotTell = 1;
+      cannotTell = cannotTell || bytes < 0;
       need += static_cast<double>(std::max<std::ptrdiff_t>(bytes, 0));
     }
   });
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, cannotTell, Teuchos::outArg(anyCannot));
-  if (anyCannot) return;  // Amesos2's solvers: nothing known to check
-  factorMemory_ = nodeMemory(*comm_, need);
+  factorMemory_ = nodesHold(need, cannotTell);
   if (factorMemory_.fits) return;
-  throw std::runtime_error(
+  throw std::invalid_argument(
       "the subdomain factors (\"Local solver\" = " + params_.get<std::string>("Local solver") +
       ") do not fit: " + describe(factorMemory_) +
       " before the factorizations; run on more nodes (or fewer ranks per node), or set FETI "
@@ -176,28 +181,23 @@ void FetiSolver::checkPreconditionerMemory(const std::vector<std::vector<int>>& 
   // goes (releaseStiffness). The need is the peak of that running sum.
   const std::string solver = params_.get<std::string>("Local solver");
   double running = 0.0, peak = 0.0;
-  int cannotTell = 0, anyCannot = 0;
+  bool cannotTell = false;
   collectively(*comm_, [&] {
     for (std::size_t i = 0; i < subdomains_.size(); ++i) {
       Subdomain& s = *subdomains_[i];
       if (rebuild[i]) {
         const std::ptrdiff_t bytes = s.predictPreconditionerMemory(dofs[i], type, solver);
-        if (bytes < 0) cannotTell = 1;
+        cannotTell = cannotTell || bytes < 0;
         running += static_cast<double>(std::max<std::ptrdiff_t>(bytes, 0)) -
                    static_cast<double>(s.preconditionerFactorMemory());
         peak = std::max(peak, running);
       }
-      if (releaseStiffness && s.hasStiffness()) {
-        const CsrMatrix& K = s.stiffness();
-        running -= K.nnz() * (sizeof(double) + sizeof(int)) + (K.rows + 1.0) * sizeof(int);
-      }
+      if (releaseStiffness) running -= static_cast<double>(s.stiffness().bytes());
     }
   });
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, cannotTell, Teuchos::outArg(anyCannot));
-  if (anyCannot) return;  // Amesos2's solvers: nothing known to check
-  preconditionerMemory_ = nodeMemory(*comm_, peak);
+  preconditionerMemory_ = nodesHold(peak, cannotTell);
   if (preconditionerMemory_.fits) return;
-  throw std::runtime_error(
+  throw std::invalid_argument(
       "the Dirichlet preconditioner's interior factors (\"Local solver\" = " + solver +
       ") do not fit: " + describe(preconditionerMemory_) +
       " after the subdomain factorizations; use FETI \"Preconditioner\" = lumped, run on more "
@@ -261,7 +261,6 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
                                   bool subdomainsKept) {
   const PreconditionerType precType =
       parsePreconditioner(params_.get<std::string>("Preconditioner"));
-  const std::string solver = params_.get<std::string>("Local solver");
   const bool kept = keepOrBuildTearing(inequalities, subdomainsKept);
   chooseDualOperator();
   // K is freed after the preconditioner's set-up, unless the explicit operator's Schur assembly
@@ -279,30 +278,35 @@ void FetiSolver::buildConstraints(const std::vector<InequalityRow>& inequalities
   }
   {
     PhaseTimer t(*comm_, timings_.preconditioner, &memory_, "preconditioner");
-    // Contact rows that move between iterations of a nonlinear solve mostly keep the same dofs,
-    // and most subdomains of a plastic body keep their K: the interior factorization is redone
-    // only when either changes.
-    std::vector<std::vector<int>> dofs(subdomains_.size());
-    std::vector<char> rebuild(subdomains_.size(), 0);
-    for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-      dofs[i] = subdomainDualDofs(tearing_, i);
-      rebuild[i] = stiffnessChanged_[i] || dofs[i] != subdomains_[i]->interfaceDofs();
-    }
-    checkPreconditionerMemory(dofs, rebuild, precType, releaseNow);
-    collectively(*comm_, [&] {
-      for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-        if (rebuild[i]) subdomains_[i]->setupPreconditioner(dofs[i], precType, solver);
-        // Freed one by one, so that K and the preconditioner's factors never coexist in full.
-        if (releaseNow) subdomains_[i]->releaseStiffness();
-      }
-    });
-    stiffnessChanged_.assign(subdomains_.size(), 0);
-    if (precType != PreconditionerType::None)
-      M_ = Teuchos::rcp(new DualPreconditioner(tearing_, subdomains_));
+    setupPreconditioners(precType, releaseNow);
   }
   Kplus_ = Teuchos::rcp(new PseudoInverseOperator(tearing_.primalMap, subdomains_));
   buildDualOperator(release && schurNeedsK);
   countAnalyses();
+}
+
+void FetiSolver::setupPreconditioners(PreconditionerType type, bool releaseStiffness) {
+  // Contact rows that move between iterations of a nonlinear solve mostly keep the same dofs,
+  // and most subdomains of a plastic body keep their K: the interior factorization is redone
+  // only when either changes.
+  std::vector<std::vector<int>> dofs(subdomains_.size());
+  std::vector<char> rebuild(subdomains_.size(), 0);
+  for (std::size_t i = 0; i < subdomains_.size(); ++i) {
+    dofs[i] = subdomainDualDofs(tearing_, i);
+    rebuild[i] = stiffnessChanged_[i] || dofs[i] != subdomains_[i]->interfaceDofs();
+  }
+  checkPreconditionerMemory(dofs, rebuild, type, releaseStiffness);
+  const std::string solver = params_.get<std::string>("Local solver");
+  collectively(*comm_, [&] {
+    for (std::size_t i = 0; i < subdomains_.size(); ++i) {
+      if (rebuild[i]) subdomains_[i]->setupPreconditioner(dofs[i], type, solver);
+      // Freed one by one, so that K and the preconditioner's factors never coexist in full.
+      if (releaseStiffness) subdomains_[i]->releaseStiffness();
+    }
+  });
+  stiffnessChanged_.assign(subdomains_.size(), 0);
+  if (type != PreconditionerType::None)
+    M_ = Teuchos::rcp(new DualPreconditioner(tearing_, subdomains_));
 }
 
 void FetiSolver::chooseDualOperator() {
@@ -363,16 +367,7 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     F_ = Teuchos::null;
   }
   const DenseStorage storage = parseDenseStorage(params_.get<std::string>("Explicit storage"));
-  // Every block the new operator assembles, wholly or in part, takes new memory while the
-  // previous operator still holds the old values: all of them after a set-up from scratch, the
-  // refactorized subdomains' and those whose rows moved after update(). Which ones is a rank's
-  // own matter (a refactorized plastic subdomain here, elastic ones kept there); the check is
-  // collective, so every rank takes part in it where any assembles.
-  const std::vector<char> taken =
-      ExplicitDualOperator::blocksTakenOver(tearing_, subdomains_, storage, previous.get());
-  int assembles = std::count(taken.begin(), taken.end(), 0) > 0 ? 1 : 0, anyAssembles = 0;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, assembles, Teuchos::outArg(anyAssembles));
-  if (anyAssembles && explicitDoesNotFit(storage, releaseStiffness, taken)) {
+  if (explicitDoesNotFit(storage, previous.get(), releaseStiffness)) {
     F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
     return;
   }
@@ -407,23 +402,30 @@ double FetiSolver::explicitAssemblyNeed(DenseStorage storage, bool releaseStiffn
       transient = std::max(transient, static_cast<double>(subdomains_[i]->factorBytes()) +
                                           sizeof(double) * (k * k + m * m));
     }
-    const CsrMatrix& K = subdomains_[i]->stiffness();
-    if (releaseStiffness)
-      freed += K.nnz() * (sizeof(double) + sizeof(int)) + (K.rows + 1.0) * sizeof(int);
+    if (releaseStiffness) freed += static_cast<double>(subdomains_[i]->stiffness().bytes());
   }
   return blocks + transient - freed;
 }
 
-bool FetiSolver::explicitDoesNotFit(DenseStorage storage, bool releaseStiffness,
-                                    const std::vector<char>& takenOver) {
+bool FetiSolver::explicitDoesNotFit(DenseStorage storage, const ExplicitDualOperator* previous,
+                                    bool releaseStiffness) {
   if (!params_.get<bool>("Memory check")) {
     dualChoice_.fitsMemory = true;
     dualChoice_.nodeNeedBytes = 0.0;
     dualChoice_.nodeAvailableBytes = -1.0;
     return false;
   }
-  const NodeMemory node =
-      nodeMemory(*comm_, explicitAssemblyNeed(storage, releaseStiffness, takenOver));
+  // Every block the new operator assembles, wholly or in part, takes new memory while the
+  // previous operator still holds the old values: all of them after a set-up from scratch, the
+  // refactorized subdomains' and those whose rows moved after update(). Which ones is a rank's
+  // own matter (a refactorized plastic subdomain here, elastic ones kept there); the check is
+  // collective, so every rank takes part in it where any assembles.
+  const std::vector<char> taken =
+      ExplicitDualOperator::blocksTakenOver(tearing_, subdomains_, storage, previous);
+  int assembles = std::count(taken.begin(), taken.end(), 0) > 0 ? 1 : 0, anyAssembles = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, assembles, Teuchos::outArg(anyAssembles));
+  if (!anyAssembles) return false;  // the last check stands
+  const NodeMemory node = nodesHold(explicitAssemblyNeed(storage, releaseStiffness, taken), false);
   dualChoice_.fitsMemory = node.fits;
   dualChoice_.nodeNeedBytes = node.needBytes;
   dualChoice_.nodeAvailableBytes = node.known ? node.availableBytes : -1.0;

@@ -412,6 +412,10 @@ std::size_t Subdomain::factorBytes() const {
   return factor_ ? factor_->factorBytes() : 0;
 }
 
+std::size_t Subdomain::factorMemory() const {
+  return factor_ ? factor_->factorMemory() : 0;
+}
+
 std::size_t Subdomain::preconditionerFactorBytes() const {
   return interiorFactor_ ? interiorFactor_->factorBytes() : 0;
 }

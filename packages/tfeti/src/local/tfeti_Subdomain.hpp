@@ -123,6 +123,8 @@ class Subdomain {
   void applyPreconditionerBlock(const double* vb, double* yb, int nrhs = 1);
 
   std::size_t factorBytes() const;
+  // What K+'s factor holds (LocalSolver::factorMemory: what predictFactorMemory told).
+  std::size_t factorMemory() const;
   std::size_t preconditionerFactorBytes() const;
   // What the Dirichlet preconditioner's interior factor holds (LocalSolver::factorMemory).
   std::size_t preconditionerFactorMemory() const;

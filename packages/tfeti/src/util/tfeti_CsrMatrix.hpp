@@ -18,6 +18,11 @@ struct CsrMatrix {
   std::vector<double> values;
 
   std::size_t nnz() const { return colInd.size(); }
+  // The bytes of its arrays (values, column indices, row offsets): what freeing it returns.
+  std::size_t bytes() const {
+    return values.size() * sizeof(double) + colInd.size() * sizeof(int) +
+           rowPtr.size() * sizeof(int);
+  }
   // Index of entry (i, j) in colInd/values, or -1 when (i, j) is not in the pattern.
   long find(int i, int j) const;
   // y = A x (y resized to rows).
