@@ -34,13 +34,18 @@
                                           explicit_memory_check (the F_s within the nodes'
                                           memory: --fits-memory, default true)
   check_summary.py factor_memory DIR --checked true|false [--write-meminfo FILE]
+                   [--write-meminfo-edges PREFIX]
                                           factor_memory_check: made or not as expected; where
                                           made, the subdomain factors' held bytes at least the
                                           bytes they stream (factor_bytes), and fits exactly when
                                           the need is within the available bytes; the same of
                                           preconditioner_memory_check where made; FILE: a
                                           meminfo whose MemAvailable is that need to the KiB
-                                          above (a node with room for the factors alone)
+                                          above (a node with room for the factors alone);
+                                          PREFIX_factors_short: one KiB below it;
+                                          PREFIX_with_preconditioner(_short): the factors' and
+                                          the interior factors' needs summed, to the KiB above
+                                          (below)
   check_summary.py explicit_export DIR FILE [FILE ...]
                                           the F_s blocks a run exported (FETI "Explicit
                                           export file"), read as gpu/ reads them: header, one
@@ -458,7 +463,7 @@ def rule_without_memory(a):
     return "explicit" if a["qp"] and a["explicit_bytes"] < a["factor_bytes"] else "implicit"
 
 
-def factor_memory(d, checked, meminfo=None):
+def factor_memory(d, checked, meminfo=None, edges=None):
     """factor_memory_check: the subdomain factors against the nodes' memory before they were
     made (FETI "Memory check"), as expected; its figures consistent with factor_bytes."""
     s = load(d)
@@ -481,14 +486,29 @@ def factor_memory(d, checked, meminfo=None):
                              p["fits"] == (p["node_need_bytes"] <= p["node_available_bytes"])):
         fail(f"{d}: preconditioner_memory_check {p}: fits must say whether the need is within "
              "the available bytes")
-    if meminfo:
-        if not checked:
-            fail("--write-meminfo needs a run whose factors were checked")
-        kib = -(-int(m["node_need_bytes"]) // 1024)
-        with open(meminfo, "w") as f:
+    written = []
+
+    def write(path, need, short):
+        kib = -(-int(need) // 1024) - (1 if short else 0)
+        with open(path, "w") as f:
             f.write(f"MemTotal:       24000000 kB\nMemAvailable:   {kib} kB\n")
+        written.append(path)
+
+    if meminfo or edges:
+        if not checked:
+            fail("--write-meminfo and --write-meminfo-edges need a run whose factors were checked")
+    if meminfo:
+        write(meminfo, m["node_need_bytes"], False)
+    if edges:
+        if not p["checked"]:
+            fail("--write-meminfo-edges needs a run whose interior factors were checked")
+        # What a dry run adds for the preconditioner: its factors on top of the subdomains'.
+        both = m["node_need_bytes"] + p["node_need_bytes"]
+        write(edges + "_factors_short", m["node_need_bytes"], True)
+        write(edges + "_with_preconditioner", both, False)
+        write(edges + "_with_preconditioner_short", both, True)
     print(f"OK: {d}: factor_memory_check {m}, preconditioner_memory_check {p}" +
-          (f"; {meminfo} written" if meminfo else ""))
+          (f"; written: {', '.join(written)}" if written else ""))
 
 
 def dual_operator_auto(d, chosen, fits_memory=True):
@@ -1615,7 +1635,9 @@ if __name__ == "__main__":
             fail(f"--checked {checked}: expected true or false")
         factor_memory(args[0], checked == "true",
                       args[args.index("--write-meminfo") + 1] if "--write-meminfo" in args
-                      else None)
+                      else None,
+                      args[args.index("--write-meminfo-edges") + 1]
+                      if "--write-meminfo-edges" in args else None)
     elif mode == "explicit_export":
         explicit_export(args[0], args[1:])
     elif mode == "factorizations_reused":

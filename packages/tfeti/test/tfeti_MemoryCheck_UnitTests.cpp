@@ -6,7 +6,9 @@
 //    goes on regardless and checks nothing (nor the explicit F_s); a local solver that cannot
 //    tell its bytes (KLU2) is not checked;
 //  - the Dirichlet preconditioner's interior factors likewise, after the subdomain
-//    factorizations, at the set-up's peak (K kept or freed one by one).
+//    factorizations, at the set-up's peak (K kept or freed one by one);
+//  - the dry run's forecast (FetiSolver::forecastSetupMemory) counts, before anything is
+//    factorized, exactly the needs these checks then find, and bounds the explicit F_s' need.
 // The explicit F_s' own check: tfeti_ExplicitDual_UnitTests.cpp.
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
@@ -40,12 +42,15 @@ const tfeti_test::Box3d& box() {
   return b;
 }
 
-tfeti::FetiSolver make(const Teuchos::ParameterList& params) {
+std::vector<tfeti::SubdomainData> localSubdomains() {
   tfeti_test::Material3d mat;
   mat.dofsPerNode = 3;
-  const auto local =
-      tfeti_test::localBoxSubdomains(box(), mat, {0.0, 0.0, -1.0}, *Tpetra::getDefaultComm());
-  return tfeti::FetiSolver(Tpetra::getDefaultComm(), box().numSubdomains(), local, params);
+  return tfeti_test::localBoxSubdomains(box(), mat, {0.0, 0.0, -1.0}, *Tpetra::getDefaultComm());
+}
+
+tfeti::FetiSolver make(const Teuchos::ParameterList& params) {
+  return tfeti::FetiSolver(Tpetra::getDefaultComm(), box().numSubdomains(), localSubdomains(),
+                           params);
 }
 
 // max |u - v| / max |v| over every subdomain of every rank.
@@ -237,4 +242,49 @@ TEUCHOS_UNIT_TEST(MemoryCheck, PreconditionerBeyondTheNodesMemory) {
                                    "factorizations"));
   TEST_ASSERT(tfeti_test::contains(msg, "\"Preconditioner\" = lumped"));
   TEST_ASSERT(tfeti_test::contains(msg, "\"Memory check\" = false"));
+}
+
+// The dry run's forecast against the run's checks, on the same subdomains: the factors' and the
+// interior factors' needs equal to the byte (K kept, K freed one by one; both local solvers'
+// kinds), the F_s' blocks equal to what the operator holds, and the F_s' need at least the
+// run's (the forecast counts a factor by what it holds, the run by what it streams) and above it
+// by less than the largest factor. A local solver that cannot tell (KLU2) is reported as such.
+TEUCHOS_UNIT_TEST(MemoryCheck, ForecastIsWhatTheChecksFind) {
+  auto comm = Tpetra::getDefaultComm();
+  const auto sum = [&](double x) { return tfeti_test::globalSum(*comm, x); };
+  for (const std::string solver : {"cholmod", "cholmod-simplicial", "cholmod-supernodal"}) {
+    for (const bool keep : {true, false}) {
+      for (const std::string assembly : {"schur", "solves"}) {
+        Teuchos::ParameterList params = parameters("explicit", true, solver);
+        params.set("Keep subdomain matrices", keep);
+        params.set("Explicit assembly", assembly);
+        const tfeti::SetupMemoryForecast f = tfeti::FetiSolver::forecastSetupMemory(
+            comm, box().numSubdomains(), localSubdomains(), params);
+        tfeti::FetiSolver run = make(params);
+        out << solver << ", K " << (keep ? "kept" : "freed") << ", " << assembly << ": factors "
+            << sum(f.factors) << " (run " << run.factorMemoryCheck().needBytes << "), interiors "
+            << sum(f.interiorPeak) << " (run " << run.preconditionerMemoryCheck().needBytes
+            << ")\n";
+        TEST_ASSERT(f.factorsKnown && f.interiorKnown);
+        TEST_EQUALITY(f.dualRows.size(), run.subdomains().size());
+        TEST_EQUALITY(sum(f.factors), run.factorMemoryCheck().needBytes);
+        TEST_EQUALITY(sum(f.interiorPeak), run.preconditionerMemoryCheck().needBytes);
+        // The F_s: what the operator holds; the need bounded from above, tightly.
+        double largest = 0.0;
+        for (const auto& s : run.subdomains())
+          largest = std::max(largest, static_cast<double>(s->factorMemory()));
+        TEST_EQUALITY(sum(f.explicitBlocks), static_cast<double>(run.explicitDualBytes().total));
+        const double runNeed = run.dualOperatorChoice().nodeNeedBytes;
+        const double forecastNeed =
+            sum(f.explicitBlocks + f.explicitTransient - f.stiffnessFreedByAssembly);
+        TEST_COMPARE(forecastNeed, >=, runNeed);
+        TEST_COMPARE(forecastNeed - runNeed, <=, sum(largest));
+        TEST_ASSERT(run.solve().converged);
+      }
+    }
+  }
+  const tfeti::SetupMemoryForecast klu2 = tfeti::FetiSolver::forecastSetupMemory(
+      comm, box().numSubdomains(), localSubdomains(), parameters("implicit", true, "klu2"));
+  TEST_ASSERT(!klu2.factorsKnown && !klu2.interiorKnown);
+  TEST_EQUALITY(klu2.factors, 0.0);
 }

@@ -164,10 +164,8 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
       problemLine(params, spec, nonlinear, restartStep, outputDirectory, solver)};
   addBodyLines(spec, problem, nonlinear, lines);
   addBoundaryLines(*comm, spec, problem, rows, lines);
-  lines.push_back(explicitDualLine(comm, problem.numSubdomains(), problem.local,
-                                   fetiParameters(params, spec), problem.inequalities,
-                                   problem.equalities));
-  printDryRunReport(*comm, lines, problem.local, rows, fetiParameters(params, spec), out);
+  printDryRunReport(comm, problem.numSubdomains(), lines, problem.local, rows,
+                    fetiParameters(params, spec), out, problem.inequalities, problem.equalities);
 }
 
 }  // namespace contact

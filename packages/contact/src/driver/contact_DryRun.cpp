@@ -61,67 +61,110 @@ std::size_t choleskyFactorEntries(const tfeti::CsrMatrix& K, const std::vector<i
 }
 
 namespace {
-// FETI "Memory check" as the full run will read it (its default where the list does not set it).
-bool memoryChecked(const Teuchos::ParameterList& feti) {
-  return !feti.isParameter("Memory check") || feti.get<bool>("Memory check");
+// A FETI parameter as the full run will read it: its value, or its default where the list does
+// not set it.
+template <typename T>
+T fetiParameter(const Teuchos::ParameterList& feti, const char* name) {
+  return feti.isParameter(name) ? feti.get<T>(name)
+                                : tfeti::FetiSolver::validParameters()->get<T>(name);
 }
-}  // namespace
 
-std::string explicitDualLine(const Teuchos::RCP<const tfeti::Comm>& comm, int numSubdomains,
-                             const std::vector<tfeti::SubdomainData>& local,
-                             const Teuchos::ParameterList& feti,
-                             const std::vector<tfeti::InequalityRow>& inequalities,
-                             const std::vector<tfeti::EqualityRow>& equalities) {
-  const std::vector<long long> rows = tfeti::FetiSolver::dualRowsPerSubdomain(
-      comm, numSubdomains, local, feti, inequalities, equalities);
-  const auto param = [&](const char* name, const char* fallback) {
-    return feti.isParameter(name) ? feti.get<std::string>(name) : std::string(fallback);
-  };
-  const bool packed = param("Explicit storage", "packed") == "packed";
-  const tfeti::DenseStorage storage =
-      packed ? tfeti::DenseStorage::Packed : tfeti::DenseStorage::Full;
-  double mine[2] = {0.0, 0.0}, total = 0.0, maxRank = 0.0, largest = 0.0;  // bytes, largest m_s
-  for (long long m : rows) {
-    mine[0] += static_cast<double>(tfeti::explicitBlockBytes(storage, static_cast<std::size_t>(m)));
-    mine[1] = std::max(mine[1], static_cast<double>(m));
-  }
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mine[0], &total);
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &mine[0], &maxRank);
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &mine[1], &largest);
-  const double mb = 1024.0 * 1024.0;
+const double kMiB = 1024.0 * 1024.0;
+
+// The explicit F_s: their bytes, over all ranks and on the largest, and against each node's
+// memory after the factors and the preconditioner as the run's check will find it.
+std::string explicitDualLine(const tfeti::Comm& comm, const tfeti::SetupMemoryForecast& f,
+                             double factors, const Teuchos::ParameterList& feti, bool checked) {
+  double mine[2] = {f.explicitBlocks, 0.0}, total = 0.0, maxRank = 0.0, largest = 0.0;
+  for (long long m : f.dualRows) mine[1] = std::max(mine[1], static_cast<double>(m));
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 1, &mine[0], &total);
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &mine[0], &maxRank);
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 1, &mine[1], &largest);
+  const std::string kind = fetiParameter<std::string>(feti, "Dual operator");
+  const std::string storage = fetiParameter<std::string>(feti, "Explicit storage");
   std::ostringstream s;
-  const std::string kind = param("Dual operator", "implicit");
   s << "dual operator: " << kind << "; " << (kind == "explicit" ? "" : "explicit would take ")
-    << "dense local F_s (" << (packed ? "packed" : "full") << ") " << std::fixed
-    << std::setprecision(3) << total / mb << " MiB, largest rank " << maxRank / mb
-    << " MiB, largest F_s " << static_cast<long long>(largest) << " rows";
-  // Nothing is factorized yet: what a node has now is an upper bound of what the F_s will find.
-  const tfeti::NodeMemory node = tfeti::nodeMemory(*comm, mine[0]);
-  if (node.known)
-    s << "; " << tfeti::describe(node) << " now, before the factorizations"
-      << (node.fits || !memoryChecked(feti) ? "" : ": explicit would stop with an error");
+    << "dense local F_s (" << storage << ") " << std::fixed << std::setprecision(3) << total / kMiB
+    << " MiB, largest rank " << maxRank / kMiB << " MiB, largest F_s "
+    << static_cast<long long>(largest) << " rows";
+  // The run checks them once the factors and the preconditioner are made: their bytes come
+  // on top of what a node has now.
+  const double need = factors + f.preconditionerLeaves + f.explicitBlocks + f.explicitTransient -
+                      f.stiffnessFreedByAssembly;
+  const tfeti::NodeMemory node = tfeti::nodeMemory(comm, need);
+  if (node.known) {
+    s << "; after the factors and the preconditioner " << tfeti::describe(node) << " now";
+    if (!node.fits && checked && kind != "implicit")
+      s << (kind == "explicit" ? ": explicit would stop with an error"
+                               : ": auto would fall back to implicit");
+  }
   return s.str();
 }
 
-void printDryRunReport(const tfeti::Comm& comm, const std::vector<std::string>& lines,
+// The Dirichlet preconditioner's interior factors, on top of the subdomain factors.
+std::string preconditionerLine(const tfeti::Comm& comm, const tfeti::SetupMemoryForecast& f,
+                               bool known, bool checked, const std::string& solver) {
+  double mine[2] = {f.interiorPeak, f.preconditionerLeaves}, all[2] = {0.0, 0.0};
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 2, mine, all);
+  const tfeti::NodeMemory node = tfeti::nodeMemory(comm, f.factors + f.interiorPeak);
+  std::ostringstream s;
+  s << "Dirichlet preconditioner: ";
+  if (!known) {
+    s << "interior factors unknown (" << solver << " cannot tell before factorizing; unchecked)";
+    return s.str();
+  }
+  s << "interior factors' set-up peak " << std::fixed << std::setprecision(1) << all[0] / kMiB
+    << " MiB beyond the subdomain factors (" << all[1] / kMiB
+    << " MiB once all are made, less the K freed)";
+  if (node.known)
+    s << "; with the factors " << tfeti::describe(node) << " now"
+      << (node.fits || !checked ? "" : ": the preconditioner's set-up would stop with an error");
+  return s.str();
+}
+}  // namespace
+
+void printDryRunReport(const Teuchos::RCP<const tfeti::Comm>& comm, int numSubdomains,
+                       const std::vector<std::string>& lines,
                        const std::vector<tfeti::SubdomainData>& local, long long contactRows,
-                       const Teuchos::ParameterList& feti, std::ostream& out) {
-  // Per subdomain of this rank: id, unknowns, bytes of K (CSR) and of its factor (values and
-  // row indices, as CHOLMOD's simplicial factor stores them).
+                       const Teuchos::ParameterList& feti, std::ostream& out,
+                       const std::vector<tfeti::InequalityRow>& inequalities,
+                       const std::vector<tfeti::EqualityRow>& equalities) {
+  // The same analyses as the run's: what its checks will count, to the byte.
+  const tfeti::SetupMemoryForecast forecast = tfeti::FetiSolver::forecastSetupMemory(
+      comm, numSubdomains, local, feti, inequalities, equalities);
+  const bool checked = fetiParameter<bool>(feti, "Memory check");
+  const std::string solver = fetiParameter<std::string>(feti, "Local solver");
+  int unknown[2] = {forecast.factorsKnown ? 0 : 1, forecast.interiorKnown ? 0 : 1},
+      anyUnknown[2] = {0, 0};
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 2, unknown, anyUnknown);
+  const bool factorsKnown = !anyUnknown[0];
+  const bool dirichlet = fetiParameter<std::string>(feti, "Preconditioner") == "dirichlet";
+  // Per subdomain of this rank: id, unknowns, bytes of K (CSR) and of its factor: what the
+  // local solver's analysis says it will hold, or where it cannot tell (KLU2, Tacho) the
+  // entries of L under a METIS order (values and row indices, as a simplicial factor stores
+  // them), an estimate.
   std::vector<double> mine;
   for (const auto& s : local) {
     const double kBytes = static_cast<double>(s.K.bytes());
-    const double lBytes = static_cast<double>(choleskyFactorEntries(s.K, fillReducingOrder(s.K))) *
-                          (sizeof(double) + sizeof(int));
-    mine.insert(mine.end(), {static_cast<double>(comm.getRank()), static_cast<double>(s.mesh.id),
+    const double lBytes =
+        factorsKnown ? 0.0
+                     : static_cast<double>(choleskyFactorEntries(s.K, fillReducingOrder(s.K))) *
+                           (sizeof(double) + sizeof(int));
+    mine.insert(mine.end(), {static_cast<double>(comm->getRank()), static_cast<double>(s.mesh.id),
                              static_cast<double>(s.K.rows), kBytes, lBytes});
   }
-  const std::vector<double> all = tfeti::allGather(comm, mine);
+  // The forecast's factors are a rank's sum: carried by the rank's first entry.
+  if (factorsKnown && !mine.empty()) mine[4] = forecast.factors;
+  const std::vector<double> all = tfeti::allGather(*comm, mine);
   double factors = 0.0;
   for (std::size_t k = 4; k < mine.size(); k += 5) factors += mine[k];
-  const tfeti::NodeMemory node = tfeti::nodeMemory(comm, factors);
-  if (comm.getRank() != 0) return;
-  const int P = comm.getSize();
+  const tfeti::NodeMemory node = tfeti::nodeMemory(*comm, factors);
+  std::vector<std::string> report = lines;
+  report.push_back(explicitDualLine(*comm, forecast, factors, feti, checked));
+  if (dirichlet)
+    report.push_back(preconditionerLine(*comm, forecast, !anyUnknown[1], checked, solver));
+  if (comm->getRank() != 0) return;
+  const int P = comm->getSize();
   std::vector<std::vector<int>> ids(P);
   std::vector<double> rankBytes(P, 0.0);
   double unknowns = 0.0, kTotal = 0.0, lTotal = 0.0;
@@ -133,7 +176,9 @@ void printDryRunReport(const tfeti::Comm& comm, const std::vector<std::string>& 
     lTotal += all[k + 4];
     rankBytes[r] += all[k + 3] + all[k + 4];
   }
-  for (const auto& l : lines) out << l << "\n";
+  const std::string preconditioner = dirichlet ? report.back() : std::string();
+  if (dirichlet) report.pop_back();
+  for (const auto& l : report) out << l << "\n";
   out << "subdomains per rank:";
   for (int r = 0; r < P; ++r) {
     std::sort(ids[r].begin(), ids[r].end());
@@ -147,17 +192,21 @@ void printDryRunReport(const tfeti::Comm& comm, const std::vector<std::string>& 
   out << "\nunknowns: " << static_cast<long long>(unknowns)
       << " (primal, every subdomain's copy of an interface node counted)";
   if (contactRows >= 0) out << "; contact rows: " << contactRows;
-  const double mb = 1024.0 * 1024.0;
   out << "\nestimated memory: subdomain matrices " << std::fixed << std::setprecision(1)
-      << kTotal / mb << " MiB + Cholesky factors " << lTotal / mb
-      << " MiB (METIS order, symbolic count), largest rank "
-      << *std::max_element(rankBytes.begin(), rankBytes.end()) / mb << " MiB" << std::defaultfloat;
+      << kTotal / kMiB << " MiB + Cholesky factors " << lTotal / kMiB
+      << (factorsKnown
+              ? " MiB (" + solver + "'s symbolic analyses: what the factors will hold)"
+              : " MiB (METIS order, symbolic count: " + solver + " cannot tell before factorizing)")
+      << ", largest rank " << *std::max_element(rankBytes.begin(), rankBytes.end()) / kMiB << " MiB"
+      << std::defaultfloat;
   // Nothing is factorized yet: what a node has now is what the factorizations will find.
   if (node.known)
     out << "; for the factors " << tfeti::describe(node) << " now"
-        << (node.fits || !memoryChecked(feti) ? ""
-                                              : ": the factorizations would stop with an error");
+        << (node.fits || !checked || !factorsKnown
+                ? ""
+                : ": the factorizations would stop with an error");
   out << "\n";
+  if (dirichlet) out << preconditioner << "\n";
 }
 
 }  // namespace contact

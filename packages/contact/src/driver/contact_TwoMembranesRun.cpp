@@ -210,9 +210,8 @@ void reportMembranes(const Teuchos::RCP<const tfeti::Comm>& comm, const Paramete
     << tm.elementsX << " x " << tm.elementsY
     << " elements per membrane; contact rows along x = 1: " << rows;
   lines.push_back(s.str());
-  lines.push_back(explicitDualLine(comm, tm.numSubdomains(), data.local, params.sublist("FETI"),
-                                   data.inequalities));
-  printDryRunReport(*comm, lines, data.local, rows, params.sublist("FETI"), out);
+  printDryRunReport(comm, tm.numSubdomains(), lines, data.local, rows, params.sublist("FETI"), out,
+                    data.inequalities);
 }
 
 }  // namespace

@@ -43,6 +43,7 @@
 #include "tfeti_Pcpg.hpp"
 #include "tfeti_QpProblem.hpp"
 #include "tfeti_RowCarryOver.hpp"
+#include "tfeti_SetupMemoryForecast.hpp"
 #include "tfeti_SubdomainMesh.hpp"
 
 namespace tfeti {
@@ -136,11 +137,13 @@ class FetiSolver {
   // lambda_I of either sign), e.g. a tied contact pair.
   static bool inequalitiesTied(const Teuchos::ParameterList& feti);
 
-  // The dry run's count (collective, nothing factorized): the rows of B touching each of the
-  // local subdomains, m_s, as the solver would build them from `local` (meshes and sizes only),
-  // the FETI list (validated here, on a copy) and the caller's rows. The explicit F_s takes 8 m_s^2
-  // bytes (full) or 4 m_s (m_s + 1) (packed).
-  static std::vector<long long> dualRowsPerSubdomain(
+  // The dry run's forecast (collective, nothing factorized): what the set-up of `local` (the
+  // constructor's arguments) will allocate on this rank, as its memory checks count it
+  // (tfeti_SetupMemoryForecast.hpp): the rows of B the tearing builds, the factors' bytes from
+  // the local solver's own symbolic analyses (the analyses the run makes), the Dirichlet
+  // preconditioner's interior factors on the interfaces of that tearing, the explicit F_s. The
+  // FETI list is validated here, on a copy.
+  static SetupMemoryForecast forecastSetupMemory(
       const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       const std::vector<SubdomainData>& local, const Teuchos::ParameterList& feti,
       const std::vector<InequalityRow>& inequalities = {},

@@ -50,10 +50,12 @@ std::vector<TearingInput> tearingInput(const std::vector<SubdomainData>& data) {
 }
 }  // namespace
 
-std::vector<long long> FetiSolver::dualRowsPerSubdomain(
-    const Teuchos::RCP<const Comm>& comm, int numSubdomains,
-    const std::vector<SubdomainData>& local, const Teuchos::ParameterList& feti,
-    const std::vector<InequalityRow>& inequalities, const std::vector<EqualityRow>& equalities) {
+SetupMemoryForecast FetiSolver::forecastSetupMemory(const Teuchos::RCP<const Comm>& comm,
+                                                    int numSubdomains,
+                                                    const std::vector<SubdomainData>& local,
+                                                    const Teuchos::ParameterList& feti,
+                                                    const std::vector<InequalityRow>& inequalities,
+                                                    const std::vector<EqualityRow>& equalities) {
   Teuchos::ParameterList valid = feti;
   rejectMisplacedParameters(valid);
   applySolverAliases(valid);
@@ -64,7 +66,61 @@ std::vector<long long> FetiSolver::dualRowsPerSubdomain(
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &localDpn, &dpn);
   const Tearing t = buildTearing(comm, numSubdomains, tearingInput(local), dpn,
                                  tearingOptions(valid), inequalities, equalities);
-  return subdomainRowCounts(t);
+  SetupMemoryForecast f;
+  f.dualRows = subdomainRowCounts(t);
+  const std::string solver = valid.get<std::string>("Local solver");
+  const bool dirichlet = parsePreconditioner(valid.get<std::string>("Preconditioner")) ==
+                         PreconditionerType::Dirichlet;
+  const DenseStorage storage = parseDenseStorage(valid.get<std::string>("Explicit storage"));
+  // As buildConstraints frees K: after each interior factor, unless the Schur assembly of an
+  // explicit operator needs it (auto counted as explicit: K kept longer, an upper bound).
+  const bool release = !valid.get<bool>("Keep subdomain matrices");
+  const bool schurNeedsK =
+      valid.get<std::string>("Dual operator") != "implicit" &&
+      parseBlockAssembly(valid.get<std::string>("Explicit assembly")) == BlockAssembly::Schur;
+  // Every solver is kept to the end, as the run keeps its factors: equal patterns then share one
+  // analysis, and the analyses made here are those the run would make.
+  std::vector<std::unique_ptr<LocalSolver>> solvers;
+  double running = 0.0;
+  for (std::size_t i = 0; i < local.size(); ++i) {
+    // A K given as a Tpetra::CrsMatrix becomes CSR arrays, as the constructor makes it.
+    const CsrMatrix converted =
+        local[i].tpetraK.is_null()
+            ? CsrMatrix()
+            : csrFromTpetra(*local[i].tpetraK, "subdomain " + std::to_string(local[i].mesh.id));
+    const CsrMatrix& Ki = local[i].tpetraK.is_null() ? local[i].K : converted;
+    solvers.push_back(createLocalSolver(solver));
+    const std::ptrdiff_t factor = solvers.back()->predictFactorMemory(Ki);
+    f.factorsKnown = f.factorsKnown && factor >= 0;
+    f.factors += static_cast<double>(std::max<std::ptrdiff_t>(factor, 0));
+    const std::vector<int> dofs = subdomainDualDofs(t, i);
+    const double m = static_cast<double>(f.dualRows[i]), k = static_cast<double>(dofs.size());
+    f.explicitBlocks += static_cast<double>(explicitBlockBytes(storage, f.dualRows[i]));
+    f.explicitTransient =
+        std::max(f.explicitTransient, static_cast<double>(std::max<std::ptrdiff_t>(factor, 0)) +
+                                          sizeof(double) * (k * k + m * m));
+    if (dirichlet) {
+      std::vector<char> onB(Ki.rows, 0);
+      for (int d : dofs) onB[d] = 1;
+      std::vector<int> interior;
+      for (int r = 0; r < Ki.rows; ++r)
+        if (!onB[r]) interior.push_back(r);
+      if (!interior.empty()) {
+        solvers.push_back(createLocalSolver(solver));
+        const std::ptrdiff_t bytes = solvers.back()->predictFactorMemory(
+            Ki.submatrix(interior, interior, /*withValues=*/false));
+        f.interiorKnown = f.interiorKnown && bytes >= 0;
+        running += static_cast<double>(std::max<std::ptrdiff_t>(bytes, 0));
+        f.interiorPeak = std::max(f.interiorPeak, running);
+      }
+    }
+    const double kBytes = static_cast<double>(Ki.bytes());
+    if (release && !schurNeedsK) running -= kBytes;
+    if (release && schurNeedsK) f.stiffnessFreedByAssembly += kBytes;
+  }
+  f.preconditionerLeaves = running;
+  if (!f.factorsKnown) f.factors = 0.0;
+  return f;
 }
 
 FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,

@@ -1,0 +1,33 @@
+#pragma once
+// What a FetiSolver set-up will allocate, told before anything is factorized
+// (FetiSolver::forecastSetupMemory, for tfeti_contact --check): the same quantities its memory
+// checks (FETI "Memory check") compare with the nodes' MemAvailable, from the same symbolic
+// analyses, so that a dry run says what the run's checks will find.
+#include <vector>
+
+namespace tfeti {
+
+// One rank's figures, in bytes.
+struct SetupMemoryForecast {
+  // m_s: the rows of B touching each local subdomain (the explicit F_s is m_s x m_s).
+  std::vector<long long> dualRows;
+  // The subdomain factors (LocalSolver::predictFactorMemory, summed): the need of the run's
+  // factor check, exactly. factorsKnown = false where the local solver cannot tell (KLU2,
+  // Tacho): the run does not check them, and factors is 0.
+  double factors = 0.0;
+  bool factorsKnown = true;
+  // The Dirichlet preconditioner's interior factors (0 with the other preconditioners): the
+  // set-up's peak as it goes subdomain by subdomain, K freed after each where the run frees it
+  // (the need of the run's preconditioner check, exactly); and what the preconditioner's set-up
+  // leaves beyond the factors: the interior factors less the K it freed (negative where it frees
+  // K and makes no factor).
+  double interiorPeak = 0.0, preconditionerLeaves = 0.0;
+  bool interiorKnown = true;
+  // The explicit F_s ("Explicit storage"): the blocks' bytes, and the assembly's largest
+  // transient (a factor and the dense k x k and m x m blocks of one subdomain; the factor counted
+  // by what it holds, an upper bound of what it streams). With the K that the Schur assembly
+  // frees, this bounds the run's explicit check's need from above.
+  double explicitBlocks = 0.0, explicitTransient = 0.0, stiffnessFreedByAssembly = 0.0;
+};
+
+}  // namespace tfeti
