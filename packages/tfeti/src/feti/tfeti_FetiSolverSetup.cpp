@@ -82,42 +82,45 @@ SetupMemoryForecast FetiSolver::forecastSetupMemory(const Teuchos::RCP<const Com
   // analysis, and the analyses made here are those the run would make.
   std::vector<std::unique_ptr<LocalSolver>> solvers;
   double running = 0.0;
-  for (std::size_t i = 0; i < local.size(); ++i) {
-    // A K given as a Tpetra::CrsMatrix becomes CSR arrays, as the constructor makes it.
-    const CsrMatrix converted =
-        local[i].tpetraK.is_null()
-            ? CsrMatrix()
-            : csrFromTpetra(*local[i].tpetraK, "subdomain " + std::to_string(local[i].mesh.id));
-    const CsrMatrix& Ki = local[i].tpetraK.is_null() ? local[i].K : converted;
-    solvers.push_back(createLocalSolver(solver));
-    const std::ptrdiff_t factor = solvers.back()->predictFactorMemory(Ki);
-    f.factorsKnown = f.factorsKnown && factor >= 0;
-    f.factors += static_cast<double>(std::max<std::ptrdiff_t>(factor, 0));
-    const std::vector<int> dofs = subdomainDualDofs(t, i);
-    const double m = static_cast<double>(f.dualRows[i]), k = static_cast<double>(dofs.size());
-    f.explicitBlocks += static_cast<double>(explicitBlockBytes(storage, f.dualRows[i]));
-    f.explicitTransient =
-        std::max(f.explicitTransient, static_cast<double>(std::max<std::ptrdiff_t>(factor, 0)) +
-                                          sizeof(double) * (k * k + m * m));
-    if (dirichlet) {
-      std::vector<char> onB(Ki.rows, 0);
-      for (int d : dofs) onB[d] = 1;
-      std::vector<int> interior;
-      for (int r = 0; r < Ki.rows; ++r)
-        if (!onB[r]) interior.push_back(r);
-      if (!interior.empty()) {
-        solvers.push_back(createLocalSolver(solver));
-        const std::ptrdiff_t bytes = solvers.back()->predictFactorMemory(
-            Ki.submatrix(interior, interior, /*withValues=*/false));
-        f.interiorKnown = f.interiorKnown && bytes >= 0;
-        running += static_cast<double>(std::max<std::ptrdiff_t>(bytes, 0));
-        f.interiorPeak = std::max(f.interiorPeak, running);
+  // An analysis that fails on one rank is reported on every rank (none left in a collective).
+  collectively(*comm, [&] {
+    for (std::size_t i = 0; i < local.size(); ++i) {
+      // A K given as a Tpetra::CrsMatrix becomes CSR arrays, as the constructor makes it.
+      const CsrMatrix converted =
+          local[i].tpetraK.is_null()
+              ? CsrMatrix()
+              : csrFromTpetra(*local[i].tpetraK, "subdomain " + std::to_string(local[i].mesh.id));
+      const CsrMatrix& Ki = local[i].tpetraK.is_null() ? local[i].K : converted;
+      solvers.push_back(createLocalSolver(solver));
+      const std::ptrdiff_t factor = solvers.back()->predictFactorMemory(Ki);
+      f.factorsKnown = f.factorsKnown && factor >= 0;
+      f.factors += static_cast<double>(std::max<std::ptrdiff_t>(factor, 0));
+      const std::vector<int> dofs = subdomainDualDofs(t, i);
+      const double m = static_cast<double>(f.dualRows[i]), k = static_cast<double>(dofs.size());
+      f.explicitBlocks += static_cast<double>(explicitBlockBytes(storage, f.dualRows[i]));
+      f.explicitTransient =
+          std::max(f.explicitTransient, static_cast<double>(std::max<std::ptrdiff_t>(factor, 0)) +
+                                            sizeof(double) * (k * k + m * m));
+      if (dirichlet) {
+        std::vector<char> onB(Ki.rows, 0);
+        for (int d : dofs) onB[d] = 1;
+        std::vector<int> interior;
+        for (int r = 0; r < Ki.rows; ++r)
+          if (!onB[r]) interior.push_back(r);
+        if (!interior.empty()) {
+          solvers.push_back(createLocalSolver(solver));
+          const std::ptrdiff_t bytes = solvers.back()->predictFactorMemory(
+              Ki.submatrix(interior, interior, /*withValues=*/false));
+          f.interiorKnown = f.interiorKnown && bytes >= 0;
+          running += static_cast<double>(std::max<std::ptrdiff_t>(bytes, 0));
+          f.interiorPeak = std::max(f.interiorPeak, running);
+        }
       }
+      const double kBytes = static_cast<double>(Ki.bytes());
+      if (release && !schurNeedsK) running -= kBytes;
+      if (release && schurNeedsK) f.stiffnessFreedByAssembly += kBytes;
     }
-    const double kBytes = static_cast<double>(Ki.bytes());
-    if (release && !schurNeedsK) running -= kBytes;
-    if (release && schurNeedsK) f.stiffnessFreedByAssembly += kBytes;
-  }
+  });
   f.preconditionerLeaves = running;
   if (!f.factorsKnown) f.factors = 0.0;
   return f;
