@@ -43,9 +43,9 @@
                                           meminfo whose MemAvailable is that need to the KiB
                                           above (a node with room for the factors alone);
                                           PREFIX_factors_short: one KiB below it;
-                                          PREFIX_with_preconditioner(_short): the factors' and
-                                          the interior factors' needs summed, to the KiB above
-                                          (below)
+                                          PREFIX_with_preconditioner(_short): what the factors
+                                          hold (node_held_bytes) and the preconditioner's need
+                                          summed, to the KiB above (below)
   check_summary.py explicit_export DIR FILE [FILE ...]
                                           the F_s blocks a run exported (FETI "Explicit
                                           export file"), read as gpu/ reads them: header, one
@@ -472,9 +472,11 @@ def factor_memory(d, checked, meminfo=None, edges=None):
         fail(f"{d}: factor_memory_check {m}: expected checked {checked}")
     if checked:
         need, available = m["node_need_bytes"], m["node_available_bytes"]
-        if not need >= s["factor_bytes"] > 0:
-            fail(f"{d}: factor_memory_check {m}: the need is below the factors' bytes "
-                 f"{s['factor_bytes']}")
+        held = m.get("node_held_bytes", -1)
+        if not need > held >= s["factor_bytes"] > 0:
+            fail(f"{d}: factor_memory_check {m}: expected the need (the factorizations' peak) "
+                 f"above node_held_bytes, and that at least the factors' bytes {s['factor_bytes']}"
+                 " (every rank on one node)")
         if available < 0 or m["fits"] != (need <= available) or m["node_ranks"] < 1:
             fail(f"{d}: factor_memory_check {m}: fits must say whether the need is within the "
                  "available bytes")
@@ -502,8 +504,9 @@ def factor_memory(d, checked, meminfo=None, edges=None):
     if edges:
         if not p["checked"]:
             fail("--write-meminfo-edges needs a run whose interior factors were checked")
-        # What a dry run adds for the preconditioner: its factors on top of the subdomains'.
-        both = m["node_need_bytes"] + p["node_need_bytes"]
+        # What a dry run adds for the preconditioner: its need on top of what the subdomain
+        # factors hold once made.
+        both = m["node_held_bytes"] + p["node_need_bytes"]
         write(edges + "_factors_short", m["node_need_bytes"], True)
         write(edges + "_with_preconditioner", both, False)
         write(edges + "_with_preconditioner_short", both, True)

@@ -454,8 +454,9 @@ TEUCHOS_UNIT_TEST(ExplicitDual, FsBeyondTheNodesMemory) {
     params.set("Local solver", solver);
     return tfeti::FetiSolver(comm, box.numSubdomains(), local3d(box), params, rows);
   };
-  // A node with room for the subdomain factors and not for the F_s as well: the factors' check
-  // (tfeti_MemoryCheck_UnitTests.cpp) passes, this one does not.
+  // A node that has room for the subdomain factors and then, one KiB short, not for the F_s:
+  // its available bytes come from a source that gives plenty to the factors' check
+  // (tfeti_MemoryCheck_UnitTests.cpp) and too little to this one.
   long long kib = 0;
   {
     const tfeti::FetiSolver roomy = make("auto", true, "cholmod");
@@ -466,25 +467,28 @@ TEUCHOS_UNIT_TEST(ExplicitDual, FsBeyondTheNodesMemory) {
     // Every rank on this one node: all the F_s, and each rank's transient on top (K is kept).
     TEST_COMPARE(c.nodeNeedBytes, >, c.explicitBytes);
     TEST_COMPARE(c.nodeAvailableBytes, >, c.nodeNeedBytes);
-    kib = tfeti_test::kibAtLeast(roomy.factorMemoryCheck().needBytes);
-    TEST_COMPARE(c.nodeNeedBytes, >, 1024.0 * kib);
+    kib = tfeti_test::kibAtLeast(c.nodeNeedBytes) - 1;
   }
   // With K freed as the blocks are assembled, the F_s of this small problem need less than its
-  // factors: no node has room for these and not for those. KLU2's factors are not checked (it
-  // cannot tell their bytes before it factorizes), so there a node with 1 KiB reaches the F_s'
-  // check.
+  // factors. KLU2's factors are not checked (it cannot tell their bytes before it factorizes):
+  // its first read of the node's memory is the F_s' check, with 1 KiB.
   struct Case {
     bool keep;
     std::string solver;
     long long kib;
+    int plentyReads;  // the checks before the F_s' (the factors'; lumped: no preconditioner's)
   };
-  for (const Case& k : {Case{true, "cholmod", kib}, Case{false, "klu2", 1}}) {
+  for (const Case& k : {Case{true, "cholmod", kib, 1}, Case{false, "klu2", 1, 0}}) {
     out << "K kept " << k.keep << ", " << k.solver << ", " << k.kib << " KiB available\n";
-    tfeti_test::FakeNodeMemory fake(k.kib);
+    int reads = 0;
+    tfeti::setAvailableBytesSource(
+        [&] { return ++reads <= k.plentyReads ? 1e15 : 1024.0 * static_cast<double>(k.kib); });
     checkDoesNotFitError(tfeti_test::messageOf([&] { make("explicit", k.keep, k.solver); }),
                          1024.0 * k.kib, out, success);
-    tfeti::FetiSolver fallback = make("auto", k.keep, k.solver),
-                      implicit = make("implicit", k.keep, k.solver);
+    reads = 0;
+    tfeti::FetiSolver fallback = make("auto", k.keep, k.solver);
+    tfeti::setAvailableBytesSource({});
+    tfeti::FetiSolver implicit = make("implicit", k.keep, k.solver);
     TEST_EQUALITY(fallback.dualOperatorChoice().chosen, std::string("implicit"));
     TEST_EQUALITY(fallback.dualOperatorChoice().nodeAvailableBytes, 1024.0 * k.kib);
     // The K kept for the Schur assembly are freed as the implicit operator would have.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tfeti_CsrMatrix.hpp"
@@ -36,6 +37,27 @@ tfeti::CsrMatrix laplacian2d(int g, double shift) {
       if (y + 1 < g) add(i, i + g, -1.0);
     }
   return tfeti::csrFromTriplets(g * g, g * g, ri, ci, v);
+}
+
+// The 27-point pattern on a g x g x g grid (a trilinear element's couplings), diagonally
+// dominant: SPD, n = g^3 rows; large enough ones make CHOLMOD choose its supernodal kind.
+tfeti::CsrMatrix laplacian3d(int g) {
+  std::vector<int> ri, ci;
+  std::vector<double> v;
+  const auto id = [g](int x, int y, int z) { return (z * g + y) * g + x; };
+  for (int z = 0; z < g; ++z)
+    for (int y = 0; y < g; ++y)
+      for (int x = 0; x < g; ++x)
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              const int X = x + dx, Y = y + dy, Z = z + dz;
+              if (X < 0 || Y < 0 || Z < 0 || X >= g || Y >= g || Z >= g) continue;
+              ri.push_back(id(x, y, z));
+              ci.push_back(id(X, Y, Z));
+              v.push_back(dx || dy || dz ? -0.2 : 6.5);
+            }
+  return tfeti::csrFromTriplets(g * g * g, g * g * g, ri, ci, v);
 }
 
 // Deterministic pseudo-random values in [-1, 1).
@@ -316,11 +338,19 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodFactorsOfOnePatternShareTheAnalysis) {
 // predictFactorMemory tells, from the symbolic analysis alone, the bytes the factorization then
 // allocates by CHOLMOD's own count, to the byte: for a new pattern (the analysis made by the
 // prediction and not again by factorize), for a second factor of that pattern (shared), and 0 for
-// a refactorization in place. Amesos2's solvers cannot tell.
+// a refactorization in place; predictFactorTransient the bytes it allocates beyond at its peak
+// and frees (CHOLMOD's peak count, Common->memory_usage), to the byte, on 2D and 3D patterns of
+// both kinds. Amesos2's solvers cannot tell.
 TEUCHOS_UNIT_TEST(LocalSolver, CholmodPredictsItsFactor) {
+  std::vector<std::pair<tfeti::CsrMatrix, tfeti::CsrMatrix>> cases;
+  for (const int g : {12, 40}) cases.emplace_back(laplacian2d(g, 1.0), laplacian2d(g, 2.0));
+  for (const int g : {8, 14}) {
+    tfeti::CsrMatrix B = laplacian3d(g);
+    for (double& v : B.values) v *= 2.0;
+    cases.emplace_back(laplacian3d(g), B);
+  }
   for (const std::string type : {"cholmod", "cholmod-simplicial", "cholmod-supernodal"}) {
-    for (const int g : {12, 40}) {
-      const tfeti::CsrMatrix A = laplacian2d(g, 1.0), B = laplacian2d(g, 2.0);
+    for (const auto& [A, B] : cases) {
       const tfeti::LocalAnalysisCounts start = tfeti::localAnalysisCounts();
       auto first = tfeti::createLocalSolver(type), second = tfeti::createLocalSolver(type);
       // A first factorization of this size grows CHOLMOD's workspace: not the factor's bytes.
@@ -328,12 +358,17 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodPredictsItsFactor) {
       warm->factorize(A);
       for (auto* s : {first.get(), second.get()}) {
         const std::ptrdiff_t predicted = s->predictFactorMemory(A);
+        const std::ptrdiff_t transient = s->predictFactorTransient(A);
         const std::size_t before = tfeti::localSolverMemoryInUse();
+        tfeti::localSolverMemoryPeak(true);
         s->factorize(A);
         const std::size_t after = tfeti::localSolverMemoryInUse();
-        out << type << " " << g * g << " rows: predicted " << predicted << ", allocated "
-            << after - before << ", factorBytes " << s->factorBytes() << "\n";
+        const std::size_t peak = tfeti::localSolverMemoryPeak();
+        out << type << " " << A.rows << " rows: predicted " << predicted << " + " << transient
+            << ", allocated " << after - before << ", peak " << peak - before << ", factorBytes "
+            << s->factorBytes() << "\n";
         TEST_EQUALITY(static_cast<std::size_t>(predicted), after - before);
+        TEST_EQUALITY(static_cast<std::size_t>(predicted + transient), peak - before);
         TEST_EQUALITY(s->factorMemory(), after - before);
         TEST_COMPARE(static_cast<std::size_t>(predicted), >=, s->factorBytes());
       }
@@ -342,6 +377,7 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodPredictsItsFactor) {
       TEST_EQUALITY(tfeti::localAnalysisCounts().made - start.made, 1);
       TEST_EQUALITY(tfeti::localAnalysisCounts().shared - start.shared, 2);
       TEST_EQUALITY(first->predictFactorMemory(B), 0);
+      TEST_COMPARE(first->predictFactorTransient(B), <, 0);
       const std::size_t before = tfeti::localSolverMemoryInUse();
       first->factorize(B);
       TEST_EQUALITY(tfeti::localSolverMemoryInUse(), before);
@@ -355,8 +391,10 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodPredictsItsFactor) {
   TEST_COMPARE(s->predictFactorMemory(other), >, 0);
   s->factorize(A);
   TEST_COMPARE(solveAndMeasure(*s, A, 1, 23).residual, <, 1e-12);
-  for (const std::string type : {"klu2", "tacho"})
+  for (const std::string type : {"klu2", "tacho"}) {
     TEST_COMPARE(tfeti::createLocalSolver(type)->predictFactorMemory(A), <, 0);
+    TEST_COMPARE(tfeti::createLocalSolver(type)->predictFactorTransient(A), <, 0);
+  }
 }
 
 // ------------------------------------------------------------------------------------------

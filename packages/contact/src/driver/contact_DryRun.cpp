@@ -101,7 +101,8 @@ std::string explicitDualLine(const tfeti::Comm& comm, const tfeti::SetupMemoryFo
   return s.str();
 }
 
-// The Dirichlet preconditioner's interior factors, on top of the subdomain factors.
+// The Dirichlet preconditioner (its blocks and interior factors), on top of the subdomain
+// factors.
 std::string preconditionerLine(const tfeti::Comm& comm, const tfeti::SetupMemoryForecast& f,
                                bool known, bool checked, const std::string& solver) {
   double mine[2] = {f.interiorPeak, f.preconditionerLeaves}, all[2] = {0.0, 0.0};
@@ -113,9 +114,10 @@ std::string preconditionerLine(const tfeti::Comm& comm, const tfeti::SetupMemory
     s << "interior factors unknown (" << solver << " cannot tell before factorizing; unchecked)";
     return s.str();
   }
-  s << "interior factors' set-up peak " << std::fixed << std::setprecision(1) << all[0] / kMiB
-    << " MiB beyond the subdomain factors (" << all[1] / kMiB
-    << " MiB once all are made, less the K freed)";
+  s << "set-up peak " << std::fixed << std::setprecision(1) << all[0] / kMiB
+    << " MiB beyond the subdomain factors (blocks K_bb and K_bi, interior factors, a "
+       "factorization's transient; "
+    << all[1] / kMiB << " MiB once all are made, less the K freed)";
   if (node.known)
     s << "; with the factors " << tfeti::describe(node) << " now"
       << (node.fits || !checked ? "" : ": the preconditioner's set-up would stop with an error");
@@ -158,7 +160,9 @@ void printDryRunReport(const Teuchos::RCP<const tfeti::Comm>& comm, int numSubdo
   const std::vector<double> all = tfeti::allGather(*comm, mine);
   double factors = 0.0;
   for (std::size_t k = 4; k < mine.size(); k += 5) factors += mine[k];
-  const tfeti::NodeMemory node = tfeti::nodeMemory(*comm, factors);
+  // While they are made: the factors so far and the next factorization's transient.
+  const tfeti::NodeMemory node =
+      tfeti::nodeMemory(*comm, factorsKnown ? forecast.factorPeak : factors);
   std::vector<std::string> report = lines;
   report.push_back(explicitDualLine(*comm, forecast, factors, feti, checked));
   if (dirichlet)

@@ -253,6 +253,9 @@ Json nodeMemoryJson(const tfeti::NodeMemory& m) {
 void addFactorSummary(Json& s, const FetiDimensions& feti) {
   s["factor_bytes"] = feti.factorBytes;
   s["factor_memory_check"] = nodeMemoryJson(feti.factorMemory);
+  // The need is the factorizations' peak; what the factors then hold on that node.
+  if (feti.factorMemory.known)
+    s["factor_memory_check"]["node_held_bytes"] = feti.factorMemory.heldBytes;
   s["preconditioner_memory_check"] = nodeMemoryJson(feti.preconditionerMemory);
 }
 

@@ -34,9 +34,12 @@ VtuPiece vtuPiece(const tfeti::FetiSolver& solver);
 FetiDimensions fetiDimensions(const tfeti::FetiSolver& solver, const Teuchos::ParameterList& feti);
 // "factor_bytes" (the subdomain factors of all ranks) and "factor_memory_check": checked (false:
 // "Memory check" = false, a local solver that cannot tell its bytes before it factorizes, or no
-// /proc/meminfo), and then fits, node_need_bytes, node_available_bytes and node_ranks of the node
-// with the least room; "preconditioner_memory_check" the same for the Dirichlet preconditioner's
-// interior factors at the last set-up that made some (checked false without any).
+// /proc/meminfo), and then fits, node_need_bytes (the factorizations' peak: the factors made so
+// far and the next one's transient), node_available_bytes, node_ranks of the node with the least
+// room and node_held_bytes (what the factors then hold there); "preconditioner_memory_check" the
+// same (without node_held_bytes) for the Dirichlet preconditioner (its blocks and interior
+// factors, a factorization's transient) at the last set-up that made some (checked false
+// without any).
 void addFactorSummary(Json& summary, const FetiDimensions& feti);
 // "dual_operator" (implicit | explicit), "explicit_dual_bytes" (the dense local F_s on all ranks)
 // and "explicit_dual_bytes_max_rank" (the largest rank's): 0 when implicit; when explicit,

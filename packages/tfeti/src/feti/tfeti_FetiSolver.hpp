@@ -313,8 +313,10 @@ class FetiSolver {
   const DualOperatorChoice& dualOperatorChoice() const { return dualChoice_; }
   // The memory check before the last factorizations of new subdomains (the constructor's, and
   // updateStiffness's where the kernels moved): the subdomain factors' bytes, told by their
-  // symbolic analyses, summed per node, against the node's MemAvailable. known = false where it
-  // was not made ("Memory check" = false, a local solver that cannot tell, no /proc/meminfo).
+  // symbolic analyses, at the factorizations' peak (the factors made so far and the next one's
+  // transient; heldBytes: the factors alone), summed per node, against the node's MemAvailable.
+  // known = false where it was not made ("Memory check" = false, a local solver that cannot tell,
+  // no /proc/meminfo).
   const NodeMemory& factorMemoryCheck() const { return factorMemory_; }
   // The same before the Dirichlet preconditioner's interior factors are made (at every set-up
   // that makes some: the interior factors to be made, less those they replace and the K freed
@@ -347,9 +349,10 @@ class FetiSolver {
   // the nodes' memory (factorMemory_); throws std::invalid_argument (naming the parameters to
   // change) on every rank where some node falls short. Collective.
   void checkFactorMemory();
-  // Collective: each rank's need against its node's memory (nodeMemory); nothing known (known =
-  // false, fits) where some rank's local solver cannot tell its bytes.
-  NodeMemory nodesHold(double need, bool cannotTell) const;
+  // Collective: each rank's need against its node's memory (nodeMemory; held: what of it stays
+  // allocated, for the report); nothing known (known = false, fits) where some rank's local
+  // solver cannot tell its bytes.
+  NodeMemory nodesHold(double need, bool cannotTell, double held = 0.0) const;
   NodeMemory factorMemory_;
   // Before the preconditioner's set-up: its interior factors against the nodes' memory
   // (preconditionerMemory_). rebuild: the subdomains whose preconditioner is set up again, with

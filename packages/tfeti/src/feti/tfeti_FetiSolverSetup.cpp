@@ -81,7 +81,7 @@ SetupMemoryForecast FetiSolver::forecastSetupMemory(const Teuchos::RCP<const Com
   // Every solver is kept to the end, as the run keeps its factors: equal patterns then share one
   // analysis, and the analyses made here are those the run would make.
   std::vector<std::unique_ptr<LocalSolver>> solvers;
-  double running = 0.0;
+  RunningPeak factors, preconditioner;
   // An analysis that fails on one rank is reported on every rank (none left in a collective).
   collectively(*comm, [&] {
     for (std::size_t i = 0; i < local.size(); ++i) {
@@ -92,37 +92,36 @@ SetupMemoryForecast FetiSolver::forecastSetupMemory(const Teuchos::RCP<const Com
               : csrFromTpetra(*local[i].tpetraK, "subdomain " + std::to_string(local[i].mesh.id));
       const CsrMatrix& Ki = local[i].tpetraK.is_null() ? local[i].K : converted;
       solvers.push_back(createLocalSolver(solver));
-      const std::ptrdiff_t factor = solvers.back()->predictFactorMemory(Ki);
-      f.factorsKnown = f.factorsKnown && factor >= 0;
-      f.factors += static_cast<double>(std::max<std::ptrdiff_t>(factor, 0));
+      // Every subdomain counted with fixing dofs, hence with the decoupled copy of K: so it is
+      // under TFETI, where every subdomain floats (FETI: an upper bound).
+      const MemoryPrediction factor = predictPseudoInverseMemory(Ki, true, *solvers.back());
+      f.factorsKnown = f.factorsKnown && factor.known();
+      if (factor.known())
+        factors.make(static_cast<double>(factor.held), static_cast<double>(factor.transient));
       const std::vector<int> dofs = subdomainDualDofs(t, i);
       const double m = static_cast<double>(f.dualRows[i]), k = static_cast<double>(dofs.size());
       f.explicitBlocks += static_cast<double>(explicitBlockBytes(storage, f.dualRows[i]));
-      f.explicitTransient =
-          std::max(f.explicitTransient, static_cast<double>(std::max<std::ptrdiff_t>(factor, 0)) +
-                                            sizeof(double) * (k * k + m * m));
+      f.explicitTransient = std::max(f.explicitTransient,
+                                     static_cast<double>(std::max<std::ptrdiff_t>(factor.held, 0)) +
+                                         sizeof(double) * (k * k + m * m));
       if (dirichlet) {
-        std::vector<char> onB(Ki.rows, 0);
-        for (int d : dofs) onB[d] = 1;
-        std::vector<int> interior;
-        for (int r = 0; r < Ki.rows; ++r)
-          if (!onB[r]) interior.push_back(r);
-        if (!interior.empty()) {
-          solvers.push_back(createLocalSolver(solver));
-          const std::ptrdiff_t bytes = solvers.back()->predictFactorMemory(
-              Ki.submatrix(interior, interior, /*withValues=*/false));
-          f.interiorKnown = f.interiorKnown && bytes >= 0;
-          running += static_cast<double>(std::max<std::ptrdiff_t>(bytes, 0));
-          f.interiorPeak = std::max(f.interiorPeak, running);
-        }
+        solvers.push_back(createLocalSolver(solver));
+        const MemoryPrediction p = predictDirichletMemory(Ki, dofs, *solvers.back());
+        f.interiorKnown = f.interiorKnown && p.known();
+        if (p.known())
+          preconditioner.make(static_cast<double>(p.held), static_cast<double>(p.transient));
       }
       const double kBytes = static_cast<double>(Ki.bytes());
-      if (release && !schurNeedsK) running -= kBytes;
+      if (release && !schurNeedsK) preconditioner.release(kBytes);
       if (release && schurNeedsK) f.stiffnessFreedByAssembly += kBytes;
     }
   });
-  f.preconditionerLeaves = running;
-  if (!f.factorsKnown) f.factors = 0.0;
+  if (f.factorsKnown) {
+    f.factors = factors.running;
+    f.factorPeak = factors.peak;
+  }
+  f.interiorPeak = preconditioner.peak;
+  f.preconditionerLeaves = preconditioner.running;
   return f;
 }
 
@@ -196,28 +195,29 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
   countFactorizations();
 }
 
-NodeMemory FetiSolver::nodesHold(double need, bool cannotTell) const {
+NodeMemory FetiSolver::nodesHold(double need, bool cannotTell, double held) const {
   int mine = cannotTell ? 1 : 0, any = 0;
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, mine, Teuchos::outArg(any));
   if (any) return NodeMemory{};  // Amesos2's solvers: nothing known to check
-  return nodeMemory(*comm_, need);
+  return nodeMemory(*comm_, need, held);
 }
 
 void FetiSolver::checkFactorMemory() {
   factorMemory_ = NodeMemory{};
   if (!params_.get<bool>("Memory check")) return;
   // The predictions make the symbolic analyses (kept for the factorizations): their memory is
-  // then in use, and what is available is read after them.
-  double need = 0.0;
+  // then in use, and what is available is read after them. The factorizations go one by one:
+  // the need is the factors made so far plus the next one's transient, at its peak.
+  RunningPeak need;
   bool cannotTell = false;
   collectively(*comm_, [&] {
     for (auto& s : subdomains_) {
-      const std::ptrdiff_t bytes = s->predictFactorMemory();
-      cannotTell = cannotTell || bytes < 0;
-      need += static_cast<double>(std::max<std::ptrdiff_t>(bytes, 0));
+      const MemoryPrediction p = s->predictFactorMemory();
+      cannotTell = cannotTell || !p.known();
+      if (p.known()) need.make(static_cast<double>(p.held), static_cast<double>(p.transient));
     }
   });
-  factorMemory_ = nodesHold(need, cannotTell);
+  factorMemory_ = nodesHold(need.peak, cannotTell, need.running);
   if (factorMemory_.fits) return;
   throw std::invalid_argument(
       "the subdomain factors (\"Local solver\" = " + params_.get<std::string>("Local solver") +
@@ -236,25 +236,26 @@ void FetiSolver::checkPreconditionerMemory(const std::vector<std::vector<int>>& 
     for (char r : rebuild) makes |= r;
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, makes, Teuchos::outArg(anyMakes));
   if (!anyMakes || !params_.get<bool>("Memory check")) return;
-  // The set-up goes subdomain by subdomain: an interior factor replaces the last one, then K
-  // goes (releaseStiffness). The need is the peak of that running sum.
+  // The set-up goes subdomain by subdomain: a preconditioner (its blocks and interior factor,
+  // with the factorization's transient while it is made) replaces the last one, then K goes
+  // (releaseStiffness). The need is the peak of that running sum.
   const std::string solver = params_.get<std::string>("Local solver");
-  double running = 0.0, peak = 0.0;
+  RunningPeak need;
   bool cannotTell = false;
   collectively(*comm_, [&] {
     for (std::size_t i = 0; i < subdomains_.size(); ++i) {
       Subdomain& s = *subdomains_[i];
       if (rebuild[i]) {
-        const std::ptrdiff_t bytes = s.predictPreconditionerMemory(dofs[i], type, solver);
-        cannotTell = cannotTell || bytes < 0;
-        running += static_cast<double>(std::max<std::ptrdiff_t>(bytes, 0)) -
-                   static_cast<double>(s.preconditionerFactorMemory());
-        peak = std::max(peak, running);
+        const MemoryPrediction p = s.predictPreconditionerMemory(dofs[i], type, solver);
+        cannotTell = cannotTell || !p.known();
+        if (p.known())
+          need.make(static_cast<double>(p.held), static_cast<double>(p.transient),
+                    static_cast<double>(s.preconditionerMemory()));
       }
-      if (releaseStiffness) running -= static_cast<double>(s.stiffness().bytes());
+      if (releaseStiffness) need.release(static_cast<double>(s.stiffness().bytes()));
     }
   });
-  preconditionerMemory_ = nodesHold(peak, cannotTell);
+  preconditionerMemory_ = nodesHold(need.peak, cannotTell);
   if (preconditionerMemory_.fits) return;
   throw std::invalid_argument(
       "the Dirichlet preconditioner's interior factors (\"Local solver\" = " + solver +

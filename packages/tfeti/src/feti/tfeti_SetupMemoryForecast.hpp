@@ -11,16 +11,18 @@ namespace tfeti {
 struct SetupMemoryForecast {
   // m_s: the rows of B touching each local subdomain (the explicit F_s is m_s x m_s).
   std::vector<long long> dualRows;
-  // The subdomain factors (LocalSolver::predictFactorMemory, summed): the need of the run's
-  // factor check, exactly. factorsKnown = false where the local solver cannot tell (KLU2,
-  // Tacho): the run does not check them, and factors is 0.
-  double factors = 0.0;
+  // The subdomain factors (Subdomain::predictFactorMemory): what they hold once made, and the
+  // peak while they are made one by one (the factors so far, the next one's transient): the need
+  // of the run's factor check, exactly under TFETI (FETI: the copy of K with the fixing dofs
+  // decoupled counted for every subdomain, an upper bound). factorsKnown = false where the local
+  // solver cannot tell (KLU2, Tacho): the run does not check them, and both are 0.
+  double factors = 0.0, factorPeak = 0.0;
   bool factorsKnown = true;
-  // The Dirichlet preconditioner's interior factors (0 with the other preconditioners): the
-  // set-up's peak as it goes subdomain by subdomain, K freed after each where the run frees it
-  // (the need of the run's preconditioner check, exactly); and what the preconditioner's set-up
-  // leaves beyond the factors: the interior factors less the K it freed (negative where it frees
-  // K and makes no factor).
+  // The Dirichlet preconditioner (0 with the other preconditioners: its blocks K_bb and K_bi and
+  // its interior factors): the set-up's peak as it goes subdomain by subdomain, with each
+  // factorization's transient, K freed after each where the run frees it (the need of the run's
+  // preconditioner check, exactly); and what the set-up leaves beyond the factors: the
+  // preconditioner less the K it freed (negative where it frees K and makes no factor).
   double interiorPeak = 0.0, preconditionerLeaves = 0.0;
   bool interiorKnown = true;
   // The explicit F_s ("Explicit storage"): the blocks' bytes, and the assembly's largest

@@ -102,6 +102,7 @@ struct SymbolicAnalysis {
   cholmod_factor* symbolic = nullptr;  // as cholmod_analyze returned it: no numerical values
   PackedLayout packed;                 // supernodal analyses: where the packed values go
   std::size_t numericBytes = 0;        // what a numerical factor of this analysis holds
+  std::size_t transientBytes = 0;      // what its factorization allocates beyond, at the peak
   SymbolicAnalysis(CholmodKind k, const CsrMatrix& A)
       : kind(k), n(A.rows), rowPtr(A.rowPtr), colInd(A.colInd) {}
   ~SymbolicAnalysis() {
@@ -148,6 +149,7 @@ class SymbolicAnalyses {
     made->symbolic = analyze(kind, A);
     if (made->symbolic->is_super) made->packed = packedLayout(*made->symbolic);
     made->numericBytes = numericFactorBytes(*made->symbolic);
+    made->transientBytes = factorizationTransientBytes(A, *made->symbolic, made->numericBytes);
     ++counts_.made;
     table_.emplace(key, made);
     return made;
@@ -179,6 +181,30 @@ class SymbolicAnalyses {
     std::size_t nnz = 0;
     for (std::size_t j = 0; j < n; ++j) nnz += static_cast<const int*>(S.ColCount)[j];
     return header + i * (2 * n + (n + 1) + n + 2 * (n + 2)) + (i + d) * nnz;
+  }
+  // The bytes cholmod_factorize allocates, at its peak, beyond the factor it fills (its own
+  // count agrees to the byte: CholmodPredictsItsFactor), all freed before it returns. A is
+  // given as its upper triangle (stype 1) of a full symmetric pattern, and CHOLMOD first
+  // permutes it into a copy A1 allocated for all of A's entries (header, p, i and x, packed).
+  // Supernodal: A1 and the dense update matrix C (maxcsize values) while the values are computed.
+  // Simplicial: A2, the transpose of A1 sized to the triangle, then A1 is freed and the values
+  // are allocated; the peak is the larger of A1 and A2 together and A2 with the values. The
+  // workspace CHOLMOD keeps between factorizations (Flag, Head, Iwork, Xwork: a few integers per
+  // row of the largest matrix so far) is not counted.
+  static std::size_t factorizationTransientBytes(const CsrMatrix& A, const cholmod_factor& S,
+                                                 std::size_t numericBytes) {
+    std::size_t upper = 0;
+    for (int i = 0; i < A.rows; ++i)
+      for (int k = A.rowPtr[i]; k < A.rowPtr[i + 1]; ++k) upper += A.colInd[k] <= i ? 1 : 0;
+    const auto copy = [&A](std::size_t entries) {
+      return sizeof(cholmod_sparse) + sizeof(int) * (A.rows + 1) +
+             (sizeof(int) + sizeof(double)) * entries;
+    };
+    const std::size_t a1 = copy(A.nnz()), a2 = copy(upper);
+    if (S.is_super) return a1 + sizeof(cholmod_dense) + sizeof(double) * S.maxcsize;
+    // What the factorization adds to the copied symbolic factor (header, Perm, ColCount).
+    const std::size_t values = numericBytes - sizeof(cholmod_factor) - 2 * sizeof(int) * S.n;
+    return std::max(a1 + a2, a2 + values) - values;
   }
   std::unordered_multimap<std::uint64_t, std::weak_ptr<SymbolicAnalysis>> table_;
   LocalAnalysisCounts counts_;
@@ -294,6 +320,12 @@ class CholmodSolver final : public LocalSolver {
     if (L_ && analysis_->matches(kind_, A)) return 0;  // refactorized in place
     if (!pending_ || !pending_->matches(kind_, A)) pending_ = analyses().get(kind_, A);
     return static_cast<std::ptrdiff_t>(pending_->numericBytes);
+  }
+
+  std::ptrdiff_t predictFactorTransient(const CsrMatrix& A) override {
+    if (L_ && analysis_->matches(kind_, A)) return -1;  // a refactorization in place: not told
+    if (!pending_ || !pending_->matches(kind_, A)) pending_ = analyses().get(kind_, A);
+    return static_cast<std::ptrdiff_t>(pending_->transientBytes);
   }
 
   std::string name() const override {
@@ -437,6 +469,12 @@ LocalAnalysisCounts cholmodAnalysisCounts() {
 
 std::size_t cholmodMemoryInUse() {
   return common()->memory_inuse;
+}
+
+std::size_t cholmodMemoryPeak(bool reset) {
+  cholmod_common* c = common();
+  if (reset) c->memory_usage = c->memory_inuse;
+  return c->memory_usage;
 }
 
 }  // namespace tfeti

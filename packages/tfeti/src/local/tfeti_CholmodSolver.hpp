@@ -20,5 +20,7 @@ LocalAnalysisCounts cholmodAnalysisCounts();
 
 // CHOLMOD's own count of the bytes it holds for this process (Common->memory_inuse).
 std::size_t cholmodMemoryInUse();
+// CHOLMOD's peak of that count (Common->memory_usage); reset: the peak restarts from now.
+std::size_t cholmodMemoryPeak(bool reset);
 
 }  // namespace tfeti

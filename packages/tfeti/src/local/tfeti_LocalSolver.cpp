@@ -21,6 +21,10 @@ std::size_t localSolverMemoryInUse() {
   return cholmodMemoryInUse();
 }
 
+std::size_t localSolverMemoryPeak(bool reset) {
+  return cholmodMemoryPeak(reset);
+}
+
 std::unique_ptr<LocalSolver> createLocalSolver(const std::string& type) {
   if (type == "cholmod") return createCholmodSolver("auto");
   if (type == "cholmod-simplicial") return createCholmodSolver("simplicial");

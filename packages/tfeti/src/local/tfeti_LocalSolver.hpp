@@ -41,10 +41,26 @@ class LocalSolver {
     (void)A;
     return -1;
   }
+  // The bytes factorize(A) will allocate beyond its factor at its peak and free before it
+  // returns (CHOLMOD: a permuted copy of A's triangle, and the supernodal update matrix), from
+  // the same analysis as predictFactorMemory(A); negative where the solver cannot tell, or for a
+  // refactorization in place.
+  virtual std::ptrdiff_t predictFactorTransient(const CsrMatrix& A) {
+    (void)A;
+    return -1;
+  }
   // The bytes the present factor holds, as predictFactorMemory counts them (CHOLMOD: its
   // supernodal values unpacked, the index arrays); factorBytes() where the solver cannot tell.
   virtual std::size_t factorMemory() const { return factorBytes(); }
   virtual std::string name() const = 0;
+};
+
+// What a factorization (or a set-up around one) will allocate, told before it: held, the bytes
+// it keeps; transient, those it allocates beyond at its peak and frees before it returns.
+// Negative where the solver cannot tell.
+struct MemoryPrediction {
+  std::ptrdiff_t held = 0, transient = 0;
+  bool known() const { return held >= 0 && transient >= 0; }
 };
 
 // Symbolic analyses (fill-reducing orderings and symbolic factors) made by the local solvers of
@@ -58,6 +74,8 @@ LocalAnalysisCounts localAnalysisCounts();
 // The bytes CHOLMOD holds for this process's local solvers, by its own count (factors, symbolic
 // analyses and its workspace): what predictFactorMemory is checked against.
 std::size_t localSolverMemoryInUse();
+// The peak of that count since the last reset (reset = true restarts it from now).
+std::size_t localSolverMemoryPeak(bool reset = false);
 
 // Local solver types this build offers: "cholmod" (CHOLMOD choosing simplicial or supernodal
 // per matrix), "cholmod-simplicial", "cholmod-supernodal" (the kind forced), "klu2", "tacho".

@@ -56,6 +56,46 @@ CsrMatrix decoupleDofs(const CsrMatrix& A, const std::vector<int>& dofs) {
 }
 }  // namespace
 
+MemoryPrediction predictPseudoInverseMemory(const CsrMatrix& K, bool decoupledCopy,
+                                            LocalSolver& solver) {
+  // The fixing dofs are decoupled by values alone (decoupleDofs keeps K's pattern), and an
+  // analysis reads the pattern alone: K itself, without a copy.
+  MemoryPrediction p{solver.predictFactorMemory(K), solver.predictFactorTransient(K)};
+  if (!p.known()) return {-1, -1};
+  if (decoupledCopy) p.transient += static_cast<std::ptrdiff_t>(K.bytes());
+  return p;
+}
+
+MemoryPrediction predictDirichletMemory(const CsrMatrix& K, const std::vector<int>& interfaceDofs,
+                                        LocalSolver& solver) {
+  std::vector<char> onInterface(K.rows, 0);
+  for (int d : interfaceDofs) onInterface[d] = 1;
+  // The entries of K_bb, K_bi and K_ii, as CsrMatrix::submatrix copies them.
+  std::size_t bb = 0, bi = 0, ii = 0;
+  std::vector<int> interior;
+  for (int r = 0; r < K.rows; ++r) {
+    if (!onInterface[r]) interior.push_back(r);
+    for (int k = K.rowPtr[r]; k < K.rowPtr[r + 1]; ++k) {
+      const bool rowB = onInterface[r], colB = onInterface[K.colInd[k]];
+      bb += rowB && colB ? 1 : 0;
+      bi += rowB && !colB ? 1 : 0;
+      ii += !rowB && !colB ? 1 : 0;
+    }
+  }
+  const std::size_t ni = interior.size(), nb = K.rows - ni;
+  const auto csr = [](std::size_t rows, std::size_t nnz) {
+    return static_cast<std::ptrdiff_t>(sizeof(int) * (rows + 1) +
+                                       (sizeof(int) + sizeof(double)) * nnz);
+  };
+  // Without interior dofs the set-up stops after K_bb.
+  if (interior.empty()) return {csr(nb, bb), 0};
+  const CsrMatrix pattern = K.submatrix(interior, interior, /*withValues=*/false);
+  const std::ptrdiff_t held = solver.predictFactorMemory(pattern);
+  const std::ptrdiff_t transient = solver.predictFactorTransient(pattern);
+  if (held < 0 || transient < 0) return {-1, -1};
+  return {csr(nb, bb) + csr(nb, bi) + held, csr(ni, ii) + transient};
+}
+
 Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords, CsrMatrix K,
                      std::vector<double> f, const std::vector<int>& dirichletDofs,
                      Formulation formulation, const std::string& localSolver)
@@ -121,11 +161,9 @@ Subdomain::Subdomain(int id, int dofsPerNode, const std::vector<double>& coords,
   if (when == Factorization::Now) factorize();
 }
 
-std::ptrdiff_t Subdomain::predictFactorMemory() {
-  if (factorized()) return 0;
-  // The fixing dofs are decoupled by values alone (decoupleDofs keeps K's pattern), and an
-  // analysis reads the pattern alone: K itself, without a copy.
-  return factor_->predictFactorMemory(K_);
+MemoryPrediction Subdomain::predictFactorMemory() {
+  if (factorized()) return {};
+  return predictPseudoInverseMemory(K_, !fixing_.empty(), *factor_);
 }
 
 void Subdomain::factorize() {
@@ -333,21 +371,20 @@ std::vector<int> Subdomain::interiorOf(const std::vector<int>& interfaceDofs) co
   return interior;
 }
 
-std::ptrdiff_t Subdomain::predictPreconditionerMemory(const std::vector<int>& interfaceDofs,
-                                                      PreconditionerType type,
-                                                      const std::string& localSolver) {
+MemoryPrediction Subdomain::predictPreconditionerMemory(const std::vector<int>& interfaceDofs,
+                                                        PreconditionerType type,
+                                                        const std::string& localSolver) {
   pendingInterior_.reset();
   pendingInteriorDofs_.clear();
-  if (type != PreconditionerType::Dirichlet || !hasStiffness()) return 0;
-  std::vector<int> interior = interiorOf(interfaceDofs);
-  if (interior.empty()) return 0;
+  if (type != PreconditionerType::Dirichlet || !hasStiffness()) return {};
   auto solver = createLocalSolver(localSolver);
-  const std::ptrdiff_t bytes =
-      solver->predictFactorMemory(K_.submatrix(interior, interior, /*withValues=*/false));
-  if (bytes < 0) return bytes;
-  pendingInterior_ = std::move(solver);
-  pendingInteriorDofs_ = std::move(interior);
-  return bytes;
+  const MemoryPrediction p = predictDirichletMemory(K_, interfaceDofs, *solver);
+  std::vector<int> interior = interiorOf(interfaceDofs);
+  if (p.known() && !interior.empty()) {
+    pendingInterior_ = std::move(solver);
+    pendingInteriorDofs_ = std::move(interior);
+  }
+  return p;
 }
 
 void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs, PreconditionerType type,
@@ -422,6 +459,11 @@ std::size_t Subdomain::preconditionerFactorBytes() const {
 
 std::size_t Subdomain::preconditionerFactorMemory() const {
   return interiorFactor_ ? interiorFactor_->factorMemory() : 0;
+}
+
+std::size_t Subdomain::preconditionerMemory() const {
+  if (precType_ != PreconditionerType::Dirichlet) return 0;
+  return Kbb_.bytes() + Kbi_.bytes() + preconditionerFactorMemory();
 }
 
 }  // namespace tfeti

@@ -43,6 +43,19 @@ struct KernelOptions {
 // the factors can be told (predictFactorMemory) and checked before any is made.
 enum class Factorization { Now, Deferred };
 
+// What K+ of this K will allocate (Subdomain::predictFactorMemory, without a Subdomain: the dry
+// run's forecast): the factor `solver` will make of K (its analysis, kept for it), and the
+// factorization's transient, with the copy of K whose fixing dofs are decoupled where there are
+// any (decoupledCopy).
+MemoryPrediction predictPseudoInverseMemory(const CsrMatrix& K, bool decoupledCopy,
+                                            LocalSolver& solver);
+// What a Dirichlet preconditioner on these interface dofs of K will allocate
+// (Subdomain::predictPreconditionerMemory without a Subdomain): K_bb, K_bi and the interior
+// factor `solver` will make (its analysis, kept for it); the copy of K_ii and the
+// factorization's transient.
+MemoryPrediction predictDirichletMemory(const CsrMatrix& K, const std::vector<int>& interfaceDofs,
+                                        LocalSolver& solver);
+
 class Subdomain {
  public:
   // coords: kernel.dim per node; dofs are interleaved (dof = dofsPerNode * node + component).
@@ -57,10 +70,12 @@ class Subdomain {
             std::vector<double> f, const std::vector<int>& dirichletDofs, Formulation formulation,
             const std::string& localSolver);
 
-  // Factorization::Deferred: the bytes factorize() will allocate for K+ (LocalSolver::
-  // predictFactorMemory; negative where the local solver cannot tell), and the factorization
-  // itself, which throws as the constructor would. Solves need it done.
-  std::ptrdiff_t predictFactorMemory();
+  // Factorization::Deferred: the bytes factorize() will allocate for K+ (held: LocalSolver::
+  // predictFactorMemory; transient: the local solver's, and the copy of K with the fixing dofs
+  // decoupled that it factorizes; negative where the local solver cannot tell; 0 and 0 once
+  // factorized), and the factorization itself, which throws as the constructor would. Solves
+  // need it done.
+  MemoryPrediction predictFactorMemory();
   void factorize();
   bool factorized() const { return factorVersion_ != 0; }
 
@@ -106,12 +121,13 @@ class Subdomain {
   bool pseudoInverseBlock(const std::vector<int>& dofs, std::vector<double>& block);
 
   // The bytes setupPreconditioner(interfaceDofs, type, localSolver) will allocate for the
-  // Dirichlet preconditioner's interior factor, from its symbolic analysis (kept for it, like
-  // predictFactorMemory's): 0 for the other types, without K or without interior dofs; negative
-  // where the local solver cannot tell.
-  std::ptrdiff_t predictPreconditionerMemory(const std::vector<int>& interfaceDofs,
-                                             PreconditionerType type,
-                                             const std::string& localSolver);
+  // Dirichlet preconditioner: held, its blocks K_bb and K_bi and the interior factor (from its
+  // symbolic analysis, kept for it like predictFactorMemory's); transient, the interior block
+  // K_ii copied for its factorization and the local solver's transient. 0 and 0 for the other
+  // types and without K; negative where the local solver cannot tell.
+  MemoryPrediction predictPreconditionerMemory(const std::vector<int>& interfaceDofs,
+                                               PreconditionerType type,
+                                               const std::string& localSolver);
   // The dofs the multipliers act on, in the order the preconditioner block uses them.
   void setupPreconditioner(const std::vector<int>& interfaceDofs, PreconditionerType type,
                            const std::string& localSolver);
@@ -128,6 +144,9 @@ class Subdomain {
   std::size_t preconditionerFactorBytes() const;
   // What the Dirichlet preconditioner's interior factor holds (LocalSolver::factorMemory).
   std::size_t preconditionerFactorMemory() const;
+  // What the Dirichlet preconditioner holds, as predictPreconditionerMemory counts it: its
+  // blocks K_bb and K_bi and the interior factor (0 for the other types).
+  std::size_t preconditionerMemory() const;
   // Identifies the factorization behind K+: unique over every subdomain of the process and
   // renewed by every (re)factorization, so that what is derived from K+ (the explicit local dual
   // operator B_s K_s+ B_s^T, tfeti_ExplicitDualOperator.hpp) can tell that it is stale.

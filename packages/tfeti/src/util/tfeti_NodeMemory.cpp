@@ -69,7 +69,7 @@ long long hostKey() {
 
 }  // namespace
 
-NodeMemory nodeMemory(const Comm& comm, double needBytes) {
+NodeMemory nodeMemory(const Comm& comm, double needBytes, double heldBytes) {
   double available = -1.0;
   std::string error;
   try {
@@ -79,10 +79,11 @@ NodeMemory nodeMemory(const Comm& comm, double needBytes) {
   }
   throwIfAnyRankFailed(comm, error);
   const std::vector<long long> hosts = allGather(comm, std::vector<long long>{hostKey()});
-  const std::vector<double> values = allGather(comm, std::vector<double>{needBytes, available});
+  const std::vector<double> values =
+      allGather(comm, std::vector<double>{needBytes, available, heldBytes});
   struct Node {
     int firstRank = 0, ranks = 0;
-    double need = 0.0, available = std::numeric_limits<double>::max();
+    double need = 0.0, held = 0.0, available = std::numeric_limits<double>::max();
   };
   std::map<long long, Node> nodes;
   NodeMemory result;
@@ -92,9 +93,10 @@ NodeMemory nodeMemory(const Comm& comm, double needBytes) {
     Node& n = inserted.first->second;
     if (inserted.second) n.firstRank = static_cast<int>(r);
     ++n.ranks;
-    n.need += values[2 * r];
-    if (values[2 * r + 1] < 0) result.known = false;
-    n.available = std::min(n.available, values[2 * r + 1]);
+    n.need += values[3 * r];
+    n.held += values[3 * r + 2];
+    if (values[3 * r + 1] < 0) result.known = false;
+    n.available = std::min(n.available, values[3 * r + 1]);
   }
   if (!result.known) return result;
   const Node* tightest = nullptr;
@@ -104,6 +106,7 @@ NodeMemory nodeMemory(const Comm& comm, double needBytes) {
   result.firstRank = tightest->firstRank;
   result.ranks = tightest->ranks;
   result.needBytes = tightest->need;
+  result.heldBytes = tightest->held;
   result.availableBytes = tightest->available;
   result.fits = tightest->need <= tightest->available;
   return result;

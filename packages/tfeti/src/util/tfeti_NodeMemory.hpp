@@ -11,6 +11,7 @@
 //
 // The environment variable TFETI_MEMINFO names another file to read instead of /proc/meminfo
 // (the tests give one with little memory available).
+#include <algorithm>
 #include <functional>
 #include <string>
 
@@ -43,17 +44,33 @@ struct NodeMemory {
   int ranks = 0;
   double needBytes = 0.0;
   double availableBytes = -1.0;
+  // The same node's heldBytes summed (what stays allocated once the need's transients are gone).
+  double heldBytes = 0.0;
 };
 
 // Collective: every rank gives the bytes it is about to allocate (less what it frees meanwhile);
 // every rank returns the same answer, or throws CollectiveError where some rank's
 // availableNodeBytes() did.
-NodeMemory nodeMemory(const Comm& comm, double needBytes);
+// heldBytes: what of the need stays allocated (summed per node alongside; for the report).
+NodeMemory nodeMemory(const Comm& comm, double needBytes, double heldBytes = 0.0);
 
 // "the 2 ranks on the node of rank 0 need 1.50 GiB and it has 980.2 MiB available
 // (MemAvailable)": for errors.
 std::string describe(const NodeMemory& m);
 // "57.5 KiB" below a MiB, "980.2 MiB" below a GiB, "1.50 GiB" from there.
 std::string bytesText(double bytes);
+
+// A rank's need through a set-up that allocates piece by piece: the peak of what it holds
+// beyond the start. make(): a piece that keeps `held` bytes, allocates `transient` more while it
+// is made (freed when done) and then replaces `replaced` (counted until the new one is made: an
+// upper bound where the old is freed first). release(): bytes freed.
+struct RunningPeak {
+  double running = 0.0, peak = 0.0;
+  void make(double held, double transient, double replaced = 0.0) {
+    peak = std::max(peak, running + held + transient);
+    running += held - replaced;
+  }
+  void release(double bytes) { running -= bytes; }
+};
 
 }  // namespace tfeti
