@@ -61,6 +61,11 @@ std::size_t explicitBlockBytes(DenseStorage storage, std::size_t m) {
   return sizeof(double) * (storage == DenseStorage::Packed ? m * (m + 1) / 2 : m * m);
 }
 
+double explicitAssemblyTransient(double factorBytes, std::size_t k, std::size_t m) {
+  const double kk = static_cast<double>(k), mm = static_cast<double>(m);
+  return factorBytes + sizeof(double) * (kk * kk + mm * mm);
+}
+
 DenseStorage parseDenseStorage(const std::string& name) {
   if (name == "packed") return DenseStorage::Packed;
   if (name == "full") return DenseStorage::Full;

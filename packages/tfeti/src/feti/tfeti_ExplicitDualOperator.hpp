@@ -45,6 +45,10 @@ enum class DenseStorage { Packed, Full };
 DenseStorage parseDenseStorage(const std::string& name);
 // Bytes of one m x m F_s in that storage: 8 m(m+1)/2 packed, 8 m^2 full.
 std::size_t explicitBlockBytes(DenseStorage storage, std::size_t m);
+// What assembling one block takes beyond it while it is made, as the memory check counts it: a
+// second factor of the subdomain (counted at factorBytes) and the dense k x k block Z on the
+// dofs B_s touches and the m x m block.
+double explicitAssemblyTransient(double factorBytes, std::size_t k, std::size_t m);
 
 // How a block is assembled anew (FETI "Explicit assembly"): schur: F_s = C_s Z_s C_s^T, Z_s the
 // block of K_s+ on the dofs B_s touches (C_s: B_s's columns there), the inverse of the Schur

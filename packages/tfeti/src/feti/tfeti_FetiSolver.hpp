@@ -137,6 +137,11 @@ class FetiSolver {
   // lambda_I of either sign), e.g. a tied contact pair.
   static bool inequalitiesTied(const Teuchos::ParameterList& feti);
 
+  // A copy of the FETI list as the solver reads it: misplaced parameters rejected, aliases
+  // applied, validated with the defaults set, an unusable "Explicit device" rejected (all
+  // std::invalid_argument or Teuchos' validation errors, naming the parameter). The constructor
+  // and forecastSetupMemory start with it; a dry run reads its settings from it.
+  static Teuchos::ParameterList validatedParameters(const Teuchos::ParameterList& feti);
   // The dry run's forecast (collective, nothing factorized): what the set-up of `local` (the
   // constructor's arguments) will allocate on this rank, as its memory checks count it
   // (tfeti_SetupMemoryForecast.hpp): the rows of B the tearing builds, the factors' bytes from
@@ -318,9 +323,10 @@ class FetiSolver {
   // known = false where it was not made ("Memory check" = false, a local solver that cannot tell,
   // no /proc/meminfo).
   const NodeMemory& factorMemoryCheck() const { return factorMemory_; }
-  // The same before the Dirichlet preconditioner's interior factors are made (at every set-up
-  // that makes some: the interior factors to be made, less those they replace and the K freed
-  // meanwhile, at their peak during the set-up); known = false where none was made or checked.
+  // The same before the Dirichlet preconditioner is set up (at every set-up that makes interior
+  // factors: the blocks K_bb, K_bi and interior factors to be made with a factorization's
+  // transient, less those they replace and the K freed meanwhile, at their peak during the
+  // set-up); known = false where none was made or checked.
   const NodeMemory& preconditionerMemoryCheck() const { return preconditionerMemory_; }
   const Tearing& tearing() const { return tearing_; }
   const Teuchos::RCP<DualOperator>& dualOperator() const { return F_; }
@@ -354,7 +360,7 @@ class FetiSolver {
   // solver cannot tell its bytes.
   NodeMemory nodesHold(double need, bool cannotTell, double held = 0.0) const;
   NodeMemory factorMemory_;
-  // Before the preconditioner's set-up: its interior factors against the nodes' memory
+  // Before the preconditioner's set-up: its blocks and interior factors against the nodes' memory
   // (preconditionerMemory_). rebuild: the subdomains whose preconditioner is set up again, with
   // their interface dofs; releaseStiffness: K freed after each. Throws std::invalid_argument on
   // every rank where some node falls short. Collective.

@@ -50,79 +50,112 @@ std::vector<TearingInput> tearingInput(const std::vector<SubdomainData>& data) {
 }
 }  // namespace
 
+namespace {
+// The forecast as it adds up subdomain by subdomain, in the order of the run's set-up.
+class SetupTally {
+ public:
+  explicit SetupTally(const Teuchos::ParameterList& valid)
+      : solver_(valid.get<std::string>("Local solver")),
+        dirichlet_(parsePreconditioner(valid.get<std::string>("Preconditioner")) ==
+                   PreconditionerType::Dirichlet),
+        storage_(parseDenseStorage(valid.get<std::string>("Explicit storage"))),
+        release_(!valid.get<bool>("Keep subdomain matrices")),
+        // As buildConstraints frees K: after each preconditioner, unless the Schur assembly of
+        // an explicit operator needs it (auto counted as explicit: K kept longer, an upper bound).
+        schurNeedsK_(valid.get<std::string>("Dual operator") != "implicit" &&
+                     parseBlockAssembly(valid.get<std::string>("Explicit assembly")) ==
+                         BlockAssembly::Schur) {}
+
+  // Subdomain K, touched by `rows` rows of B on the dofs `dofs`.
+  void add(const CsrMatrix& K, const std::vector<int>& dofs, long long rows) {
+    // Every subdomain counted with fixing dofs, hence with the decoupled copy of K: so it is
+    // under TFETI, where every subdomain floats (FETI: an upper bound).
+    const MemoryPrediction factor = predictPseudoInverseMemory(K, true, solverFor());
+    f_.factorsKnown = f_.factorsKnown && factor.known();
+    if (factor.known())
+      factors_.make(static_cast<double>(factor.held), static_cast<double>(factor.transient));
+    f_.dualRows.push_back(rows);
+    f_.explicitBlocks += static_cast<double>(explicitBlockBytes(storage_, rows));
+    f_.explicitTransient = std::max(
+        f_.explicitTransient,
+        explicitAssemblyTransient(static_cast<double>(std::max<std::ptrdiff_t>(factor.held, 0)),
+                                  dofs.size(), rows));
+    if (dirichlet_) {
+      const MemoryPrediction p = predictDirichletMemory(K, dofs, solverFor());
+      f_.interiorKnown = f_.interiorKnown && p.known();
+      if (p.known())
+        preconditioner_.make(static_cast<double>(p.held), static_cast<double>(p.transient));
+    }
+    const double kBytes = static_cast<double>(K.bytes());
+    if (release_ && !schurNeedsK_) preconditioner_.release(kBytes);
+    if (release_ && schurNeedsK_) f_.stiffnessFreedByAssembly += kBytes;
+  }
+
+  SetupMemoryForecast result() const {
+    SetupMemoryForecast f = f_;
+    if (f.factorsKnown) {
+      f.factors = factors_.running;
+      f.factorPeak = factors_.peak;
+    }
+    f.interiorPeak = preconditioner_.peak;
+    f.preconditionerLeaves = preconditioner_.running;
+    return f;
+  }
+
+ private:
+  // Every solver is kept to the end, as the run keeps its factors: equal patterns then share
+  // one analysis, and the analyses made here are those the run would make.
+  LocalSolver& solverFor() {
+    solvers_.push_back(createLocalSolver(solver_));
+    return *solvers_.back();
+  }
+  const std::string solver_;
+  const bool dirichlet_;
+  const DenseStorage storage_;
+  const bool release_, schurNeedsK_;
+  std::vector<std::unique_ptr<LocalSolver>> solvers_;
+  SetupMemoryForecast f_;
+  RunningPeak factors_, preconditioner_;
+};
+}  // namespace
+
+Teuchos::ParameterList FetiSolver::validatedParameters(const Teuchos::ParameterList& feti) {
+  Teuchos::ParameterList valid = feti;
+  rejectMisplacedParameters(valid);
+  applySolverAliases(valid);
+  valid.validateParametersAndSetDefaults(*validParameters());
+  // A device that the run cannot use is an input error: said before anything is factorized.
+  checkExplicitDevice(valid.get<std::string>("Dual operator"),
+                      parseExplicitDevice(valid.get<std::string>("Explicit device")));
+  return valid;
+}
+
 SetupMemoryForecast FetiSolver::forecastSetupMemory(const Teuchos::RCP<const Comm>& comm,
                                                     int numSubdomains,
                                                     const std::vector<SubdomainData>& local,
                                                     const Teuchos::ParameterList& feti,
                                                     const std::vector<InequalityRow>& inequalities,
                                                     const std::vector<EqualityRow>& equalities) {
-  Teuchos::ParameterList valid = feti;
-  rejectMisplacedParameters(valid);
-  applySolverAliases(valid);
-  valid.validateParametersAndSetDefaults(*validParameters());
-  checkExplicitDevice(valid.get<std::string>("Dual operator"),
-                      parseExplicitDevice(valid.get<std::string>("Explicit device")));
+  const Teuchos::ParameterList valid = validatedParameters(feti);
   int localDpn = local.empty() ? 0 : local.front().dofsPerNode, dpn = 0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &localDpn, &dpn);
   const Tearing t = buildTearing(comm, numSubdomains, tearingInput(local), dpn,
                                  tearingOptions(valid), inequalities, equalities);
-  SetupMemoryForecast f;
-  f.dualRows = subdomainRowCounts(t);
-  const std::string solver = valid.get<std::string>("Local solver");
-  const bool dirichlet = parsePreconditioner(valid.get<std::string>("Preconditioner")) ==
-                         PreconditionerType::Dirichlet;
-  const DenseStorage storage = parseDenseStorage(valid.get<std::string>("Explicit storage"));
-  // As buildConstraints frees K: after each interior factor, unless the Schur assembly of an
-  // explicit operator needs it (auto counted as explicit: K kept longer, an upper bound).
-  const bool release = !valid.get<bool>("Keep subdomain matrices");
-  const bool schurNeedsK =
-      valid.get<std::string>("Dual operator") != "implicit" &&
-      parseBlockAssembly(valid.get<std::string>("Explicit assembly")) == BlockAssembly::Schur;
-  // Every solver is kept to the end, as the run keeps its factors: equal patterns then share one
-  // analysis, and the analyses made here are those the run would make.
-  std::vector<std::unique_ptr<LocalSolver>> solvers;
-  RunningPeak factors, preconditioner;
+  const std::vector<long long> rows = subdomainRowCounts(t);
+  SetupTally tally(valid);
   // An analysis that fails on one rank is reported on every rank (none left in a collective).
   collectively(*comm, [&] {
     for (std::size_t i = 0; i < local.size(); ++i) {
       // A K given as a Tpetra::CrsMatrix becomes CSR arrays, as the constructor makes it.
-      const CsrMatrix converted =
-          local[i].tpetraK.is_null()
-              ? CsrMatrix()
-              : csrFromTpetra(*local[i].tpetraK, "subdomain " + std::to_string(local[i].mesh.id));
-      const CsrMatrix& Ki = local[i].tpetraK.is_null() ? local[i].K : converted;
-      solvers.push_back(createLocalSolver(solver));
-      // Every subdomain counted with fixing dofs, hence with the decoupled copy of K: so it is
-      // under TFETI, where every subdomain floats (FETI: an upper bound).
-      const MemoryPrediction factor = predictPseudoInverseMemory(Ki, true, *solvers.back());
-      f.factorsKnown = f.factorsKnown && factor.known();
-      if (factor.known())
-        factors.make(static_cast<double>(factor.held), static_cast<double>(factor.transient));
-      const std::vector<int> dofs = subdomainDualDofs(t, i);
-      const double m = static_cast<double>(f.dualRows[i]), k = static_cast<double>(dofs.size());
-      f.explicitBlocks += static_cast<double>(explicitBlockBytes(storage, f.dualRows[i]));
-      f.explicitTransient = std::max(f.explicitTransient,
-                                     static_cast<double>(std::max<std::ptrdiff_t>(factor.held, 0)) +
-                                         sizeof(double) * (k * k + m * m));
-      if (dirichlet) {
-        solvers.push_back(createLocalSolver(solver));
-        const MemoryPrediction p = predictDirichletMemory(Ki, dofs, *solvers.back());
-        f.interiorKnown = f.interiorKnown && p.known();
-        if (p.known())
-          preconditioner.make(static_cast<double>(p.held), static_cast<double>(p.transient));
-      }
-      const double kBytes = static_cast<double>(Ki.bytes());
-      if (release && !schurNeedsK) preconditioner.release(kBytes);
-      if (release && schurNeedsK) f.stiffnessFreedByAssembly += kBytes;
+      if (local[i].tpetraK.is_null())
+        tally.add(local[i].K, subdomainDualDofs(t, i), rows[i]);
+      else
+        tally.add(csrFromTpetra(*local[i].tpetraK,
+                                "subdomain " + std::to_string(local[i].mesh.id) + ": tpetraK"),
+                  subdomainDualDofs(t, i), rows[i]);
     }
   });
-  if (f.factorsKnown) {
-    f.factors = factors.running;
-    f.factorPeak = factors.peak;
-  }
-  f.interiorPeak = preconditioner.peak;
-  f.preconditionerLeaves = preconditioner.running;
-  return f;
+  return tally.result();
 }
 
 FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
@@ -130,16 +163,10 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
                        const std::vector<InequalityRow>& inequalities,
                        const std::vector<EqualityRow>& equalities)
     : comm_(comm),
-      params_(params),
+      params_(validatedParameters(params)),
       numSubdomains_(numSubdomains),
       data_(std::move(local)),
       equalities_(equalities) {
-  rejectMisplacedParameters(params_);
-  applySolverAliases(params_);
-  params_.validateParametersAndSetDefaults(*validParameters());
-  // A device that the run cannot use is an input error: said before anything is factorized.
-  checkExplicitDevice(params_.get<std::string>("Dual operator"),
-                      parseExplicitDevice(params_.get<std::string>("Explicit device")));
   // Subdomain matrices given as Tpetra::CrsMatrix become CSR arrays (checked with the rest).
   collectively(*comm_, [&] {
     for (auto& sd : data_) {
@@ -456,11 +483,10 @@ double FetiSolver::explicitAssemblyNeed(DenseStorage storage, bool releaseStiffn
   double blocks = 0.0, transient = 0.0, freed = 0.0;
   for (std::size_t i = 0; i < subdomains_.size(); ++i) {
     if (!takenOver[i]) {
-      const double m = static_cast<double>(rows[i]);
-      const double k = static_cast<double>(subdomainDualDofs(tearing_, i).size());
       blocks += static_cast<double>(explicitBlockBytes(storage, rows[i]));
-      transient = std::max(transient, static_cast<double>(subdomains_[i]->factorBytes()) +
-                                          sizeof(double) * (k * k + m * m));
+      transient = std::max(
+          transient, explicitAssemblyTransient(static_cast<double>(subdomains_[i]->factorBytes()),
+                                               subdomainDualDofs(tearing_, i).size(), rows[i]));
     }
     if (releaseStiffness) freed += static_cast<double>(subdomains_[i]->stiffness().bytes());
   }
