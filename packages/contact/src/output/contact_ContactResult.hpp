@@ -62,8 +62,8 @@ struct FetiDimensions {
   // The subdomain factors' bytes against the nodes' memory before the last factorizations of
   // new subdomains (tfeti::FetiSolver::factorMemoryCheck).
   tfeti::NodeMemory factorMemory;
-  // The same for the Dirichlet preconditioner's interior factors, at the last set-up that made
-  // some (tfeti::FetiSolver::preconditionerMemoryCheck).
+  // The same for the Dirichlet preconditioner (its blocks and interior factors), at the last
+  // set-up that made some (tfeti::FetiSolver::preconditionerMemoryCheck).
   tfeti::NodeMemory preconditionerMemory;
   // FETI "Dual operator" and, when explicit, the bytes of the dense local F_s (all ranks, and
   // the largest rank's).

@@ -66,15 +66,22 @@ MemoryPrediction predictPseudoInverseMemory(const CsrMatrix& K, bool decoupledCo
   return p;
 }
 
+std::vector<int> interiorDofs(int n, const std::vector<int>& interfaceDofs) {
+  std::vector<char> onInterface(n, 0);
+  for (int d : interfaceDofs) onInterface[d] = 1;
+  std::vector<int> interior;
+  for (int i = 0; i < n; ++i)
+    if (!onInterface[i]) interior.push_back(i);
+  return interior;
+}
+
 MemoryPrediction predictDirichletMemory(const CsrMatrix& K, const std::vector<int>& interfaceDofs,
                                         LocalSolver& solver) {
   std::vector<char> onInterface(K.rows, 0);
   for (int d : interfaceDofs) onInterface[d] = 1;
   // The entries of K_bb, K_bi and K_ii, as CsrMatrix::submatrix copies them.
   std::size_t bb = 0, bi = 0, ii = 0;
-  std::vector<int> interior;
   for (int r = 0; r < K.rows; ++r) {
-    if (!onInterface[r]) interior.push_back(r);
     for (int k = K.rowPtr[r]; k < K.rowPtr[r + 1]; ++k) {
       const bool rowB = onInterface[r], colB = onInterface[K.colInd[k]];
       bb += rowB && colB ? 1 : 0;
@@ -82,6 +89,7 @@ MemoryPrediction predictDirichletMemory(const CsrMatrix& K, const std::vector<in
       ii += !rowB && !colB ? 1 : 0;
     }
   }
+  const std::vector<int> interior = interiorDofs(K.rows, interfaceDofs);
   const std::size_t ni = interior.size(), nb = K.rows - ni;
   const auto csr = [](std::size_t rows, std::size_t nnz) {
     return static_cast<std::ptrdiff_t>(sizeof(int) * (rows + 1) +
@@ -362,15 +370,6 @@ bool Subdomain::pseudoInverseBlock(const std::vector<int>& dofs, std::vector<dou
   return true;
 }
 
-std::vector<int> Subdomain::interiorOf(const std::vector<int>& interfaceDofs) const {
-  std::vector<char> isB(K_.rows, 0);
-  for (int d : interfaceDofs) isB[d] = 1;
-  std::vector<int> interior;
-  for (int i = 0; i < K_.rows; ++i)
-    if (!isB[i]) interior.push_back(i);
-  return interior;
-}
-
 MemoryPrediction Subdomain::predictPreconditionerMemory(const std::vector<int>& interfaceDofs,
                                                         PreconditionerType type,
                                                         const std::string& localSolver) {
@@ -379,7 +378,7 @@ MemoryPrediction Subdomain::predictPreconditionerMemory(const std::vector<int>& 
   if (type != PreconditionerType::Dirichlet || !hasStiffness()) return {};
   auto solver = createLocalSolver(localSolver);
   const MemoryPrediction p = predictDirichletMemory(K_, interfaceDofs, *solver);
-  std::vector<int> interior = interiorOf(interfaceDofs);
+  std::vector<int> interior = interiorDofs(K_.rows, interfaceDofs);
   if (p.known() && !interior.empty()) {
     pendingInterior_ = std::move(solver);
     pendingInteriorDofs_ = std::move(interior);
@@ -402,7 +401,7 @@ void Subdomain::setupPreconditioner(const std::vector<int>& interfaceDofs, Preco
   if (type == PreconditionerType::None) return;
   Kbb_ = K_.submatrix(interface_, interface_);
   if (type == PreconditionerType::Lumped) return;
-  interior_ = interiorOf(interface_);
+  interior_ = interiorDofs(K_.rows, interface_);
   if (interior_.empty()) return;
   Kbi_ = K_.submatrix(interface_, interior_);
   interiorFactor_ = pending && pendingInteriorDofs_ == interior_ ? std::move(pending)

@@ -49,6 +49,8 @@ enum class Factorization { Now, Deferred };
 // any (decoupledCopy).
 MemoryPrediction predictPseudoInverseMemory(const CsrMatrix& K, bool decoupledCopy,
                                             LocalSolver& solver);
+// The dofs 0..n-1 not among interfaceDofs, in increasing order (a preconditioner's interior).
+std::vector<int> interiorDofs(int n, const std::vector<int>& interfaceDofs);
 // What a Dirichlet preconditioner on these interface dofs of K will allocate
 // (Subdomain::predictPreconditionerMemory without a Subdomain): K_bb, K_bi and the interior
 // factor `solver` will make (its analysis, kept for it); the copy of K_ii and the
@@ -184,7 +186,6 @@ class Subdomain {
   // predictPreconditionerMemory's solver, its analysis made, for those interior dofs.
   std::unique_ptr<LocalSolver> pendingInterior_;
   std::vector<int> pendingInteriorDofs_;
-  std::vector<int> interiorOf(const std::vector<int>& interfaceDofs) const;  // K's other dofs
 };
 
 }  // namespace tfeti
