@@ -552,6 +552,20 @@ TEUCHOS_UNIT_TEST(ExplicitDual, PartialReassemblyIsChecked) {
   {
     tfeti::FetiSolver roomy = make("explicit");
     const double first = roomy.dualOperatorChoice().nodeNeedBytes;
+    // The plan the check counts is what the update does: the blocks it assembles, the columns
+    // it solves for.
+    const auto before = roomy.dualOperator()->explicitPart();
+    std::vector<std::vector<double>> loads;
+    for (const auto& s : roomy.subdomains()) loads.push_back(s->load());
+    tfeti::FetiSolver planned = make("explicit");
+    planned.update(loads, floorRows(box, 6.0, 0.5));
+    const auto plan = tfeti::ExplicitDualOperator::plannedBlocks(
+        planned.tearing(), roomy.subdomains(), before->storage(), before.get());
+    long long assembled = 0, columns = 0;
+    for (const auto& p : plan) {
+      assembled += p.takenOver ? 0 : 1;
+      columns += p.takenOver ? 0 : p.solved;
+    }
     update(roomy);
     const auto& c = roomy.dualOperatorChoice();
     out << "first assembly needs " << first << " bytes, the partial one " << c.nodeNeedBytes
@@ -563,6 +577,10 @@ TEUCHOS_UNIT_TEST(ExplicitDual, PartialReassemblyIsChecked) {
     TEST_COMPARE(tfeti_test::globalSum(*comm, after->assemblies()), <,
                  static_cast<long long>(box.numSubdomains()));
     TEST_COMPARE(tfeti_test::globalSum(*comm, after->assemblies()), >, 0LL);
+    TEST_EQUALITY(after->assemblies(), assembled);
+    TEST_EQUALITY(after->assembledColumns(), columns);
+    TEST_COMPARE(tfeti_test::globalSum(*comm, columns), <,
+                 tfeti_test::globalSum(*comm, after->assembledRows()));
     TEST_COMPARE(c.nodeAvailableBytes, >, 0.0);
   }
   tfeti::FetiSolver ex = make("explicit"), au = make("auto"), im = make("implicit");

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tfeti_CsrMatrix.hpp"
+#include "tfeti_HeapTally.hpp"
 #include "tfeti_LocalSolver.hpp"
 
 namespace {
@@ -395,6 +396,58 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodPredictsItsFactor) {
     TEST_COMPARE(tfeti::createLocalSolver(type)->predictFactorMemory(A), <, 0);
     TEST_COMPARE(tfeti::createLocalSolver(type)->predictFactorTransient(A), <, 0);
   }
+}
+
+// The block of A^{-1} on a set of dofs (the explicit dual operator's Schur assembly) takes a
+// second factorization with the dofs last. predictInverseBlockMemory tells what inverseBlock will
+// allocate at its peak, its result included, from that analysis alone: CHOLMOD's allocations and
+// the solver's own vectors, counted together on the heap (HeapTally), to the byte. Once CHOLMOD's
+// workspace has grown for it (a first call), the peak is the prediction's; the result is all
+// that stays. The prediction may be made before the factorization (the dry run's), from
+// predictFactorMemory's analysis, and is then not below it.
+TEUCHOS_UNIT_TEST(LocalSolver, CholmodPredictsItsInverseBlock) {
+  using tfeti_test::HeapTally;
+  std::vector<std::pair<tfeti::CsrMatrix, std::vector<int>>> cases;
+  for (const int g : {12, 40}) {
+    std::vector<int> dofs;  // two sides and every seventh other dof, descending
+    for (int i = g * g - 1; i >= 0; --i)
+      if (i < g || i % g == 0 || i % 7 == 3) dofs.push_back(i);
+    cases.emplace_back(laplacian2d(g, 1.0), dofs);
+  }
+  for (const int g : {8, 14}) {
+    std::vector<int> dofs;  // two faces
+    for (int i = 0; i < g * g * g; ++i)
+      if (i < g * g || i % g == 0) dofs.push_back(i);
+    cases.emplace_back(laplacian3d(g), dofs);
+  }
+  for (const std::string type : {"cholmod", "cholmod-simplicial", "cholmod-supernodal"}) {
+    for (const auto& [A, dofs] : cases) {
+      auto s = tfeti::createLocalSolver(type);
+      const std::ptrdiff_t ahead = s->predictInverseBlockMemory(A, dofs);
+      s->factorize(A);
+      std::vector<double> inv;
+      TEST_ASSERT(s->inverseBlock(A, dofs, inv));
+      const std::vector<double> first = inv;
+      std::vector<double>().swap(inv);
+      const std::ptrdiff_t predicted = s->predictInverseBlockMemory(A, dofs);
+      // Nothing but the call between the counts (a test macro's output grows its stream).
+      const std::size_t before = HeapTally::inUse();
+      HeapTally::reset();
+      const bool again = s->inverseBlock(A, dofs, inv);
+      const std::size_t peak = HeapTally::peak() - before, held = HeapTally::inUse() - before;
+      TEST_ASSERT(again);
+      out << type << " " << A.rows << " rows, " << dofs.size() << " dofs: predicted " << predicted
+          << " (before the factorization " << ahead << "), peak " << peak << ", held " << held
+          << "\n";
+      TEST_EQUALITY(static_cast<std::size_t>(predicted), peak);
+      TEST_EQUALITY(held, sizeof(double) * dofs.size() * dofs.size());
+      TEST_COMPARE(ahead, >=, predicted);
+      TEST_COMPARE_FLOATING_ARRAYS(inv, first, 0.0);
+    }
+  }
+  const tfeti::CsrMatrix A = laplacian2d(20, 1.0);
+  for (const std::string type : {"klu2", "tacho"})
+    TEST_COMPARE(tfeti::createLocalSolver(type)->predictInverseBlockMemory(A, {0, 1}), <, 0);
 }
 
 // ------------------------------------------------------------------------------------------

@@ -20,6 +20,7 @@ Json timingsJson(const tfeti::FetiTimings& t, int iterations) {
   j["preconditioner_s"] = t.preconditioner;
   j["dual_rhs_s"] = t.dualRhs;
   j["dual_operator_s"] = t.dualOperator;
+  j["explicit_memory_check_s"] = t.explicitMemoryCheck;
   j["setup_s"] = t.setup();
   j["solve_s"] = t.solve;
   j["recovery_s"] = t.recovery;

@@ -61,9 +61,19 @@ std::size_t explicitBlockBytes(DenseStorage storage, std::size_t m) {
   return sizeof(double) * (storage == DenseStorage::Packed ? m * (m + 1) / 2 : m * m);
 }
 
-double explicitAssemblyTransient(double factorBytes, std::size_t k, std::size_t m) {
-  const double kk = static_cast<double>(k), mm = static_cast<double>(m);
-  return factorBytes + sizeof(double) * (kk * kk + mm * mm);
+double explicitSchurTransient(double inverseBlockPeak, std::size_t k, std::size_t m,
+                              std::size_t oldRows) {
+  const double mm = static_cast<double>(m), mo = static_cast<double>(oldRows);
+  return sizeof(double) * mm * mm +
+         std::max(sizeof(double) * mo * mo,
+                  sizeof(int) * static_cast<double>(k) + inverseBlockPeak);
+}
+
+double explicitSolvesTransient(std::size_t n, std::size_t m, std::size_t solved,
+                               std::size_t oldRows) {
+  const double mm = static_cast<double>(m), mo = static_cast<double>(oldRows);
+  const double columns = static_cast<double>(n) * std::min<std::size_t>(kColumnsPerSolve, solved);
+  return sizeof(double) * (mm * mm + std::max(mo * mo, 6.0 * columns));
 }
 
 DenseStorage parseDenseStorage(const std::string& name) {
@@ -102,23 +112,6 @@ void checkExplicitDevice(const std::string& dualOperator, ExplicitDevice device)
       "FETI \"Explicit device\" = gpu: this build has no CUDA (configure with "
       "-DTFETI_ENABLE_CUDA=ON where nvcc is found; docs/dual_operator.md)");
 #endif
-}
-
-std::vector<char> ExplicitDualOperator::blocksTakenOver(
-    const Tearing& tearing, const std::vector<std::shared_ptr<Subdomain>>& subdomains,
-    DenseStorage storage, const ExplicitDualOperator* previous) {
-  std::vector<char> taken(subdomains.size(), 0);
-  if (!previous || previous->storage_ != storage) return taken;
-  std::map<int, const Block*> old;
-  for (const auto& b : previous->blocks_) old[b.subdomainId] = &b;
-  std::vector<GO> rows;
-  for (std::size_t i = 0; i < subdomains.size() && i < tearing.subdomainRows.size(); ++i) {
-    const auto it = old.find(subdomains[i]->id());
-    if (it == old.end() || it->second->version != subdomains[i]->factorVersion()) continue;
-    taken[i] =
-        samePattern(*it->second, blockPattern(subdomains[i]->id(), tearing.subdomainRows[i], rows));
-  }
-  return taken;
 }
 
 ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
@@ -397,6 +390,31 @@ std::shared_ptr<std::vector<double>> symmetricStorage(const std::vector<double>&
 }
 
 }  // namespace
+
+std::vector<ExplicitDualOperator::PlannedBlock> ExplicitDualOperator::plannedBlocks(
+    const Tearing& tearing, const std::vector<std::shared_ptr<Subdomain>>& subdomains,
+    DenseStorage storage, const ExplicitDualOperator* previous) {
+  std::vector<PlannedBlock> plan(subdomains.size());
+  std::map<int, const Block*> old;
+  if (previous && previous->storage_ == storage)
+    for (const auto& b : previous->blocks_) old[b.subdomainId] = &b;
+  std::vector<GO> rows;
+  for (std::size_t i = 0; i < subdomains.size() && i < tearing.subdomainRows.size(); ++i) {
+    Block b = blockPattern(subdomains[i]->id(), tearing.subdomainRows[i], rows);
+    b.overlap.assign(rows.size(), 0);  // its size is the block's row count
+    PlannedBlock& p = plan[i];
+    p.rows = p.solved = b.rows();
+    // As the constructor and assemble() decide.
+    const auto it = old.find(subdomains[i]->id());
+    if (it == old.end() || it->second->version != subdomains[i]->factorVersion()) continue;
+    p.takenOver = samePattern(*it->second, b);
+    p.oldRows = it->second->rows();
+    const std::vector<int> from = keptRows(b, rowStarts(b), it->second);
+    p.solved = static_cast<int>(std::count(from.begin(), from.end(), -1));
+    if (p.takenOver) p.solved = 0;
+  }
+  return plan;
+}
 
 void ExplicitDualOperator::assemble(std::size_t i, const Block* old) const {
   const auto start = std::chrono::steady_clock::now();

@@ -45,10 +45,18 @@ enum class DenseStorage { Packed, Full };
 DenseStorage parseDenseStorage(const std::string& name);
 // Bytes of one m x m F_s in that storage: 8 m(m+1)/2 packed, 8 m^2 full.
 std::size_t explicitBlockBytes(DenseStorage storage, std::size_t m);
-// What assembling one block takes beyond it while it is made, as the memory check counts it: a
-// second factor of the subdomain (counted at factorBytes) and the dense k x k block Z on the
-// dofs B_s touches and the m x m block.
-double explicitAssemblyTransient(double factorBytes, std::size_t k, std::size_t m);
+// What assembling one block of m rows takes beyond its stored values while it is made, as the
+// memory check and the dry run count it: its dense m x m values; in a reassembly on the same
+// factor, the old block's values copied full first (oldRows of them, 0 for none); then, from the
+// Schur complement, the k dofs B_s touches and the inverse block's peak
+// (Subdomain::predictInverseBlockMemory: the second factor and its factorization included).
+double explicitSchurTransient(double inverseBlockPeak, std::size_t k, std::size_t m,
+                              std::size_t oldRows);
+// The same by solves with K+ on n dofs for `solved` of the m columns, kColumnsPerSolve at a
+// time: their right-hand sides, solutions and the subdomain's scratch, and the local solver's
+// solve vectors counted as three of those (a bound).
+double explicitSolvesTransient(std::size_t n, std::size_t m, std::size_t solved,
+                               std::size_t oldRows);
 
 // How a block is assembled anew (FETI "Explicit assembly"): schur: F_s = C_s Z_s C_s^T, Z_s the
 // block of K_s+ on the dofs B_s touches (C_s: B_s's columns there), the inverse of the Schur
@@ -83,11 +91,17 @@ class ExplicitDualOperator {
                        BlockAssembly assembly = BlockAssembly::Schur,
                        bool releaseStiffness = false);
 
-  // Per local subdomain: whether an operator constructed with these arguments would take its
-  // block over from previous as it is (the same factor and the same rows of B, in the same
-  // storage), sharing its values; the others it assembles, wholly or in part, into new values
-  // while previous still holds the old ones (the memory check of FetiSolver counts them).
-  static std::vector<char> blocksTakenOver(
+  // How an operator constructed with these arguments would come by a local subdomain's block:
+  // taken over from previous as it is (the same factor and the same rows of B, in the same
+  // storage), sharing its values; or assembled into new values while previous still holds the
+  // old ones (the memory check of FetiSolver counts them): anew (oldRows < 0, every row
+  // solved), or in part from previous's block of oldRows rows on the same factor, the unchanged
+  // rows' values kept and the `solved` others solved for.
+  struct PlannedBlock {
+    bool takenOver = false;
+    int rows = 0, oldRows = -1, solved = 0;
+  };
+  static std::vector<PlannedBlock> plannedBlocks(
       const Tearing& tearing, const std::vector<std::shared_ptr<Subdomain>>& subdomains,
       DenseStorage storage, const ExplicitDualOperator* previous);
 

@@ -92,8 +92,10 @@ struct FetiTimings {
   double preconditioner = 0;  // interior factorizations (Dirichlet) or K_bb blocks (lumped)
   double dualRhs = 0;         // d, e, lambda0
   double dualOperator = 0;    // "Dual operator" = explicit: the assembly of the local F_s
-  double solve = 0;           // PCPG
-  double recovery = 0;        // primal solution
+  // Its memory check before it (the analyses with the dual rows' dofs last it makes).
+  double explicitMemoryCheck = 0;
+  double solve = 0;     // PCPG
+  double recovery = 0;  // primal solution
   // Subdomain factorizations of K+ over all ranks: computed, and kept because a new tangent
   // brought the same K (FetiSolver::updateStiffness; the elastic subdomains of a plastic body).
   long long factorizations = 0, factorizationsReused = 0;
@@ -104,7 +106,8 @@ struct FetiTimings {
   // problem) over all ranks: made, and shared with a live factor of the same sparsity pattern.
   long long symbolicAnalyses = 0, symbolicAnalysesShared = 0;
   double setup() const {
-    return factorization + tearing + coarse + preconditioner + dualRhs + dualOperator;
+    return factorization + tearing + coarse + preconditioner + dualRhs + dualOperator +
+           explicitMemoryCheck;
   }
 };
 
@@ -401,16 +404,18 @@ class FetiSolver {
   // (the Schur assembly needs K; "Keep subdomain matrices" = false).
   void buildDualOperator(bool releaseStiffness = false);
   // Before the explicit F_s are assembled, where any rank assembles some (the blocks not taken
-  // over from previous as they are, ExplicitDualOperator::blocksTakenOver; a rank that takes all
+  // over from previous as they are, ExplicitDualOperator::plannedBlocks; a rank that takes all
   // its blocks over takes part with no need): whether the new ones fit, with the Schur
-  // assembly's largest transient (a second factor, Z and the m x m block) and less the K freed
+  // assembly's largest transient (explicitAssemblyNeed) and less the K freed
   // meanwhile. Where they do not, auto falls back to implicit (true: go on implicit) and
   // explicit is an error naming the parameter. Collective.
   bool explicitDoesNotFit(DenseStorage storage, const ExplicitDualOperator* previous,
                           bool releaseStiffness);
-  // This rank's bytes for that: its new F_s, the largest transient, less the K freed.
+  // This rank's bytes for that: its new F_s, the largest transient (from the Schur complement:
+  // the analysis with the dual rows' dofs last, made here for every block assembled anew; by
+  // solves, a bound; on a device, all the blocks full once as they go up), less the K freed.
   double explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness,
-                              const std::vector<char>& takenOver) const;
+                              const std::vector<ExplicitDualOperator::PlannedBlock>& plan);
   // Sets dualChoice_ from "Dual operator" and, for auto, the tearing and the factors. Collective.
   void chooseDualOperator();
   // The dual solve: PCPG (tfeti_FetiSolverSolve.cpp), the QP of the inequality rows

@@ -62,24 +62,30 @@ class SetupTally {
         release_(!valid.get<bool>("Keep subdomain matrices")),
         // As buildConstraints frees K: after each preconditioner, unless the Schur assembly of
         // an explicit operator needs it (auto counted as explicit: K kept longer, an upper bound).
-        schurNeedsK_(valid.get<std::string>("Dual operator") != "implicit" &&
-                     parseBlockAssembly(valid.get<std::string>("Explicit assembly")) ==
-                         BlockAssembly::Schur) {}
+        schur_(parseBlockAssembly(valid.get<std::string>("Explicit assembly")) ==
+               BlockAssembly::Schur),
+        schurNeedsK_(valid.get<std::string>("Dual operator") != "implicit" && schur_) {}
 
   // Subdomain K, touched by `rows` rows of B on the dofs `dofs`.
   void add(const CsrMatrix& K, const std::vector<int>& dofs, long long rows) {
     // Every subdomain counted with fixing dofs, hence with the decoupled copy of K: so it is
     // under TFETI, where every subdomain floats (FETI: an upper bound).
-    const MemoryPrediction factor = predictPseudoInverseMemory(K, true, solverFor());
+    LocalSolver& solver = solverFor();
+    const MemoryPrediction factor = predictPseudoInverseMemory(K, true, solver);
     f_.factorsKnown = f_.factorsKnown && factor.known();
     if (factor.known())
       factors_.make(static_cast<double>(factor.held), static_cast<double>(factor.transient));
     f_.dualRows.push_back(rows);
     f_.explicitBlocks += static_cast<double>(explicitBlockBytes(storage_, rows));
+    // The block assembled anew: from the Schur complement (the fixing dofs, which the run
+    // leaves out of the dofs B_s touches, not known before the kernel: a bound), else by solves.
+    const std::size_t m = static_cast<std::size_t>(rows);
+    const std::ptrdiff_t schurPeak =
+        schur_ && m > 0 ? predictPseudoInverseBlockMemory(K, dofs, nullptr, solver) : -1;
     f_.explicitTransient = std::max(
         f_.explicitTransient,
-        explicitAssemblyTransient(static_cast<double>(std::max<std::ptrdiff_t>(factor.held, 0)),
-                                  dofs.size(), rows));
+        schurPeak >= 0 ? explicitSchurTransient(static_cast<double>(schurPeak), dofs.size(), m, 0)
+                       : explicitSolvesTransient(K.rows, m, m, 0));
     if (dirichlet_) {
       const MemoryPrediction p = predictDirichletMemory(K, dofs, solverFor());
       f_.interiorKnown = f_.interiorKnown && p.known();
@@ -112,7 +118,7 @@ class SetupTally {
   const std::string solver_;
   const bool dirichlet_;
   const DenseStorage storage_;
-  const bool release_, schurNeedsK_;
+  const bool release_, schur_, schurNeedsK_;
   std::vector<std::unique_ptr<LocalSolver>> solvers_;
   SetupMemoryForecast f_;
   RunningPeak factors_, preconditioner_;
@@ -454,7 +460,12 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     F_ = Teuchos::null;
   }
   const DenseStorage storage = parseDenseStorage(params_.get<std::string>("Explicit storage"));
-  if (explicitDoesNotFit(storage, previous.get(), releaseStiffness)) {
+  bool doesNotFit = false;
+  {
+    PhaseTimer t(*comm_, timings_.explicitMemoryCheck);
+    doesNotFit = explicitDoesNotFit(storage, previous.get(), releaseStiffness);
+  }
+  if (doesNotFit) {
     F_ = Teuchos::rcp(new DualOperator(tearing_.B, Kplus_));
     return;
   }
@@ -477,19 +488,38 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     });
 }
 
-double FetiSolver::explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness,
-                                        const std::vector<char>& takenOver) const {
-  const std::vector<long long> rows = subdomainRowCounts(tearing_);
-  double blocks = 0.0, transient = 0.0, freed = 0.0;
+double FetiSolver::explicitAssemblyNeed(
+    DenseStorage storage, bool releaseStiffness,
+    const std::vector<ExplicitDualOperator::PlannedBlock>& plan) {
+  const bool schur =
+      parseBlockAssembly(params_.get<std::string>("Explicit assembly")) == BlockAssembly::Schur;
+  double blocks = 0.0, transient = 0.0, freed = 0.0, full = 0.0;
   for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-    if (!takenOver[i]) {
-      blocks += static_cast<double>(explicitBlockBytes(storage, rows[i]));
+    const ExplicitDualOperator::PlannedBlock& p = plan[i];
+    const std::size_t m = static_cast<std::size_t>(p.rows);
+    const std::size_t old = static_cast<std::size_t>(std::max(p.oldRows, 0));
+    full += static_cast<double>(sizeof(double) * m * m);
+    if (!p.takenOver) {
+      blocks += static_cast<double>(explicitBlockBytes(storage, m));
+      Subdomain& s = *subdomains_[i];
+      // As assemble() goes: a block solved for wholly comes from the Schur complement where the
+      // subdomain can give it, one with rows kept by solves.
+      std::ptrdiff_t peak = -1;
+      std::vector<int> dofs;
+      if (schur && m > 0 && p.solved == p.rows) {
+        dofs = subdomainDualDofs(tearing_, i);
+        peak = s.predictInverseBlockMemory(dofs);
+      }
       transient = std::max(
-          transient, explicitAssemblyTransient(static_cast<double>(subdomains_[i]->factorBytes()),
-                                               subdomainDualDofs(tearing_, i).size(), rows[i]));
+          transient, peak >= 0
+                         ? explicitSchurTransient(static_cast<double>(peak), dofs.size(), m, old)
+                         : explicitSolvesTransient(s.numDofs(), m, p.solved, old));
     }
     if (releaseStiffness) freed += static_cast<double>(subdomains_[i]->stiffness().bytes());
   }
+  // On a device, the blocks go up as one full copy of them all on the host.
+  if (parseExplicitDevice(params_.get<std::string>("Explicit device")) == ExplicitDevice::Gpu)
+    transient = std::max(transient, full);
   return blocks + transient - freed;
 }
 
@@ -506,12 +536,13 @@ bool FetiSolver::explicitDoesNotFit(DenseStorage storage, const ExplicitDualOper
   // refactorized subdomains' and those whose rows moved after update(). Which ones is a rank's
   // own matter (a refactorized plastic subdomain here, elastic ones kept there); the check is
   // collective, so every rank takes part in it where any assembles.
-  const std::vector<char> taken =
-      ExplicitDualOperator::blocksTakenOver(tearing_, subdomains_, storage, previous);
-  int assembles = std::count(taken.begin(), taken.end(), 0) > 0 ? 1 : 0, anyAssembles = 0;
+  const std::vector<ExplicitDualOperator::PlannedBlock> plan =
+      ExplicitDualOperator::plannedBlocks(tearing_, subdomains_, storage, previous);
+  int assembles = 0, anyAssembles = 0;
+  for (const auto& p : plan) assembles = p.takenOver ? assembles : 1;
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, assembles, Teuchos::outArg(anyAssembles));
   if (!anyAssembles) return false;  // the last check stands
-  const NodeMemory node = nodesHold(explicitAssemblyNeed(storage, releaseStiffness, taken), false);
+  const NodeMemory node = nodesHold(explicitAssemblyNeed(storage, releaseStiffness, plan), false);
   dualChoice_.fitsMemory = node.fits;
   dualChoice_.nodeNeedBytes = node.needBytes;
   dualChoice_.nodeAvailableBytes = node.known ? node.availableBytes : -1.0;

@@ -26,9 +26,11 @@ struct SetupMemoryForecast {
   double interiorPeak = 0.0, preconditionerLeaves = 0.0;
   bool interiorKnown = true;
   // The explicit F_s ("Explicit storage"): the blocks' bytes, and the assembly's largest
-  // transient (a factor and the dense k x k and m x m blocks of one subdomain; the factor counted
-  // by what it holds, an upper bound of what it streams). With the K that the Schur assembly
-  // frees, this bounds the run's explicit check's need from above.
+  // transient (explicitSchurTransient from the analysis with all the dofs B_s touches last, where
+  // the run leaves the fixing dofs among them out; explicitSolvesTransient for the solves). With
+  // the K that the Schur assembly frees, this is the run's explicit check's need: exactly by
+  // solves; from the Schur complement up to what the fixing dofs on the interface change, either
+  // way.
   double explicitBlocks = 0.0, explicitTransient = 0.0, stiffnessFreedByAssembly = 0.0;
 };
 

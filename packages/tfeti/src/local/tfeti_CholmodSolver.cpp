@@ -170,6 +170,8 @@ class SymbolicAnalyses {
     if (!L) throw std::runtime_error("cholmod: symbolic analysis failed");
     return L;
   }
+
+ public:
   // The bytes CHOLMOD allocates for a numerical factor copied from this symbolic one and
   // factorized (its own count, Common->memory_inuse, agrees to the byte: CholmodPredictsItsFactor):
   // the copy's integer arrays, then the values. Supernodal: Perm and ColCount, super, pi and px,
@@ -206,6 +208,8 @@ class SymbolicAnalyses {
     const std::size_t values = numericBytes - sizeof(cholmod_factor) - 2 * sizeof(int) * S.n;
     return std::max(a1 + a2, a2 + values) - values;
   }
+
+ private:
   std::unordered_multimap<std::uint64_t, std::weak_ptr<SymbolicAnalysis>> table_;
   LocalAnalysisCounts counts_;
 };
@@ -283,8 +287,10 @@ class CholmodSolver final : public LocalSolver {
     if (!L_ || !analysis_->matches(kind_, A)) return false;
     const std::vector<int> at = placesIn(dofs, A.rows);
     const std::size_t k = dofs.size();
-    inv.assign(k * k, 0.0);
-    if (k == 0) return true;
+    if (k == 0) {
+      inv.clear();
+      return true;
+    }
     cholmod_factor* F = trailingFactor(A, at, k);
     if (!F) return false;
     std::vector<double> Lkk = trailingTriangle(*F, k);
@@ -298,12 +304,49 @@ class CholmodSolver final : public LocalSolver {
     if (info != 0)
       throw std::runtime_error("cholmod: inverseBlock: LAPACK potri failed (info " +
                                std::to_string(info) + ")");
+    // Made only now, with the second factor gone: the k x k arrays are the largest of it.
+    inv.assign(k * k, 0.0);
     for (std::size_t j = 0; j < k; ++j)
       for (std::size_t i = j; i < k; ++i) {
         const std::size_t r = at[order[i]], c = at[order[j]];
         inv[r + c * k] = inv[c + r * k] = Lkk[i + j * k];
       }
     return true;
+  }
+
+  std::ptrdiff_t predictInverseBlockMemory(const CsrMatrix& A,
+                                           const std::vector<int>& dofs) override {
+    // The fill-reducing order the dofs are moved behind: the factor's, or the analysis that
+    // predictFactorMemory(A) made for it.
+    std::shared_ptr<const SymbolicAnalysis> a;
+    if (L_ && analysis_->matches(kind_, A)) {
+      a = analysis_;
+    } else {
+      if (!pending_ || !pending_->matches(kind_, A)) pending_ = analyses().get(kind_, A);
+      a = pending_;
+    }
+    const std::vector<int> at = placesIn(dofs, A.rows);
+    const std::size_t n = A.rows, k = dofs.size(), i = sizeof(int), d = sizeof(double);
+    if (k == 0) return static_cast<std::ptrdiff_t>(n * i);
+    // The analysis with the dofs last is made here as inverseBlock will make it, and its peak
+    // read off CHOLMOD's count: it depends on nothing but the pattern and the order. The
+    // factorization's bytes follow from it as for any factor.
+    cholmod_common* c = common();
+    const std::size_t before = c->memory_inuse, outerPeak = c->memory_usage;
+    c->memory_usage = before;
+    cholmod_factor* F = analyzeTrailing(A, trailingOrder(*a->symbolic, at));
+    const std::size_t analysisPeak = c->memory_usage - before;
+    const std::size_t numeric = SymbolicAnalyses::numericFactorBytes(*F);
+    const std::size_t factorization =
+        numeric + SymbolicAnalyses::factorizationTransientBytes(A, *F, numeric);
+    cholmod_free_factor(&F, c);
+    c->memory_usage = std::max(outerPeak, before + analysisPeak);
+    // inverseBlock's own: the places (n); while CHOLMOD works, the order (n); then the factor
+    // with the trailing triangle (k x k) and the dofs' order (k); then, the factor freed, the
+    // triangle with inv (k x k).
+    return static_cast<std::ptrdiff_t>(
+        n * i + std::max({n * i + std::max(analysisPeak, factorization),
+                          numeric + k * k * d + k * i, 2 * k * k * d + k * i}));
   }
 
   std::size_t factorBytes() const override {
@@ -391,18 +434,22 @@ class CholmodSolver final : public LocalSolver {
     return Lkk;
   }
 
-  // A supernodal factorization of A (not kept) in the order of L_ with the k dofs where at[] >= 0
-  // moved to the end: the other dofs keep their fill-reducing order. Null where CHOLMOD did not
-  // keep that order (the trailing columns would not be the dofs).
-  cholmod_factor* trailingFactor(const CsrMatrix& A, const std::vector<int>& at, std::size_t k) {
-    const int n = A.rows;
-    const int* perm = static_cast<const int*>(analysis_->symbolic->Perm);
+  // The fill-reducing order of the analysis S with the dofs where at[] >= 0 moved to the end:
+  // the other dofs keep their order.
+  static std::vector<int> trailingOrder(const cholmod_factor& S, const std::vector<int>& at) {
+    const int n = static_cast<int>(S.n);
+    const int* perm = static_cast<const int*>(S.Perm);
     std::vector<int> order;
     order.reserve(n);
     for (int i = 0; i < n; ++i)
       if (at[perm[i]] < 0) order.push_back(perm[i]);
     for (int i = 0; i < n; ++i)
       if (at[perm[i]] >= 0) order.push_back(perm[i]);
+    return order;
+  }
+
+  // The supernodal symbolic analysis of A in exactly that order.
+  static cholmod_factor* analyzeTrailing(const CsrMatrix& A, const std::vector<int>& order) {
     cholmod_sparse S;
     cholmodUpperView(A, S);
     cholmod_common* c = common();
@@ -414,12 +461,25 @@ class CholmodSolver final : public LocalSolver {
     c->method[0].ordering = CHOLMOD_GIVEN;
     c->postorder = 0;
     c->supernodal = CHOLMOD_SUPERNODAL;
-    cholmod_factor* F = cholmod_analyze_p(&S, order.data(), nullptr, 0, c);
+    cholmod_factor* F = cholmod_analyze_p(&S, const_cast<int*>(order.data()), nullptr, 0, c);
     c->nmethods = nmethods;
     c->method[0].ordering = ordering;
     c->postorder = postorder;
     c->supernodal = supernodal;
     if (!F) throw std::runtime_error("cholmod: symbolic analysis with the dofs last failed");
+    return F;
+  }
+
+  // A supernodal factorization of A (not kept) in the order of L_ with the k dofs where at[] >= 0
+  // moved to the end. Null where CHOLMOD did not keep that order (the trailing columns would not
+  // be the dofs).
+  cholmod_factor* trailingFactor(const CsrMatrix& A, const std::vector<int>& at, std::size_t k) {
+    const std::size_t n = A.rows;
+    const std::vector<int> order = trailingOrder(*analysis_->symbolic, at);
+    cholmod_factor* F = analyzeTrailing(A, order);
+    cholmod_sparse S;
+    cholmodUpperView(A, S);
+    cholmod_common* c = common();
     if (!cholmod_factorize(&S, F, c) || c->status != CHOLMOD_OK) {
       const long minor = static_cast<long>(F->minor);
       cholmod_free_factor(&F, c);
@@ -429,8 +489,7 @@ class CholmodSolver final : public LocalSolver {
     }
     const int* fp = static_cast<const int*>(F->Perm);
     bool trailing = F->is_super;
-    for (std::size_t i = n - k; trailing && i < static_cast<std::size_t>(n); ++i)
-      trailing = at[fp[i]] >= 0;
+    for (std::size_t i = n - k; trailing && i < n; ++i) trailing = at[fp[i]] >= 0;
     if (!trailing) cholmod_free_factor(&F, c);
     return F;
   }

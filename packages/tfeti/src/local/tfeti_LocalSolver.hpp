@@ -30,6 +30,17 @@ class LocalSolver {
     (void)A, (void)dofs, (void)inv;
     return false;
   }
+  // The bytes inverseBlock(A, dofs, inv) will allocate at its peak, inv included, all freed but
+  // inv before it returns (CHOLMOD: the analysis with the dofs last, that factor and its
+  // factorization's transient, the trailing triangle), told from that analysis alone, made now
+  // and not kept. A is the matrix factorize() was given or will be given (its analysis, as
+  // predictFactorMemory's, is the order the dofs are moved behind). Negative where the solver
+  // has no inverse block.
+  virtual std::ptrdiff_t predictInverseBlockMemory(const CsrMatrix& A,
+                                                   const std::vector<int>& dofs) {
+    (void)A, (void)dofs;
+    return -1;
+  }
   // Memory held by the factor (values and indices), in bytes: what one solve streams.
   virtual std::size_t factorBytes() const = 0;
   // The bytes factorize(A) will allocate for its factor, told from A's symbolic analysis alone

@@ -66,6 +66,32 @@ MemoryPrediction predictPseudoInverseMemory(const CsrMatrix& K, bool decoupledCo
   return p;
 }
 
+std::ptrdiff_t predictPseudoInverseBlockMemory(const CsrMatrix& K, const std::vector<int>& dofs,
+                                               const std::vector<int>* fixing,
+                                               LocalSolver& solver) {
+  std::vector<int> kept;
+  if (fixing) {
+    std::vector<char> fixed(K.rows, 0);
+    for (int d : *fixing) fixed[d] = 1;
+    for (int d : dofs)
+      if (!fixed.at(d)) kept.push_back(d);
+  } else {
+    kept = dofs;
+  }
+  // The copy keeps K's pattern, and the prediction reads the pattern alone.
+  const std::ptrdiff_t inverse = solver.predictInverseBlockMemory(K, kept);
+  if (inverse < 0) return -1;
+  const std::size_t k = dofs.size(), kk = kept.size(), d = sizeof(double);
+  // The fixing dofs' marks (n) and the kept dofs with their places (k each); the copy of K and
+  // the solver's inverse block; then, where fixing dofs are among the dofs (or may be), that
+  // block with the whole one (else the solver's block is the whole one).
+  const std::size_t scatter = kk < k || !fixing ? (kk * kk + k * k) * d : 0;
+  const bool decoupledCopy = !fixing || !fixing->empty();
+  return static_cast<std::ptrdiff_t>(
+      K.rows + 2 * k * sizeof(int) +
+      std::max<std::size_t>((decoupledCopy ? K.bytes() : 0) + inverse, scatter));
+}
+
 std::vector<int> interiorDofs(int n, const std::vector<int>& interfaceDofs) {
   std::vector<char> onInterface(n, 0);
   for (int d : interfaceDofs) onInterface[d] = 1;
@@ -354,6 +380,8 @@ bool Subdomain::pseudoInverseBlock(const std::vector<int>& dofs, std::vector<dou
   std::vector<char> fixed(numDofs_, 0);
   for (int d : fixing_) fixed[d] = 1;
   std::vector<int> kept, at;  // the dofs K+ is not zero on, and their places in dofs
+  kept.reserve(dofs.size());
+  at.reserve(dofs.size());
   for (std::size_t i = 0; i < dofs.size(); ++i)
     if (!fixed.at(dofs[i])) {
       kept.push_back(dofs[i]);
@@ -364,10 +392,19 @@ bool Subdomain::pseudoInverseBlock(const std::vector<int>& dofs, std::vector<dou
                                     : factor_->inverseBlock(decoupleDofs(K_, fixing_), kept, inv);
   if (!done) return false;
   const std::size_t k = dofs.size(), kk = kept.size();
+  if (kk == k) {  // no fixing dof among them: the block is the solver's
+    block = std::move(inv);
+    return true;
+  }
   block.assign(k * k, 0.0);
   for (std::size_t j = 0; j < kk; ++j)
     for (std::size_t i = 0; i < kk; ++i) block[at[i] + at[j] * k] = inv[i + j * kk];
   return true;
+}
+
+std::ptrdiff_t Subdomain::predictInverseBlockMemory(const std::vector<int>& dofs) {
+  if (!hasStiffness()) return -1;
+  return predictPseudoInverseBlockMemory(K_, dofs, &fixing_, *factor_);
 }
 
 MemoryPrediction Subdomain::predictPreconditionerMemory(const std::vector<int>& interfaceDofs,

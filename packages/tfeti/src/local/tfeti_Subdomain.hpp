@@ -49,6 +49,14 @@ enum class Factorization { Now, Deferred };
 // any (decoupledCopy).
 MemoryPrediction predictPseudoInverseMemory(const CsrMatrix& K, bool decoupledCopy,
                                             LocalSolver& solver);
+// What pseudoInverseBlock on `dofs` will allocate at its peak, its block included
+// (Subdomain::predictInverseBlockMemory without a Subdomain): the local solver's inverse block on
+// the dofs that are not fixing dofs, made on the copy of K with the fixing dofs decoupled where
+// there are any. fixing null: the fixing dofs are not known yet (a dry run, before the kernel):
+// an upper bound, with a copy of K and the dofs' block scattered as where fixing dofs are among
+// them. Negative where the solver has no inverse block.
+std::ptrdiff_t predictPseudoInverseBlockMemory(const CsrMatrix& K, const std::vector<int>& dofs,
+                                               const std::vector<int>* fixing, LocalSolver& solver);
 // The dofs 0..n-1 not among interfaceDofs, in increasing order (a preconditioner's interior).
 std::vector<int> interiorDofs(int n, const std::vector<int>& interfaceDofs);
 // What a Dirichlet preconditioner on these interface dofs of K will allocate
@@ -121,6 +129,10 @@ class Subdomain {
   // of K_reg with them ordered last, not kept). Returns false where K was released or the local
   // solver cannot: applyPseudoInverse() on the unit columns gives the same block then.
   bool pseudoInverseBlock(const std::vector<int>& dofs, std::vector<double>& block);
+  // The bytes pseudoInverseBlock(dofs, block) will allocate at its peak, block included, the rest
+  // freed before it returns (predictPseudoInverseBlockMemory); negative where it would return
+  // false.
+  std::ptrdiff_t predictInverseBlockMemory(const std::vector<int>& dofs);
 
   // The bytes setupPreconditioner(interfaceDofs, type, localSolver) will allocate for the
   // Dirichlet preconditioner: held, its blocks K_bb and K_bi and the interior factor (from its
