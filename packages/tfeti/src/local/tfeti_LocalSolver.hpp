@@ -34,8 +34,9 @@ class LocalSolver {
   // inv before it returns (CHOLMOD: the analysis with the dofs last, that factor and its
   // factorization's transient, the trailing triangle), told from that analysis alone, made now
   // and not kept. A is the matrix factorize() was given or will be given (its analysis, as
-  // predictFactorMemory's, is the order the dofs are moved behind). Negative where the solver
-  // has no inverse block.
+  // predictFactorMemory's, is the order the dofs are moved behind). CHOLMOD's workspace, which it
+  // keeps and grows only for a larger matrix than before, is not counted. Negative where the
+  // solver has no inverse block.
   virtual std::ptrdiff_t predictInverseBlockMemory(const CsrMatrix& A,
                                                    const std::vector<int>& dofs) {
     (void)A, (void)dofs;
