@@ -55,6 +55,24 @@ bool samePattern(const ExplicitDualOperator::Block& a, const ExplicitDualOperato
   return a.entryRow == b.entryRow && a.entryDof == b.entryDof && a.entryCoef == b.entryCoef;
 }
 
+// The previous operator's blocks by subdomain id, where its storage is the new one's (none
+// otherwise: nothing is taken over across storages).
+std::map<int, const ExplicitDualOperator::Block*> blocksById(const ExplicitDualOperator* previous,
+                                                             DenseStorage storage) {
+  std::map<int, const ExplicitDualOperator::Block*> old;
+  if (previous && previous->storage() == storage)
+    for (const auto& b : previous->blocks()) old[b.subdomainId] = &b;
+  return old;
+}
+
+// Subdomain s's block among them where it was assembled from s's present factor: what a new
+// block of s takes over (the same rows) or starts from (other rows); null where there is none.
+const ExplicitDualOperator::Block* onSameFactor(
+    const std::map<int, const ExplicitDualOperator::Block*>& old, const Subdomain& s) {
+  const auto it = old.find(s.id());
+  return it != old.end() && it->second->version == s.factorVersion() ? it->second : nullptr;
+}
+
 }  // namespace
 
 std::size_t explicitBlockBytes(DenseStorage storage, std::size_t m) {
@@ -142,22 +160,18 @@ ExplicitDualOperator::ExplicitDualOperator(const Tearing& tearing,
       Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
                            Teuchos::ArrayView<const GO>(all), 0, multiplierMap_->getComm()));
   import_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(multiplierMap_, overlapMap_));
-  std::map<int, const Block*> old;
-  if (previous && previous->storage_ == storage_)
-    for (const auto& b : previous->blocks_) old[b.subdomainId] = &b;
+  const auto old = blocksById(previous, storage_);
   for (std::size_t i = 0; i < blocks_.size(); ++i) {
     Block& b = blocks_[i];
     for (GO row : rowsOf[i]) b.overlap.push_back(overlapMap_->getLocalElement(row));
-    const auto it = old.find(b.subdomainId);
-    const bool sameFactor =
-        it != old.end() && it->second->version == subdomains_[i]->factorVersion();
-    if (sameFactor && samePattern(*it->second, b)) {
-      b.F = it->second->F;
-      b.version = it->second->version;
+    const Block* same = onSameFactor(old, *subdomains_[i]);
+    if (same && samePattern(*same, b)) {
+      b.F = same->F;
+      b.version = same->version;
     } else {
       // Same factor, other rows (contact rows moved): the rows whose entries are unchanged keep
       // their part of the old block, and only the others are solved for.
-      assemble(i, sameFactor ? it->second : nullptr);
+      assemble(i, same);
     }
     if (releaseStiffness) subdomains_[i]->releaseStiffness();
   }
@@ -395,9 +409,7 @@ std::vector<ExplicitDualOperator::PlannedBlock> ExplicitDualOperator::plannedBlo
     const Tearing& tearing, const std::vector<std::shared_ptr<Subdomain>>& subdomains,
     DenseStorage storage, const ExplicitDualOperator* previous) {
   std::vector<PlannedBlock> plan(subdomains.size());
-  std::map<int, const Block*> old;
-  if (previous && previous->storage_ == storage)
-    for (const auto& b : previous->blocks_) old[b.subdomainId] = &b;
+  const auto old = blocksById(previous, storage);
   std::vector<GO> rows;
   for (std::size_t i = 0; i < subdomains.size() && i < tearing.subdomainRows.size(); ++i) {
     Block b = blockPattern(subdomains[i]->id(), tearing.subdomainRows[i], rows);
@@ -405,13 +417,16 @@ std::vector<ExplicitDualOperator::PlannedBlock> ExplicitDualOperator::plannedBlo
     PlannedBlock& p = plan[i];
     p.rows = p.solved = b.rows();
     // As the constructor and assemble() decide.
-    const auto it = old.find(subdomains[i]->id());
-    if (it == old.end() || it->second->version != subdomains[i]->factorVersion()) continue;
-    p.takenOver = samePattern(*it->second, b);
-    p.oldRows = it->second->rows();
-    const std::vector<int> from = keptRows(b, rowStarts(b), it->second);
+    const Block* same = onSameFactor(old, *subdomains[i]);
+    if (!same) continue;
+    p.oldRows = same->rows();
+    p.takenOver = samePattern(*same, b);
+    if (p.takenOver) {
+      p.solved = 0;
+      continue;
+    }
+    const std::vector<int> from = keptRows(b, rowStarts(b), same);
     p.solved = static_cast<int>(std::count(from.begin(), from.end(), -1));
-    if (p.takenOver) p.solved = 0;
   }
   return plan;
 }

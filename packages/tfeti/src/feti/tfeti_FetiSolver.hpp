@@ -416,6 +416,10 @@ class FetiSolver {
   // solves, a bound; on a device, all the blocks full once as they go up), less the K freed.
   double explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness,
                               const std::vector<ExplicitDualOperator::PlannedBlock>& plan);
+  // What assembling local block i as planned takes beyond its values, at its peak
+  // (explicitSchurTransient from the subdomain's inverse-block prediction, or
+  // explicitSolvesTransient).
+  double explicitBlockTransient(std::size_t i, const ExplicitDualOperator::PlannedBlock& p);
   // Sets dualChoice_ from "Dual operator" and, for auto, the tearing and the factors. Collective.
   void chooseDualOperator();
   // The dual solve: PCPG (tfeti_FetiSolverSolve.cpp), the QP of the inequality rows

@@ -488,32 +488,32 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     });
 }
 
+double FetiSolver::explicitBlockTransient(std::size_t i,
+                                          const ExplicitDualOperator::PlannedBlock& p) {
+  const std::size_t m = static_cast<std::size_t>(p.rows);
+  const std::size_t old = static_cast<std::size_t>(std::max(p.oldRows, 0));
+  Subdomain& s = *subdomains_[i];
+  // As assemble() goes: a block solved for wholly comes from the Schur complement where the
+  // subdomain can give it, one with rows kept by solves.
+  if (m > 0 && p.solved == p.rows &&
+      parseBlockAssembly(params_.get<std::string>("Explicit assembly")) == BlockAssembly::Schur) {
+    const std::vector<int> dofs = subdomainDualDofs(tearing_, i);
+    const std::ptrdiff_t peak = s.predictInverseBlockMemory(dofs);
+    if (peak >= 0) return explicitSchurTransient(static_cast<double>(peak), dofs.size(), m, old);
+  }
+  return explicitSolvesTransient(s.numDofs(), m, p.solved, old);
+}
+
 double FetiSolver::explicitAssemblyNeed(
     DenseStorage storage, bool releaseStiffness,
     const std::vector<ExplicitDualOperator::PlannedBlock>& plan) {
-  const bool schur =
-      parseBlockAssembly(params_.get<std::string>("Explicit assembly")) == BlockAssembly::Schur;
   double blocks = 0.0, transient = 0.0, freed = 0.0, full = 0.0;
   for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-    const ExplicitDualOperator::PlannedBlock& p = plan[i];
-    const std::size_t m = static_cast<std::size_t>(p.rows);
-    const std::size_t old = static_cast<std::size_t>(std::max(p.oldRows, 0));
+    const std::size_t m = static_cast<std::size_t>(plan[i].rows);
     full += static_cast<double>(sizeof(double) * m * m);
-    if (!p.takenOver) {
+    if (!plan[i].takenOver) {
       blocks += static_cast<double>(explicitBlockBytes(storage, m));
-      Subdomain& s = *subdomains_[i];
-      // As assemble() goes: a block solved for wholly comes from the Schur complement where the
-      // subdomain can give it, one with rows kept by solves.
-      std::ptrdiff_t peak = -1;
-      std::vector<int> dofs;
-      if (schur && m > 0 && p.solved == p.rows) {
-        dofs = subdomainDualDofs(tearing_, i);
-        peak = s.predictInverseBlockMemory(dofs);
-      }
-      transient = std::max(
-          transient, peak >= 0
-                         ? explicitSchurTransient(static_cast<double>(peak), dofs.size(), m, old)
-                         : explicitSolvesTransient(s.numDofs(), m, p.solved, old));
+      transient = std::max(transient, explicitBlockTransient(i, plan[i]));
     }
     if (releaseStiffness) freed += static_cast<double>(subdomains_[i]->stiffness().bytes());
   }
