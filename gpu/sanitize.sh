@@ -4,8 +4,8 @@
 # Each tool is judged by its own summary line: memcheck's "ERROR SUMMARY: N errors", racecheck's
 # "RACECHECK SUMMARY: N hazards displayed (E errors, W warnings)" (it prints no ERROR SUMMARY).
 # Errors fail the check, and so does the program failing under a sanitizer that ran (the small
-# shapes run nowhere else); a sanitizer that cannot attach to the device (seen on some runtimes)
-# prints no summary, and that only says so.
+# shapes run nowhere else); a sanitizer that cannot attach to the device or refuses it (seen on
+# gVisor) only says so.
 sanitize() {
   local tool="$1" log rc=0 summary errors
   shift
@@ -17,6 +17,11 @@ sanitize() {
   else
     summary="$(grep -Eo 'ERROR SUMMARY: [0-9]+ errors?' <<< "$log" | tail -1 || true)"
     errors="$(sed -E 's/ERROR SUMMARY: ([0-9]+) error.*/\1/' <<< "$summary")"
+  fi
+  # A sanitizer that refuses the device (seen on gVisor: "Device not supported", then the
+  # program's first allocation fails) ran nothing of ours, whatever its summary says.
+  if grep -q "Device not supported" <<< "$log"; then
+    summary=""
   fi
   if [[ -z "$summary" ]]; then
     echo "$log" | tail -5

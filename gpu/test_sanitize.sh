@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Checks sanitize.sh's verdicts with a stand-in compute-sanitizer that prints what the real one
-# prints in each case (clean, warnings only, errors, the program failing, no attach), so that a
-# device session's memcheck and racecheck cannot pass unjudged. Exit status 0 when every verdict
-# is the expected one.
+# prints in each case (clean, warnings only, errors, the program failing, no attach, the device
+# refused as on gVisor), so that a device session's memcheck and racecheck cannot pass unjudged.
+# Exit status 0 when every verdict is the expected one.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 work="$(mktemp -d)"
@@ -23,6 +23,10 @@ case "$SANITIZER_CASE" in
   mem-program-fails) echo "========= ERROR SUMMARY: 0 errors"; exit 2 ;;
   no-attach) echo "========= Error: Target application terminated before first instrumented API call"
     exit 255 ;;
+  device-refused) echo "========= Error: Device not supported. Please refer to the Supported Devices section"
+    echo "error: CUDA error 999 (unknown error) at the first allocation"
+    echo "========= ERROR SUMMARY: 1 error"
+    exit 1 ;;
 esac
 STANDIN
 chmod +x "$work/stand-in"
@@ -48,6 +52,8 @@ expect mem-errors memcheck fail
 expect mem-program-fails memcheck fail
 expect no-attach memcheck skip
 expect no-attach racecheck skip
+expect device-refused memcheck skip
+expect device-refused racecheck skip
 # A memcheck summary does not stand for racecheck's, nor the reverse.
 expect race-clean memcheck skip
 expect mem-clean racecheck skip
