@@ -45,8 +45,9 @@ class Amesos2Solver final : public LocalSolver {
   void solve(const double* b, double* x, int nrhs) override {
     solveViews(b, x, nrhs);
     if (nrhs > 1) {
-      // Amesos2 keeps its copy of a multi-column solution until a one-column solve views that
-      // column instead: a solve of a zero column (1/nrhs of the solve just made) hands it back.
+      // Amesos2 keeps its arrays of a multi-column solve (its own copy, not a view of ours)
+      // until a solve of another width reallocates them: a solve of one zero column (1/nrhs of
+      // the solve just made) shrinks them to a column.
       std::vector<double> zero(2 * map_->getNodeNumElements(), 0.0);
       solveViews(zero.data(), zero.data() + zero.size() / 2, 1);
     }
