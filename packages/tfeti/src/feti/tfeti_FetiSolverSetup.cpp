@@ -78,7 +78,8 @@ class SetupTally {
     f_.dualRows.push_back(rows);
     f_.explicitBlocks += static_cast<double>(explicitBlockBytes(storage_, rows));
     // The block assembled anew: from the Schur complement (the fixing dofs, which the run
-    // leaves out of the dofs B_s touches, not known before the kernel: a bound), else by solves.
+    // leaves out of the dofs B_s touches, are not known before the kernel: an estimate, within
+    // what they change either way), else by solves.
     const std::size_t m = static_cast<std::size_t>(rows);
     const std::ptrdiff_t schurPeak =
         schur_ && m > 0 ? predictPseudoInverseBlockMemory(K, dofs, nullptr, solver) : -1;
