@@ -313,6 +313,7 @@ TEUCHOS_UNIT_TEST(MemoryCheck, ForecastIsWhatTheChecksFind) {
         // The F_s: what the operator holds; the need the run's check's.
         TEST_EQUALITY(sum(f.explicitBlocks), static_cast<double>(run.explicitDualBytes().total));
         const double runNeed = run.dualOperatorChoice().nodeNeedBytes;
+        TEST_EQUALITY(f.explicitSolverKeeps, 0.0);  // CHOLMOD's solves keep nothing per factor
         const double forecastNeed =
             sum(f.explicitBlocks + f.explicitTransient - f.stiffnessFreedByAssembly);
         out << "  F_s' need " << forecastNeed << " (run " << runNeed << ")\n";
@@ -341,4 +342,32 @@ TEUCHOS_UNIT_TEST(MemoryCheck, ForecastIsWhatTheChecksFind) {
       comm, box().numSubdomains(), localSubdomains(), parameters("implicit", true, "klu2"));
   TEST_ASSERT(!klu2.factorsKnown && !klu2.interiorKnown);
   TEST_EQUALITY(klu2.factors, 0.0);
+  // Amesos2's solvers assemble by solves. Tacho keeps its workspace of the widest solve with
+  // every factor, n x min(128, m_s) doubles: counted by the forecast and the run's check alike,
+  // except that the run's check counts what it grows by, and the set-up's one-column solves
+  // (d = B K+ f) have already made it a column wide: at most n doubles per subdomain apart.
+  for (const std::string solver : {"klu2", "tacho"}) {
+    const Teuchos::ParameterList params = parameters("explicit", true, solver);
+    const tfeti::SetupMemoryForecast f = tfeti::FetiSolver::forecastSetupMemory(
+        comm, box().numSubdomains(), localSubdomains(), params);
+    tfeti::FetiSolver run = make(params);
+    double workspace = 0.0, column = 0.0;
+    for (std::size_t i = 0; i < run.subdomains().size(); ++i) {
+      workspace += 8.0 * run.subdomains()[i]->numDofs() *
+                   std::min<double>(128.0, static_cast<double>(f.dualRows[i]));
+      column += solver == "tacho" ? 8.0 * run.subdomains()[i]->numDofs() : 0.0;
+    }
+    const double forecastNeed = sum(f.explicitBlocks + f.explicitSolverKeeps + f.explicitTransient -
+                                    f.stiffnessFreedByAssembly);
+    out << solver << ": F_s' need " << forecastNeed << " (run "
+        << run.dualOperatorChoice().nodeNeedBytes << "), kept by the solves "
+        << sum(f.explicitSolverKeeps) << "\n";
+    TEST_EQUALITY(f.explicitSolverKeeps, solver == "tacho" ? workspace : 0.0);
+    TEST_COMPARE(sum(workspace), >, 0.0);
+    const double runNeed = run.dualOperatorChoice().nodeNeedBytes;
+    TEST_COMPARE(forecastNeed, >=, runNeed);
+    TEST_COMPARE(forecastNeed - runNeed, <=, sum(column));
+    TEST_EQUALITY(run.explicitAssembly().schurBlocks, 0LL);
+    TEST_ASSERT(run.solve().converged);
+  }
 }

@@ -94,6 +94,10 @@ double explicitSolvesTransient(std::size_t n, std::size_t m, std::size_t solved,
   return sizeof(double) * (mm * mm + std::max(mo * mo, 6.0 * columns));
 }
 
+int explicitSolveWidth(std::size_t solved) {
+  return static_cast<int>(std::min<std::size_t>(kColumnsPerSolve, solved));
+}
+
 DenseStorage parseDenseStorage(const std::string& name) {
   if (name == "packed") return DenseStorage::Packed;
   if (name == "full") return DenseStorage::Full;

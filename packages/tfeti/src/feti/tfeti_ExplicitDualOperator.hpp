@@ -57,6 +57,9 @@ double explicitSchurTransient(double inverseBlockPeak, std::size_t k, std::size_
 // solve vectors counted as three of those (a bound).
 double explicitSolvesTransient(std::size_t n, std::size_t m, std::size_t solved,
                                std::size_t oldRows);
+// The widest solve with K+ of an assembly that solves for `solved` columns: kColumnsPerSolve, or
+// all of them where they are fewer (what a local solver's solve may keep: Tacho's workspace).
+int explicitSolveWidth(std::size_t solved);
 
 // How a block is assembled anew (FETI "Explicit assembly"): schur: F_s = C_s Z_s C_s^T, Z_s the
 // block of K_s+ on the dofs B_s touches (C_s: B_s's columns there), the inverse of the Schur

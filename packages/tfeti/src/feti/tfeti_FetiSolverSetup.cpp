@@ -87,6 +87,9 @@ class SetupTally {
         f_.explicitTransient,
         schurPeak >= 0 ? explicitSchurTransient(static_cast<double>(schurPeak), dofs.size(), m, 0)
                        : explicitSolvesTransient(K.rows, m, m, 0));
+    if (schurPeak < 0 && m > 0)
+      f_.explicitSolverKeeps += static_cast<double>(
+          solver.solveKeeps(static_cast<std::size_t>(K.rows), explicitSolveWidth(m)));
     if (dirichlet_) {
       const MemoryPrediction p = predictDirichletMemory(K, dofs, solverFor());
       f_.interiorKnown = f_.interiorKnown && p.known();
@@ -515,6 +518,11 @@ double FetiSolver::explicitAssemblyNeed(
     if (!plan[i].takenOver) {
       blocks += static_cast<double>(explicitBlockBytes(storage, m));
       transient = std::max(transient, explicitBlockTransient(i, plan[i]));
+      // What the solves leave with the factor (Tacho's workspace): as held as the blocks. The
+      // Schur assembly makes no solve, but only CHOLMOD offers it, whose solves keep nothing.
+      if (plan[i].solved > 0)
+        blocks += static_cast<double>(subdomains_[i]->pseudoInverseSolveKeeps(
+            explicitSolveWidth(static_cast<std::size_t>(plan[i].solved))));
     }
     if (releaseStiffness) freed += static_cast<double>(subdomains_[i]->stiffness().bytes());
   }

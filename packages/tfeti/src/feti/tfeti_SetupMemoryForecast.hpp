@@ -32,6 +32,10 @@ struct SetupMemoryForecast {
   // solves; from the Schur complement up to what the fixing dofs on the interface change, either
   // way.
   double explicitBlocks = 0.0, explicitTransient = 0.0, stiffnessFreedByAssembly = 0.0;
+  // What the assembly's solves leave with the local solvers as long as their factors live
+  // (LocalSolver::solveKeeps: Tacho's workspace, n x min(128, m_s) per subdomain; 0 otherwise),
+  // part of the explicit check's need.
+  double explicitSolverKeeps = 0.0;
 };
 
 }  // namespace tfeti

@@ -6,6 +6,7 @@
 #include <Amesos2.hpp>
 #include <Teuchos_DefaultSerialComm.hpp>
 
+#include <algorithm>
 #include <stdexcept>
 #include <vector>
 
@@ -35,6 +36,7 @@ class Amesos2Solver final : public LocalSolver {
     solver_ = Amesos2::create<CrsMatrix, MultiVector>(amesosName, matrix_);
     solver_->symbolicFactorization().numericFactorization();
     nnzLU_ = solver_->getStatus().getNnzLU();
+    widest_ = 0;
   }
 
   // The multivectors are views of the caller's b and x, not copies held by the solver. Copies
@@ -44,6 +46,7 @@ class Amesos2Solver final : public LocalSolver {
   // than its F_s in 3D, which the memory check did not count.
   void solve(const double* b, double* x, int nrhs) override {
     solveViews(b, x, nrhs);
+    widest_ = std::max(widest_, nrhs);
     if (nrhs > 1) {
       // Amesos2 keeps its arrays of a multi-column solve (its own copy, not a view of ours)
       // until a solve of another width reallocates them: a solve of one zero column (1/nrhs of
@@ -51,6 +54,14 @@ class Amesos2Solver final : public LocalSolver {
       std::vector<double> zero(2 * map_->getNodeNumElements(), 0.0);
       solveViews(zero.data(), zero.data() + zero.size() / 2, 1);
     }
+  }
+
+  // Tacho's workspace (Amesos2's TachoSolver::workspace_) grows to a solve's width and stays
+  // with the Amesos2 solver, which only a new factorization replaces: the one-column solve above
+  // does not shrink it. KLU2 keeps nothing of a solve's width.
+  std::size_t solveKeeps(std::size_t n, int nrhs) const override {
+    if (type_ != "tacho" || nrhs <= widest_) return 0;
+    return sizeof(double) * n * static_cast<std::size_t>(nrhs - widest_);
   }
 
   // Amesos2's Tacho adapter does not report its factor size (0 then means unknown).
@@ -73,6 +84,7 @@ class Amesos2Solver final : public LocalSolver {
   Teuchos::RCP<CrsMatrix> matrix_;
   Teuchos::RCP<Amesos2::Solver<CrsMatrix, MultiVector>> solver_;
   std::size_t nnzLU_ = 0;
+  int widest_ = 0;  // the widest solve of this factor
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <unordered_map>
@@ -103,6 +104,14 @@ struct SymbolicAnalysis {
   PackedLayout packed;                 // supernodal analyses: where the packed values go
   std::size_t numericBytes = 0;        // what a numerical factor of this analysis holds
   std::size_t transientBytes = 0;      // what its factorization allocates beyond, at the peak
+  // predictInverseBlockMemory's counts by the set of dofs moved last (sorted): they depend on
+  // nothing but the pattern, this analysis's order and that set, so subdomains cut alike from a
+  // structured mesh, and a memory check made again at each reassembly, analyse each set once.
+  // A few integers per set, gone with the analysis.
+  struct TrailingCounts {
+    std::size_t analysisPeak, numeric, factorization;
+  };
+  mutable std::map<std::vector<int>, TrailingCounts> trailing;
   SymbolicAnalysis(CholmodKind k, const CsrMatrix& A)
       : kind(k), n(A.rows), rowPtr(A.rowPtr), colInd(A.colInd) {}
   ~SymbolicAnalysis() {
@@ -328,25 +337,13 @@ class CholmodSolver final : public LocalSolver {
     const std::vector<int> at = placesIn(dofs, A.rows);
     const std::size_t n = A.rows, k = dofs.size(), i = sizeof(int), d = sizeof(double);
     if (k == 0) return static_cast<std::ptrdiff_t>(n * i);
-    // The analysis with the dofs last is made here as inverseBlock will make it, and its peak
-    // read off CHOLMOD's count: it depends on nothing but the pattern and the order. The
-    // factorization's bytes follow from it as for any factor.
-    cholmod_common* c = common();
-    const std::size_t before = c->memory_inuse, outerPeak = c->memory_usage;
-    c->memory_usage = before;
-    cholmod_factor* F = analyzeTrailing(A, trailingOrder(*a->symbolic, at));
-    const std::size_t analysisPeak = c->memory_usage - before;
-    const std::size_t numeric = SymbolicAnalyses::numericFactorBytes(*F);
-    const std::size_t factorization =
-        numeric + SymbolicAnalyses::factorizationTransientBytes(A, *F, numeric);
-    cholmod_free_factor(&F, c);
-    c->memory_usage = std::max(outerPeak, before + analysisPeak);
+    const SymbolicAnalysis::TrailingCounts t = trailingCounts(A, *a, at, dofs);
     // inverseBlock's own: the places (n); while CHOLMOD works, the order (n); then the factor
     // with the trailing triangle (k x k) and the dofs' order (k); then, the factor freed, the
     // triangle with inv (k x k).
     return static_cast<std::ptrdiff_t>(
-        n * i + std::max({n * i + std::max(analysisPeak, factorization),
-                          numeric + k * k * d + k * i, 2 * k * k * d + k * i}));
+        n * i + std::max({n * i + std::max(t.analysisPeak, t.factorization),
+                          t.numeric + k * k * d + k * i, 2 * k * k * d + k * i}));
   }
 
   std::size_t factorBytes() const override {
@@ -411,6 +408,33 @@ class CholmodSolver final : public LocalSolver {
       at[dofs[i]] = static_cast<int>(i);
     }
     return at;
+  }
+
+  // The counts of the analysis of A in a's order with the dofs where at[] >= 0 last: made here
+  // as inverseBlock will make it, its peak read off CHOLMOD's count, the factorization's bytes
+  // following from it as for any factor; or a's memo of them for that set of dofs.
+  static SymbolicAnalysis::TrailingCounts trailingCounts(const CsrMatrix& A,
+                                                         const SymbolicAnalysis& a,
+                                                         const std::vector<int>& at,
+                                                         const std::vector<int>& dofs) {
+    std::vector<int> key = dofs;
+    std::sort(key.begin(), key.end());
+    const auto known = a.trailing.find(key);
+    if (known != a.trailing.end()) return known->second;
+    cholmod_common* c = common();
+    const std::size_t before = c->memory_inuse, outerPeak = c->memory_usage;
+    c->memory_usage = before;
+    cholmod_factor* F = analyzeTrailing(A, trailingOrder(*a.symbolic, at));
+    SymbolicAnalysis::TrailingCounts t;
+    t.analysisPeak = c->memory_usage - before;
+    t.numeric = SymbolicAnalyses::numericFactorBytes(*F);
+    t.factorization = t.numeric + SymbolicAnalyses::factorizationTransientBytes(A, *F, t.numeric);
+    cholmod_free_factor(&F, c);
+    c->memory_usage = std::max(outerPeak, before + t.analysisPeak);
+    // CHOLMOD's workspace grown by this analysis (the first of a larger matrix) is in this peak
+    // but will not be in the next one's: such counts are not kept.
+    if (c->memory_inuse == before) a.trailing.emplace(std::move(key), t);
+    return t;
   }
 
   // The trailing k x k triangle of the supernodal factor F, dense (column-major, the upper part

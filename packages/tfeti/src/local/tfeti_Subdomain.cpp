@@ -485,6 +485,10 @@ std::size_t Subdomain::factorBytes() const {
   return factor_ ? factor_->factorBytes() : 0;
 }
 
+std::size_t Subdomain::pseudoInverseSolveKeeps(int nrhs) const {
+  return factor_ ? factor_->solveKeeps(static_cast<std::size_t>(numDofs_), nrhs) : 0;
+}
+
 std::size_t Subdomain::factorMemory() const {
   return factor_ ? factor_->factorMemory() : 0;
 }

@@ -154,6 +154,9 @@ class Subdomain {
   void applyPreconditionerBlock(const double* vb, double* yb, int nrhs = 1);
 
   std::size_t factorBytes() const;
+  // What applyPseudoInverse of nrhs columns would leave with K+'s factor
+  // (LocalSolver::solveKeeps: Tacho's workspace; 0 for the other solvers).
+  std::size_t pseudoInverseSolveKeeps(int nrhs) const;
   // What K+'s factor holds (LocalSolver::factorMemory: what predictFactorMemory told).
   std::size_t factorMemory() const;
   std::size_t preconditionerFactorBytes() const;
