@@ -48,6 +48,24 @@ std::vector<TearingInput> tearingInput(const std::vector<SubdomainData>& data) {
   }
   return input;
 }
+
+// Subdomain sd as the set-up builds it, with its kernel and fixing dofs, not factorized: from K
+// and f moved in (the set-up) or copied (the forecast, which needs the fixing dofs).
+std::shared_ptr<Subdomain> unfactorizedSubdomain(const SubdomainData& sd,
+                                                 const std::vector<double>& coords, CsrMatrix K,
+                                                 std::vector<double> f,
+                                                 const Teuchos::ParameterList& params) {
+  KernelOptions kernel;
+  kernel.dim = sd.mesh.dim;
+  kernel.elements = sd.mesh.connectivity();
+  kernel.kernel = sd.kernel;
+  kernel.residualTolerance = params.get<double>("Kernel tolerance");
+  return std::make_shared<Subdomain>(sd.mesh.id, sd.dofsPerNode, coords, kernel, std::move(K),
+                                     std::move(f), sd.mesh.dirichletDofs(sd.dofsPerNode),
+                                     parseFormulation(params.get<std::string>("Formulation")),
+                                     params.get<std::string>("Local solver"),
+                                     Factorization::Deferred);
+}
 }  // namespace
 
 namespace {
@@ -66,23 +84,22 @@ class SetupTally {
                BlockAssembly::Schur),
         schurNeedsK_(valid.get<std::string>("Dual operator") != "implicit" && schur_) {}
 
-  // Subdomain K, touched by `rows` rows of B on the dofs `dofs`.
-  void add(const CsrMatrix& K, const std::vector<int>& dofs, long long rows) {
-    // Every subdomain counted with fixing dofs, hence with the decoupled copy of K: so it is
-    // under TFETI, where every subdomain floats (FETI: an upper bound).
+  // Subdomain K, touched by `rows` rows of B on the dofs `dofs`, with the fixing dofs the
+  // run will choose (none for a FETI subdomain held by its Dirichlet conditions).
+  void add(const CsrMatrix& K, const std::vector<int>& dofs, long long rows,
+           const std::vector<int>& fixing) {
     LocalSolver& solver = solverFor();
-    const MemoryPrediction factor = predictPseudoInverseMemory(K, true, solver);
+    const MemoryPrediction factor = predictPseudoInverseMemory(K, !fixing.empty(), solver);
     f_.factorsKnown = f_.factorsKnown && factor.known();
     if (factor.known())
       factors_.make(static_cast<double>(factor.held), static_cast<double>(factor.transient));
     f_.dualRows.push_back(rows);
     f_.explicitBlocks += static_cast<double>(explicitBlockBytes(storage_, rows));
-    // The block assembled anew: from the Schur complement (the fixing dofs, which the run
-    // leaves out of the dofs B_s touches, are not known before the kernel: an estimate, within
-    // what they change either way), else by solves.
+    // The block assembled anew: from the Schur complement (the run leaves the fixing dofs out
+    // of the dofs B_s touches), else by solves.
     const std::size_t m = static_cast<std::size_t>(rows);
     const std::ptrdiff_t schurPeak =
-        schur_ && m > 0 ? predictPseudoInverseBlockMemory(K, dofs, nullptr, solver) : -1;
+        schur_ && m > 0 ? predictPseudoInverseBlockMemory(K, dofs, &fixing, solver) : -1;
     f_.explicitTransient = std::max(
         f_.explicitTransient,
         schurPeak >= 0 ? explicitSchurTransient(static_cast<double>(schurPeak), dofs.size(), m, 0)
@@ -157,12 +174,18 @@ SetupMemoryForecast FetiSolver::forecastSetupMemory(const Teuchos::RCP<const Com
   collectively(*comm, [&] {
     for (std::size_t i = 0; i < local.size(); ++i) {
       // A K given as a Tpetra::CrsMatrix becomes CSR arrays, as the constructor makes it.
-      if (local[i].tpetraK.is_null())
-        tally.add(local[i].K, subdomainDualDofs(t, i), rows[i]);
-      else
-        tally.add(csrFromTpetra(*local[i].tpetraK,
-                                "subdomain " + std::to_string(local[i].mesh.id) + ": tpetraK"),
-                  subdomainDualDofs(t, i), rows[i]);
+      const bool tpetra = !local[i].tpetraK.is_null();
+      const CsrMatrix converted =
+          tpetra ? csrFromTpetra(*local[i].tpetraK,
+                                 "subdomain " + std::to_string(local[i].mesh.id) + ": tpetraK")
+                 : CsrMatrix{};
+      const CsrMatrix& K = tpetra ? converted : local[i].K;
+      // The kernel and the fixing dofs as the run will find them (a copy of K and f while they
+      // are found): whether the factor takes a decoupled copy of K, and which dofs the Schur
+      // assembly leaves out.
+      const std::vector<int> fixing =
+          unfactorizedSubdomain(local[i], local[i].mesh.coords, K, local[i].f, valid)->fixingDofs();
+      tally.add(K, subdomainDualDofs(t, i), rows[i], fixing);
     }
   });
   return tally.result();
@@ -201,8 +224,6 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
 }
 
 void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords) {
-  const Formulation formulation = parseFormulation(params_.get<std::string>("Formulation"));
-  const std::string solver = params_.get<std::string>("Local solver");
   PhaseTimer t(*comm_, timings_.factorization, &memory_, "factorization");
   subdomains_.clear();
   kernelCoords_ = coords;
@@ -212,16 +233,9 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
   collectively(*comm_, [&] {
     for (std::size_t i = 0; i < data_.size(); ++i) {
       auto& sd = data_[i];
-      KernelOptions kernel;
-      kernel.dim = sd.mesh.dim;
-      kernel.elements = sd.mesh.connectivity();
-      kernel.kernel = sd.kernel;
-      kernel.residualTolerance = params_.get<double>("Kernel tolerance");
-      const std::vector<int> dirichletDofs = sd.mesh.dirichletDofs(sd.dofsPerNode);
       // K and f move into the subdomain (data_ keeps the mesh, the kernel and the sizes).
-      subdomains_.push_back(std::make_shared<Subdomain>(
-          sd.mesh.id, sd.dofsPerNode, coords[i], kernel, std::move(sd.K), std::move(sd.f),
-          dirichletDofs, formulation, solver, Factorization::Deferred));
+      subdomains_.push_back(
+          unfactorizedSubdomain(sd, coords[i], std::move(sd.K), std::move(sd.f), params_));
     }
   });
   checkFactorMemory();
@@ -230,76 +244,6 @@ void FetiSolver::buildSubdomains(const std::vector<std::vector<double>>& coords)
   });
   stiffnessChanged_.assign(subdomains_.size(), 1);
   countFactorizations();
-}
-
-NodeMemory FetiSolver::nodesHold(double need, bool cannotTell, double held) const {
-  int mine = cannotTell ? 1 : 0, any = 0;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, mine, Teuchos::outArg(any));
-  if (any) return NodeMemory{};  // Amesos2's solvers: nothing known to check
-  return nodeMemory(*comm_, need, held);
-}
-
-void FetiSolver::checkFactorMemory() {
-  factorMemory_ = NodeMemory{};
-  if (!params_.get<bool>("Memory check")) return;
-  // The predictions make the symbolic analyses (kept for the factorizations): their memory is
-  // then in use, and what is available is read after them. The factorizations go one by one:
-  // the need is the factors made so far plus the next one's transient, at its peak.
-  RunningPeak need;
-  bool cannotTell = false;
-  collectively(*comm_, [&] {
-    for (auto& s : subdomains_) {
-      const MemoryPrediction p = s->predictFactorMemory();
-      cannotTell = cannotTell || !p.known();
-      if (p.known()) need.make(static_cast<double>(p.held), static_cast<double>(p.transient));
-    }
-  });
-  factorMemory_ = nodesHold(need.peak, cannotTell, need.running);
-  if (factorMemory_.fits) return;
-  throw std::invalid_argument(
-      "the subdomain factors (\"Local solver\" = " + params_.get<std::string>("Local solver") +
-      ") do not fit: " + describe(factorMemory_) +
-      " before the factorizations; run on more nodes (or fewer ranks per node), or set FETI "
-      "\"Memory check\" = false to go on regardless (swap); --check estimates the factors' "
-      "bytes before anything is factorized");
-}
-
-void FetiSolver::checkPreconditionerMemory(const std::vector<std::vector<int>>& dofs,
-                                           const std::vector<char>& rebuild,
-                                           PreconditionerType type, bool releaseStiffness) {
-  preconditionerMemory_ = NodeMemory{};
-  int makes = 0, anyMakes = 0;
-  if (type == PreconditionerType::Dirichlet)
-    for (char r : rebuild) makes |= r;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, makes, Teuchos::outArg(anyMakes));
-  if (!anyMakes || !params_.get<bool>("Memory check")) return;
-  // The set-up goes subdomain by subdomain: a preconditioner (its blocks and interior factor,
-  // with the factorization's transient while it is made) replaces the last one, then K goes
-  // (releaseStiffness). The need is the peak of that running sum.
-  const std::string solver = params_.get<std::string>("Local solver");
-  RunningPeak need;
-  bool cannotTell = false;
-  collectively(*comm_, [&] {
-    for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-      Subdomain& s = *subdomains_[i];
-      if (rebuild[i]) {
-        const MemoryPrediction p = s.predictPreconditionerMemory(dofs[i], type, solver);
-        cannotTell = cannotTell || !p.known();
-        if (p.known())
-          need.make(static_cast<double>(p.held), static_cast<double>(p.transient),
-                    static_cast<double>(s.preconditionerMemory()));
-      }
-      if (releaseStiffness) need.release(static_cast<double>(s.stiffness().bytes()));
-    }
-  });
-  preconditionerMemory_ = nodesHold(need.peak, cannotTell);
-  if (preconditionerMemory_.fits) return;
-  throw std::invalid_argument(
-      "the Dirichlet preconditioner's interior factors (\"Local solver\" = " + solver +
-      ") do not fit: " + describe(preconditionerMemory_) +
-      " after the subdomain factorizations; use FETI \"Preconditioner\" = lumped, run on more "
-      "nodes (or fewer ranks per node), or set FETI \"Memory check\" = false to go on "
-      "regardless (swap)");
 }
 
 void FetiSolver::countFactorizations() {
@@ -490,84 +434,6 @@ void FetiSolver::buildDualOperator(bool releaseStiffness) {
     collectively(*comm_, [&] {
       ex->exportBlocks(file + ".rank" + std::to_string(comm_->getRank()) + ".bin");
     });
-}
-
-double FetiSolver::explicitBlockTransient(std::size_t i,
-                                          const ExplicitDualOperator::PlannedBlock& p) {
-  const std::size_t m = static_cast<std::size_t>(p.rows);
-  const std::size_t old = static_cast<std::size_t>(std::max(p.oldRows, 0));
-  Subdomain& s = *subdomains_[i];
-  // As assemble() goes: a block solved for wholly comes from the Schur complement where the
-  // subdomain can give it, one with rows kept by solves.
-  if (m > 0 && p.solved == p.rows &&
-      parseBlockAssembly(params_.get<std::string>("Explicit assembly")) == BlockAssembly::Schur) {
-    const std::vector<int> dofs = subdomainDualDofs(tearing_, i);
-    const std::ptrdiff_t peak = s.predictInverseBlockMemory(dofs);
-    if (peak >= 0) return explicitSchurTransient(static_cast<double>(peak), dofs.size(), m, old);
-  }
-  return explicitSolvesTransient(s.numDofs(), m, p.solved, old);
-}
-
-double FetiSolver::explicitAssemblyNeed(
-    DenseStorage storage, bool releaseStiffness,
-    const std::vector<ExplicitDualOperator::PlannedBlock>& plan) {
-  double blocks = 0.0, transient = 0.0, freed = 0.0, full = 0.0;
-  for (std::size_t i = 0; i < subdomains_.size(); ++i) {
-    const std::size_t m = static_cast<std::size_t>(plan[i].rows);
-    full += static_cast<double>(sizeof(double) * m * m);
-    if (!plan[i].takenOver) {
-      blocks += static_cast<double>(explicitBlockBytes(storage, m));
-      transient = std::max(transient, explicitBlockTransient(i, plan[i]));
-      // What the solves leave with the factor (Tacho's workspace): as held as the blocks. The
-      // Schur assembly makes no solve, but only CHOLMOD offers it, whose solves keep nothing.
-      if (plan[i].solved > 0)
-        blocks += static_cast<double>(subdomains_[i]->pseudoInverseSolveKeeps(
-            explicitSolveWidth(static_cast<std::size_t>(plan[i].solved))));
-    }
-    if (releaseStiffness) freed += static_cast<double>(subdomains_[i]->stiffness().bytes());
-  }
-  // On a device, the blocks go up as one full copy of them all on the host.
-  if (parseExplicitDevice(params_.get<std::string>("Explicit device")) == ExplicitDevice::Gpu)
-    transient = std::max(transient, full);
-  return blocks + transient - freed;
-}
-
-bool FetiSolver::explicitDoesNotFit(DenseStorage storage, const ExplicitDualOperator* previous,
-                                    bool releaseStiffness) {
-  if (!params_.get<bool>("Memory check")) {
-    dualChoice_.fitsMemory = true;
-    dualChoice_.nodeNeedBytes = 0.0;
-    dualChoice_.nodeAvailableBytes = -1.0;
-    return false;
-  }
-  // Every block the new operator assembles, wholly or in part, takes new memory while the
-  // previous operator still holds the old values: all of them after a set-up from scratch, the
-  // refactorized subdomains' and those whose rows moved after update(). Which ones is a rank's
-  // own matter (a refactorized plastic subdomain here, elastic ones kept there); the check is
-  // collective, so every rank takes part in it where any assembles.
-  const std::vector<ExplicitDualOperator::PlannedBlock> plan =
-      ExplicitDualOperator::plannedBlocks(tearing_, subdomains_, storage, previous);
-  int assembles = 0, anyAssembles = 0;
-  for (const auto& p : plan) assembles = p.takenOver ? assembles : 1;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, assembles, Teuchos::outArg(anyAssembles));
-  if (!anyAssembles) return false;  // the last check stands
-  const NodeMemory node = nodesHold(explicitAssemblyNeed(storage, releaseStiffness, plan), false);
-  dualChoice_.fitsMemory = node.fits;
-  dualChoice_.nodeNeedBytes = node.needBytes;
-  dualChoice_.nodeAvailableBytes = node.known ? node.availableBytes : -1.0;
-  if (node.fits) return false;
-  if (!dualChoice_.automatic)
-    throw std::invalid_argument(
-        "FETI \"Dual operator\" = explicit: the dense local F_s (" +
-        params_.get<std::string>("Explicit storage") + ") do not fit: " + describe(node) +
-        " after the factorizations and the preconditioner; use \"Dual operator\" = implicit "
-        "(or auto, which falls back to implicit), or more nodes (--check prints the F_s bytes "
-        "before anything is factorized)");
-  // auto: implicit after all; the K kept for the Schur assembly go now.
-  dualChoice_.chosen = "implicit";
-  if (releaseStiffness)
-    for (auto& s : subdomains_) s->releaseStiffness();
-  return true;
 }
 
 void FetiSolver::buildDualRhs() {

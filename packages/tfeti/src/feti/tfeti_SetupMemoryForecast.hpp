@@ -13,9 +13,9 @@ struct SetupMemoryForecast {
   std::vector<long long> dualRows;
   // The subdomain factors (Subdomain::predictFactorMemory): what they hold once made, and the
   // peak while they are made one by one (the factors so far, the next one's transient): the need
-  // of the run's factor check, exactly under TFETI (FETI: the copy of K with the fixing dofs
-  // decoupled counted for every subdomain, an upper bound). factorsKnown = false where the local
-  // solver cannot tell (KLU2, Tacho): the run does not check them, and both are 0.
+  // of the run's factor check, exactly (the kernels and fixing dofs found as the run finds them).
+  // factorsKnown = false where the local solver cannot tell (KLU2, Tacho): the run does not check
+  // them, and both are 0.
   double factors = 0.0, factorPeak = 0.0;
   bool factorsKnown = true;
   // The Dirichlet preconditioner (0 with the other preconditioners: its blocks K_bb and K_bi and
@@ -26,15 +26,16 @@ struct SetupMemoryForecast {
   double interiorPeak = 0.0, preconditionerLeaves = 0.0;
   bool interiorKnown = true;
   // The explicit F_s ("Explicit storage"): the blocks' bytes, and the assembly's largest
-  // transient (explicitSchurTransient from the analysis with all the dofs B_s touches last, where
-  // the run leaves the fixing dofs among them out; explicitSolvesTransient for the solves). With
-  // the K that the Schur assembly frees, this is the run's explicit check's need: exactly by
-  // solves; from the Schur complement up to what the fixing dofs on the interface change, either
-  // way.
+  // transient (explicitSchurTransient from the analysis with the dofs B_s touches last, the
+  // fixing dofs among them left out as the run leaves them; explicitSolvesTransient for the
+  // solves). With the K that the Schur assembly frees, this is the run's explicit check's need,
+  // exactly (Tacho: see explicitSolverKeeps).
   double explicitBlocks = 0.0, explicitTransient = 0.0, stiffnessFreedByAssembly = 0.0;
   // What the assembly's solves leave with the local solvers as long as their factors live
   // (LocalSolver::solveKeeps: Tacho's workspace, n x min(128, m_s) per subdomain; 0 otherwise),
-  // part of the explicit check's need.
+  // part of the explicit check's need. The run's check counts what the workspace grows by, from
+  // the column its earlier solves made: the forecast is above it by at most n doubles a
+  // subdomain.
   double explicitSolverKeeps = 0.0;
 };
 
