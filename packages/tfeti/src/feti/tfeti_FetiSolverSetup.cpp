@@ -99,7 +99,7 @@ class SetupTally {
     // of the dofs B_s touches), else by solves.
     const std::size_t m = static_cast<std::size_t>(rows);
     const std::ptrdiff_t schurPeak =
-        schur_ && m > 0 ? predictPseudoInverseBlockMemory(K, dofs, &fixing, solver) : -1;
+        schur_ && m > 0 ? predictPseudoInverseBlockMemory(K, dofs, fixing, solver) : -1;
     f_.explicitTransient = std::max(
         f_.explicitTransient,
         schurPeak >= 0 ? explicitSchurTransient(static_cast<double>(schurPeak), dofs.size(), m, 0)

@@ -67,26 +67,22 @@ MemoryPrediction predictPseudoInverseMemory(const CsrMatrix& K, bool decoupledCo
 }
 
 std::ptrdiff_t predictPseudoInverseBlockMemory(const CsrMatrix& K, const std::vector<int>& dofs,
-                                               const std::vector<int>* fixing,
+                                               const std::vector<int>& fixing,
                                                LocalSolver& solver) {
   std::vector<int> kept;
-  if (fixing) {
-    std::vector<char> fixed(K.rows, 0);
-    for (int d : *fixing) fixed[d] = 1;
-    for (int d : dofs)
-      if (!fixed.at(d)) kept.push_back(d);
-  } else {
-    kept = dofs;
-  }
+  std::vector<char> fixed(K.rows, 0);
+  for (int d : fixing) fixed[d] = 1;
+  for (int d : dofs)
+    if (!fixed.at(d)) kept.push_back(d);
   // The copy keeps K's pattern, and the prediction reads the pattern alone.
   const std::ptrdiff_t inverse = solver.predictInverseBlockMemory(K, kept);
   if (inverse < 0) return -1;
   const std::size_t k = dofs.size(), kk = kept.size(), d = sizeof(double);
   // The fixing dofs' marks (n) and the kept dofs with their places (k each); the copy of K and
-  // the solver's inverse block; then, where fixing dofs are among the dofs (or may be), that
-  // block with the whole one (else the solver's block is the whole one).
-  const std::size_t scatter = kk < k || !fixing ? (kk * kk + k * k) * d : 0;
-  const bool decoupledCopy = !fixing || !fixing->empty();
+  // the solver's inverse block; then, where fixing dofs are among the dofs, that block with the
+  // whole one (else the solver's block is the whole one).
+  const std::size_t scatter = kk < k ? (kk * kk + k * k) * d : 0;
+  const bool decoupledCopy = !fixing.empty();
   return static_cast<std::ptrdiff_t>(
       K.rows + 2 * k * sizeof(int) +
       std::max<std::size_t>((decoupledCopy ? K.bytes() : 0) + inverse, scatter));
@@ -404,7 +400,7 @@ bool Subdomain::pseudoInverseBlock(const std::vector<int>& dofs, std::vector<dou
 
 std::ptrdiff_t Subdomain::predictInverseBlockMemory(const std::vector<int>& dofs) {
   if (!hasStiffness()) return -1;
-  return predictPseudoInverseBlockMemory(K_, dofs, &fixing_, *factor_);
+  return predictPseudoInverseBlockMemory(K_, dofs, fixing_, *factor_);
 }
 
 MemoryPrediction Subdomain::predictPreconditionerMemory(const std::vector<int>& interfaceDofs,

@@ -52,12 +52,9 @@ MemoryPrediction predictPseudoInverseMemory(const CsrMatrix& K, bool decoupledCo
 // What pseudoInverseBlock on `dofs` will allocate at its peak, its block included
 // (Subdomain::predictInverseBlockMemory without a Subdomain): the local solver's inverse block on
 // the dofs that are not fixing dofs, made on the copy of K with the fixing dofs decoupled where
-// there are any. fixing null: the fixing dofs are not known yet (a dry run, before the kernel):
-// an estimate, all the dofs last, with a copy of K and the block scattered as where fixing dofs
-// are among them (the run's second factor, without them, may be larger or smaller). Negative
-// where the solver has no inverse block.
+// there are any. Negative where the solver has no inverse block.
 std::ptrdiff_t predictPseudoInverseBlockMemory(const CsrMatrix& K, const std::vector<int>& dofs,
-                                               const std::vector<int>* fixing, LocalSolver& solver);
+                                               const std::vector<int>& fixing, LocalSolver& solver);
 // The dofs 0..n-1 not among interfaceDofs, in increasing order (a preconditioner's interior).
 std::vector<int> interiorDofs(int n, const std::vector<int>& interfaceDofs);
 // What a Dirichlet preconditioner on these interface dofs of K will allocate
