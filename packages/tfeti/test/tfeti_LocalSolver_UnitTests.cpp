@@ -456,6 +456,18 @@ TEUCHOS_UNIT_TEST(LocalSolver, CholmodPredictsItsInverseBlock) {
       const std::vector<int> fewer(dofs.begin() + 1, dofs.end());
       TEST_COMPARE(other->predictInverseBlockMemory(A, fewer), >, 0);
       TEST_COMPARE(tfeti::localSolverMemoryPeak(), >, inUse);
+      // The last eight sets are kept: after eight others the first is analysed again, the
+      // eighth is not.
+      for (std::size_t drop = 2; drop < 9; ++drop) {
+        std::vector<int> other8 = dofs;
+        other8.erase(other8.begin() + drop);
+        other->predictInverseBlockMemory(A, other8);
+      }
+      tfeti::localSolverMemoryPeak(true);
+      other->predictInverseBlockMemory(A, fewer);  // the oldest of the eight kept
+      TEST_EQUALITY(tfeti::localSolverMemoryPeak(), inUse);
+      TEST_EQUALITY(other->predictInverseBlockMemory(A, dofs), predicted);  // dropped, analysed
+      TEST_COMPARE(tfeti::localSolverMemoryPeak(), >, inUse);
     }
   }
   const tfeti::CsrMatrix A = laplacian2d(20, 1.0);

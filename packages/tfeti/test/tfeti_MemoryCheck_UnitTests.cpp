@@ -378,7 +378,6 @@ TEUCHOS_UNIT_TEST(MemoryCheck, ForecastIsWhatTheChecksFind) {
         << run.dualOperatorChoice().nodeNeedBytes << "), kept by the solves "
         << sum(f.explicitSolverKeeps) << "\n";
     TEST_EQUALITY(f.explicitSolverKeeps, solver == "tacho" ? workspace : 0.0);
-    TEST_COMPARE(sum(workspace), >, 0.0);
     const double runNeed = run.dualOperatorChoice().nodeNeedBytes;
     TEST_COMPARE(forecastNeed, >=, runNeed);
     TEST_COMPARE(forecastNeed - runNeed, <=, sum(column));

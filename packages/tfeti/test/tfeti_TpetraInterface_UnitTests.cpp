@@ -125,6 +125,19 @@ TEUCHOS_UNIT_TEST(TpetraInterface, BadInput) {
   const std::string m2 =
       messageOf([&] { tfeti::FetiSolver s(comm, rect.numSubdomains(), both, tight()); });
   TEST_ASSERT(contains(m2, "tpetraK and K are both given"));
+  // The dry run's forecast builds the subdomains as the constructor does, after the same checks:
+  // the same message for each (a load vector one entry short is the third).
+  auto shortLoad = local;
+  if (comm->getRank() == 0) shortLoad.front().f.pop_back();
+  for (const auto* bad : {&shifted, &both, &shortLoad}) {
+    const std::string run =
+        messageOf([&] { tfeti::FetiSolver s(comm, rect.numSubdomains(), *bad, tight()); });
+    const std::string dry = messageOf(
+        [&] { tfeti::FetiSolver::forecastSetupMemory(comm, rect.numSubdomains(), *bad, tight()); });
+    out << "run: " << run << "\ndry run: " << dry << "\n";
+    TEST_ASSERT(!run.empty());
+    TEST_EQUALITY(dry, run);
+  }
 
   tfeti::FetiSolver solver(comm, rect.numSubdomains(), local, tight());
   solver.solve();

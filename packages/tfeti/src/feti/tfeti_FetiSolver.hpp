@@ -150,7 +150,9 @@ class FetiSolver {
   // (tfeti_SetupMemoryForecast.hpp): the rows of B the tearing builds, the factors' bytes from
   // the local solver's own symbolic analyses (the analyses the run makes), the Dirichlet
   // preconditioner's interior factors on the interfaces of that tearing, the explicit F_s. The
-  // FETI list is validated here, on a copy.
+  // FETI list is validated here, on a copy; the subdomains are checked as the constructor checks
+  // them and built one at a time, unfactorized, for their kernels and fixing dofs (so the
+  // constructor's errors, a kernel's residual included, are the forecast's).
   static SetupMemoryForecast forecastSetupMemory(
       const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       const std::vector<SubdomainData>& local, const Teuchos::ParameterList& feti,
@@ -352,7 +354,9 @@ class FetiSolver {
   // One switch, in the FETI list, for MPRGP alone and inside SMALBE.
   static constexpr const char* kPreconditioningInFace = "Preconditioning in face";
 
-  // Set-up (tfeti_FetiSolverSetup.cpp).
+  // Set-up (tfeti_FetiSolverSetup.cpp; the memory checks, checkFactorMemory, nodesHold,
+  // checkPreconditionerMemory, explicitDoesNotFit and what it counts:
+  // tfeti_FetiSolverMemoryChecks.cpp).
   void buildSubdomains(const std::vector<std::vector<double>>& coords);
   // Between the subdomains' construction and their factorization: the factors' bytes against
   // the nodes' memory (factorMemory_); throws std::invalid_argument (naming the parameters to
@@ -411,9 +415,11 @@ class FetiSolver {
   // explicit is an error naming the parameter. Collective.
   bool explicitDoesNotFit(DenseStorage storage, const ExplicitDualOperator* previous,
                           bool releaseStiffness);
-  // This rank's bytes for that: its new F_s, the largest transient (from the Schur complement:
-  // the analysis with the dual rows' dofs last, made here for every block assembled anew; by
-  // solves, a bound; on a device, all the blocks full once as they go up), less the K freed.
+  // This rank's bytes for that: its new F_s and what their solves leave with the local solvers
+  // (LocalSolver::solveKeeps: Tacho's workspace), the largest transient (from the Schur
+  // complement: the counts of the analysis with the dual rows' dofs last, made for each set of
+  // dofs or kept from an earlier one of the pattern; by solves, a bound; on a device, all the
+  // blocks full once as they go up), less the K freed.
   double explicitAssemblyNeed(DenseStorage storage, bool releaseStiffness,
                               const std::vector<ExplicitDualOperator::PlannedBlock>& plan);
   // What assembling local block i as planned takes beyond its values, at its peak

@@ -164,6 +164,8 @@ SetupMemoryForecast FetiSolver::forecastSetupMemory(const Teuchos::RCP<const Com
                                                     const std::vector<InequalityRow>& inequalities,
                                                     const std::vector<EqualityRow>& equalities) {
   const Teuchos::ParameterList valid = validatedParameters(feti);
+  // The constructor's checks of the subdomains first: the forecast builds them as it does.
+  checkSubdomainInput(*comm, numSubdomains, local);
   int localDpn = local.empty() ? 0 : local.front().dofsPerNode, dpn = 0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &localDpn, &dpn);
   const Tearing t = buildTearing(comm, numSubdomains, tearingInput(local), dpn,

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 
 #include "tfeti_Gather.hpp"
+#include "tfeti_TpetraInterface.hpp"
 
 namespace tfeti {
 
@@ -35,8 +37,19 @@ std::string nodeRangeError(const std::vector<int>& nodes, int numNodes, const st
 }  // namespace
 
 std::string subdomainDataError(const SubdomainData& sd, int numSubdomains) {
-  return subdomainDataError(sd.mesh, sd.mesh.coords, sd.dofsPerNode, sd.K, sd.f, sd.kernel,
-                            numSubdomains);
+  if (sd.tpetraK.is_null())
+    return subdomainDataError(sd.mesh, sd.mesh.coords, sd.dofsPerNode, sd.K, sd.f, sd.kernel,
+                              numSubdomains);
+  // K given as a Tpetra matrix: checked as the CSR arrays FetiSolver makes of it (where the
+  // constructor has not made them yet: the dry run's forecast), with the constructor's words.
+  const std::string what = "subdomain " + std::to_string(sd.mesh.id) + ": tpetraK";
+  if (sd.K.rows != 0 || !sd.K.rowPtr.empty()) return what + " and K are both given; give one";
+  try {
+    return subdomainDataError(sd.mesh, sd.mesh.coords, sd.dofsPerNode,
+                              csrFromTpetra(*sd.tpetraK, what), sd.f, sd.kernel, numSubdomains);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
 }
 
 std::string subdomainDataError(const SubdomainMesh& m, const std::vector<double>& coords,

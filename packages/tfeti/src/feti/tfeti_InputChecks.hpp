@@ -13,7 +13,8 @@
 namespace tfeti {
 
 // One subdomain's data against its own mesh (sizes of K, f, coordinates, kernel; node indices
-// of elements and boundary lists; finite numbers): empty when consistent.
+// of elements and boundary lists; finite numbers): empty when consistent. A K given as tpetraK
+// is checked as the CSR arrays made of it (and not given twice).
 std::string subdomainDataError(const SubdomainData& sd, int numSubdomains);
 // The same for the parts of one subdomain, coords (mesh.dim per node) standing for mesh.coords.
 std::string subdomainDataError(const SubdomainMesh& mesh, const std::vector<double>& coords,

@@ -35,7 +35,9 @@ struct SetupMemoryForecast {
   // (LocalSolver::solveKeeps: Tacho's workspace, n x min(128, m_s) per subdomain; 0 otherwise),
   // part of the explicit check's need. The run's check counts what the workspace grows by, from
   // the column its earlier solves made: the forecast is above it by at most n doubles a
-  // subdomain.
+  // subdomain. (The solves' transient bound, explicitSolvesTransient, counts the local solver's
+  // solve vectors as three arrays of the width, which for Tacho may hold the same workspace:
+  // counted twice for the largest block at most, on the safe side.)
   double explicitSolverKeeps = 0.0;
 };
 

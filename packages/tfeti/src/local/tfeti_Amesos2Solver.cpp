@@ -21,6 +21,7 @@ class Amesos2Solver final : public LocalSolver {
   explicit Amesos2Solver(std::string type) : type_(std::move(type)) {}
 
   void factorize(const CsrMatrix& A) override {
+    widest_ = 0;  // the next Amesos2 solver starts without a workspace, even if this one fails
     auto comm = Teuchos::rcp(new Teuchos::SerialComm<int>());
     map_ = Teuchos::rcp(new Map(A.rows, 0, comm, Tpetra::LocallyReplicated));
     Teuchos::Array<size_t> rowCounts(A.rows);
@@ -36,7 +37,6 @@ class Amesos2Solver final : public LocalSolver {
     solver_ = Amesos2::create<CrsMatrix, MultiVector>(amesosName, matrix_);
     solver_->symbolicFactorization().numericFactorization();
     nnzLU_ = solver_->getStatus().getNnzLU();
-    widest_ = 0;
   }
 
   // The multivectors are views of the caller's b and x, not copies held by the solver. Copies
@@ -61,7 +61,8 @@ class Amesos2Solver final : public LocalSolver {
   // does not shrink it. KLU2 keeps nothing of a solve's width.
   std::size_t solveKeeps(std::size_t n, int nrhs) const override {
     if (type_ != "tacho" || nrhs <= widest_) return 0;
-    return sizeof(double) * n * static_cast<std::size_t>(nrhs - widest_);
+    const std::size_t rows = map_.is_null() ? n : map_->getNodeNumElements();
+    return sizeof(double) * rows * static_cast<std::size_t>(nrhs - widest_);
   }
 
   // Amesos2's Tacho adapter does not report its factor size (0 then means unknown).

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <map>
+#include <deque>
 #include <memory>
 #include <stdexcept>
 #include <unordered_map>
@@ -107,11 +107,15 @@ struct SymbolicAnalysis {
   // predictInverseBlockMemory's counts by the set of dofs moved last (sorted): they depend on
   // nothing but the pattern, this analysis's order and that set, so subdomains cut alike from a
   // structured mesh, and a memory check made again at each reassembly, analyse each set once.
-  // A few integers per set, gone with the analysis.
+  // The last kTrailingSets sets asked for are kept (a set is k integers; the sets change with
+  // the contact rows over a long run, the analysis may live through all of it), the oldest
+  // dropped first; gone with the analysis.
   struct TrailingCounts {
+    std::vector<int> dofs;
     std::size_t analysisPeak, numeric, factorization;
   };
-  mutable std::map<std::vector<int>, TrailingCounts> trailing;
+  static constexpr std::size_t kTrailingSets = 8;
+  mutable std::deque<TrailingCounts> trailing;
   SymbolicAnalysis(CholmodKind k, const CsrMatrix& A)
       : kind(k), n(A.rows), rowPtr(A.rowPtr), colInd(A.colInd) {}
   ~SymbolicAnalysis() {
@@ -417,23 +421,27 @@ class CholmodSolver final : public LocalSolver {
                                                          const SymbolicAnalysis& a,
                                                          const std::vector<int>& at,
                                                          const std::vector<int>& dofs) {
-    std::vector<int> key = dofs;
-    std::sort(key.begin(), key.end());
-    const auto known = a.trailing.find(key);
-    if (known != a.trailing.end()) return known->second;
+    SymbolicAnalysis::TrailingCounts t;
+    t.dofs = dofs;
+    std::sort(t.dofs.begin(), t.dofs.end());
+    for (const auto& known : a.trailing)
+      if (known.dofs == t.dofs) return known;
     cholmod_common* c = common();
     const std::size_t before = c->memory_inuse, outerPeak = c->memory_usage;
     c->memory_usage = before;
     cholmod_factor* F = analyzeTrailing(A, trailingOrder(*a.symbolic, at));
-    SymbolicAnalysis::TrailingCounts t;
     t.analysisPeak = c->memory_usage - before;
     t.numeric = SymbolicAnalyses::numericFactorBytes(*F);
     t.factorization = t.numeric + SymbolicAnalyses::factorizationTransientBytes(A, *F, t.numeric);
     cholmod_free_factor(&F, c);
     c->memory_usage = std::max(outerPeak, before + t.analysisPeak);
-    // CHOLMOD's workspace grown by this analysis (the first of a larger matrix) is in this peak
-    // but will not be in the next one's: such counts are not kept.
-    if (c->memory_inuse == before) a.trailing.emplace(std::move(key), t);
+    // A safeguard: CHOLMOD's workspace grown by this analysis would be in this peak but not in
+    // the next one's, so such counts are not kept. (The pattern's own analysis, made first,
+    // grows it for A's size; none has been seen to grow here.)
+    if (c->memory_inuse == before) {
+      if (a.trailing.size() == SymbolicAnalysis::kTrailingSets) a.trailing.pop_front();
+      a.trailing.push_back(t);
+    }
     return t;
   }
 

@@ -42,11 +42,12 @@ class LocalSolver {
     (void)A, (void)dofs;
     return -1;
   }
-  // The bytes a solve of nrhs columns of n rows would leave with this solver beyond what it
-  // keeps now, for as long as its factor lives: Tacho's workspace, kept at the widest solve of
-  // the factor (the explicit dual operator's assembly by solves, 128 columns a time, leaves an
-  // n x 128 array with every subdomain's solver); 0 for the others, whose solves leave nothing
-  // per solver (CHOLMOD's solve vectors are the process's, not a factor's).
+  // The bytes a solve of nrhs columns of n rows (the factor's rows once there is one) would
+  // leave with this solver beyond what it keeps now, for as long as its factor lives: Tacho's
+  // workspace, kept at the widest solve of the factor (the explicit dual operator's assembly by
+  // solves, 128 columns a time, leaves an n x 128 array with every subdomain's solver); 0 for the
+  // others, whose solves leave nothing per solver (CHOLMOD's solve vectors are the process's, not a
+  // factor's).
   virtual std::size_t solveKeeps(std::size_t n, int nrhs) const {
     (void)n, (void)nrhs;
     return 0;
