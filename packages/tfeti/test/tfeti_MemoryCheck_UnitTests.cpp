@@ -8,7 +8,8 @@
 //  - the Dirichlet preconditioner's interior factors likewise, after the subdomain
 //    factorizations, at the set-up's peak (K kept or freed one by one);
 //  - the dry run's forecast (FetiSolver::forecastSetupMemory) counts, before anything is
-//    factorized, exactly the needs these checks then find, and bounds the explicit F_s' need.
+//    factorized, exactly the needs these checks then find (Tacho's workspace within a column);
+//  - the explicit F_s' check's need covers what an assembly takes on the heap.
 // The explicit F_s' own check: tfeti_ExplicitDual_UnitTests.cpp.
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
@@ -20,8 +21,10 @@
 #include <string>
 #include <vector>
 
+#include "tfeti_ExplicitDualOperator.hpp"
 #include "tfeti_FakeNodeMemory.hpp"
 #include "tfeti_FetiSolver.hpp"
+#include "tfeti_HeapTally.hpp"
 #include "tfeti_NodeMemory.hpp"
 #include "tfeti_Test3d.hpp"
 #include "tfeti_TestHelpers.hpp"
@@ -383,5 +386,44 @@ TEUCHOS_UNIT_TEST(MemoryCheck, ForecastIsWhatTheChecksFind) {
     TEST_COMPARE(forecastNeed - runNeed, <=, sum(column));
     TEST_EQUALITY(run.explicitAssembly().schurBlocks, 0LL);
     TEST_ASSERT(run.solve().converged);
+  }
+}
+
+// The explicit check's need against what an assembly takes: an operator assembled again on the
+// run's factors and tearing, its peak on the heap (C++'s and CHOLMOD's allocations, HeapTally)
+// summed over the ranks of the node, within the need the run's check counted, from the Schur
+// complement and by solves, and above the blocks' bytes. (Kokkos allocates the operator's
+// Tpetra vectors with malloc, which HeapTally does not see: they are vectors of the multipliers,
+// not counted by the check either. CHOLMOD's solve vectors, shared by the process, were made by
+// the run's own assembly: the solves' bound counts them, this assembly does not make them.)
+TEUCHOS_UNIT_TEST(MemoryCheck, ExplicitAssemblyWithinTheCheckedNeed) {
+  auto comm = Tpetra::getDefaultComm();
+  const auto sum = [&](double x) { return tfeti_test::globalSum(*comm, x); };
+  const tfeti_test::Box3d larger(2, 2, 1, 4, 4, 4, false);
+  tfeti_test::Material3d mat;
+  mat.dofsPerNode = 3;
+  for (const std::string assembly : {"schur", "solves"}) {
+    Teuchos::ParameterList params = parameters("explicit", true, "cholmod");
+    params.set("Explicit assembly", assembly);
+    params.set("Keep subdomain matrices", true);
+    tfeti::FetiSolver run(comm, larger.numSubdomains(),
+                          tfeti_test::localBoxSubdomains(larger, mat, {0.0, 0.0, -1.0}, *comm),
+                          params);
+    const double need = run.dualOperatorChoice().nodeNeedBytes;
+    const double blocks = static_cast<double>(run.explicitDualBytes().total);
+    const std::size_t before = tfeti_test::HeapTally::inUse();
+    tfeti_test::HeapTally::reset();
+    double peak = 0.0;
+    {
+      const tfeti::ExplicitDualOperator again(
+          run.tearing(), run.subdomains(), tfeti::DenseStorage::Packed, nullptr,
+          tfeti::ExplicitDevice::Host,
+          assembly == "schur" ? tfeti::BlockAssembly::Schur : tfeti::BlockAssembly::Solves);
+      peak = static_cast<double>(tfeti_test::HeapTally::peak() - before);
+    }
+    out << assembly << ": the assembly's peak " << sum(peak) << " bytes, the check's need " << need
+        << ", the blocks " << blocks << "\n";
+    TEST_COMPARE(sum(peak), <=, need);
+    TEST_COMPARE(sum(peak), >=, blocks);
   }
 }
