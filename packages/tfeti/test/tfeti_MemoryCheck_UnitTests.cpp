@@ -315,7 +315,6 @@ TEUCHOS_UNIT_TEST(MemoryCheck, ForecastIsWhatTheChecksFind) {
         // The F_s: what the operator holds; the need the run's check's.
         TEST_EQUALITY(sum(f.explicitBlocks), static_cast<double>(run.explicitDualBytes().total));
         const double runNeed = run.dualOperatorChoice().nodeNeedBytes;
-        TEST_EQUALITY(f.explicitSolverKeeps, 0.0);  // CHOLMOD's solves keep nothing per factor
         const double forecastNeed =
             sum(f.explicitBlocks + f.explicitTransient - f.stiffnessFreedByAssembly);
         out << "  F_s' need " << forecastNeed << " (run " << runNeed << ")\n";

@@ -13,6 +13,7 @@
 #include <memory>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "tfeti_CholmodView.hpp"
@@ -111,11 +112,10 @@ struct SymbolicAnalysis {
   // the contact rows over a long run, the analysis may live through all of it), the oldest
   // dropped first; gone with the analysis.
   struct TrailingCounts {
-    std::vector<int> dofs;
     std::size_t analysisPeak, numeric, factorization;
   };
   static constexpr std::size_t kTrailingSets = 8;
-  mutable std::deque<TrailingCounts> trailing;
+  mutable std::deque<std::pair<std::vector<int>, TrailingCounts>> trailing;
   SymbolicAnalysis(CholmodKind k, const CsrMatrix& A)
       : kind(k), n(A.rows), rowPtr(A.rowPtr), colInd(A.colInd) {}
   ~SymbolicAnalysis() {
@@ -421,15 +421,15 @@ class CholmodSolver final : public LocalSolver {
                                                          const SymbolicAnalysis& a,
                                                          const std::vector<int>& at,
                                                          const std::vector<int>& dofs) {
-    SymbolicAnalysis::TrailingCounts t;
-    t.dofs = dofs;
-    std::sort(t.dofs.begin(), t.dofs.end());
-    for (const auto& known : a.trailing)
-      if (known.dofs == t.dofs) return known;
+    std::vector<int> sorted = dofs;
+    std::sort(sorted.begin(), sorted.end());
+    for (const auto& [set, known] : a.trailing)
+      if (set == sorted) return known;
     cholmod_common* c = common();
     const std::size_t before = c->memory_inuse, outerPeak = c->memory_usage;
     c->memory_usage = before;
     cholmod_factor* F = analyzeTrailing(A, trailingOrder(*a.symbolic, at));
+    SymbolicAnalysis::TrailingCounts t;
     t.analysisPeak = c->memory_usage - before;
     t.numeric = SymbolicAnalyses::numericFactorBytes(*F);
     t.factorization = t.numeric + SymbolicAnalyses::factorizationTransientBytes(A, *F, t.numeric);
@@ -440,7 +440,7 @@ class CholmodSolver final : public LocalSolver {
     // grows it for A's size; none has been seen to grow here.)
     if (c->memory_inuse == before) {
       if (a.trailing.size() == SymbolicAnalysis::kTrailingSets) a.trailing.pop_front();
-      a.trailing.push_back(t);
+      a.trailing.emplace_back(std::move(sorted), t);
     }
     return t;
   }
