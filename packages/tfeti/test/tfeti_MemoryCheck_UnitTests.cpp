@@ -315,8 +315,7 @@ TEUCHOS_UNIT_TEST(MemoryCheck, ForecastIsWhatTheChecksFind) {
         // The F_s: what the operator holds; the need the run's check's.
         TEST_EQUALITY(sum(f.explicitBlocks), static_cast<double>(run.explicitDualBytes().total));
         const double runNeed = run.dualOperatorChoice().nodeNeedBytes;
-        const double forecastNeed =
-            sum(f.explicitBlocks + f.explicitTransient - f.stiffnessFreedByAssembly);
+        const double forecastNeed = sum(f.explicitNeed());
         out << "  F_s' need " << forecastNeed << " (run " << runNeed << ")\n";
         // Exactly, from the Schur complement too: the forecast finds the kernels and the fixing
         // dofs that the run leaves out of a block's dofs (before 2026-12-07 it could not, and
@@ -351,8 +350,7 @@ TEUCHOS_UNIT_TEST(MemoryCheck, ForecastIsWhatTheChecksFind) {
     TEST_COMPARE(tfeti_test::globalSum(*comm, double(held)), >, 0.0);
     TEST_COMPARE(tfeti_test::globalSum(*comm, double(floating)), >, 0.0);
     TEST_EQUALITY(sum(f.factorPeak), run.factorMemoryCheck().needBytes);
-    TEST_EQUALITY(sum(f.explicitBlocks + f.explicitTransient - f.stiffnessFreedByAssembly),
-                  run.dualOperatorChoice().nodeNeedBytes);
+    TEST_EQUALITY(sum(f.explicitNeed()), run.dualOperatorChoice().nodeNeedBytes);
     TEST_ASSERT(run.solve().converged);
   }
   const tfeti::SetupMemoryForecast klu2 = tfeti::FetiSolver::forecastSetupMemory(
@@ -374,8 +372,7 @@ TEUCHOS_UNIT_TEST(MemoryCheck, ForecastIsWhatTheChecksFind) {
                    std::min<double>(128.0, static_cast<double>(f.dualRows[i]));
       column += solver == "tacho" ? 8.0 * run.subdomains()[i]->numDofs() : 0.0;
     }
-    const double forecastNeed = sum(f.explicitBlocks + f.explicitSolverKeeps + f.explicitTransient -
-                                    f.stiffnessFreedByAssembly);
+    const double forecastNeed = sum(f.explicitNeed());
     out << solver << ": F_s' need " << forecastNeed << " (run "
         << run.dualOperatorChoice().nodeNeedBytes << "), kept by the solves "
         << sum(f.explicitSolverKeeps) << "\n";

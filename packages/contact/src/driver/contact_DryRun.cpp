@@ -81,8 +81,7 @@ std::string explicitDualLine(const tfeti::Comm& comm, const tfeti::SetupMemoryFo
     << " MiB, largest F_s " << static_cast<long long>(largest) << " rows";
   // The run checks them once the factors and the preconditioner are made: their bytes come
   // on top of what a node has now.
-  const double need = factors + f.preconditionerLeaves + f.explicitBlocks + f.explicitSolverKeeps +
-                      f.explicitTransient - f.stiffnessFreedByAssembly;
+  const double need = factors + f.preconditionerLeaves + f.explicitNeed();
   const tfeti::NodeMemory node = tfeti::nodeMemory(comm, need);
   if (node.known) {
     s << "; after the factors and the preconditioner " << tfeti::describe(node) << " now";
