@@ -202,14 +202,12 @@ FetiSolver::FetiSolver(const Teuchos::RCP<const Comm>& comm, int numSubdomains,
       numSubdomains_(numSubdomains),
       data_(std::move(local)),
       equalities_(equalities) {
-  // Subdomain matrices given as Tpetra::CrsMatrix become CSR arrays (checked with the rest).
+  // Subdomain matrices given as Tpetra::CrsMatrix become CSR arrays (checked with the rest; one
+  // given as both is left as it is, for checkSubdomainInput to say so).
   collectively(*comm_, [&] {
     for (auto& sd : data_) {
-      if (sd.tpetraK.is_null()) continue;
-      const std::string what = "subdomain " + std::to_string(sd.mesh.id) + ": tpetraK";
-      if (sd.K.rows != 0 || !sd.K.rowPtr.empty())
-        throw std::invalid_argument(what + " and K are both given; give one");
-      sd.K = csrFromTpetra(*sd.tpetraK, what);
+      if (sd.tpetraK.is_null() || sd.K.rows != 0 || !sd.K.rowPtr.empty()) continue;
+      sd.K = csrFromTpetra(*sd.tpetraK, "subdomain " + std::to_string(sd.mesh.id) + ": tpetraK");
       sd.tpetraK = Teuchos::null;
     }
   });
