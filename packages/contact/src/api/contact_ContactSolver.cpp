@@ -143,6 +143,8 @@ void ContactSolver::setup() {
   ElasticContactProblem& problem = model.problem;
   const int dim = problem.dim();
   policy.fitOptions(params, dim, obstacles, r.options);
+  // Hertz's reference is made after the solve: its input is checked before it.
+  checkHertzInput(params, dim, contactBodyLaws(r.spec, problem));
   r.loadNorm = policy.loadNorm(*comm_, problem, r.options);
   setLoadDirection(r, dim);
 

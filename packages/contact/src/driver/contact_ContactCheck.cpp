@@ -6,6 +6,7 @@
 #include <sstream>
 #include <vector>
 
+#include "contact_ContactOutput.hpp"
 #include "contact_ContactParameters.hpp"
 #include "contact_DryRun.hpp"
 #include "contact_ElasticContactProblem.hpp"
@@ -156,6 +157,7 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
                                  [](const ContactPairSpec& p) { return p.obstacle.has_value(); })));
     requireLoadOrMotion(*comm, problem.local, options, !problem.prescribed.empty());
   }
+  checkHertzInput(params, problem.dim(), contactBodyLaws(spec, problem));
   const int restartStep = nonlinear ? checkRestart(params, spec, problem, outputDirectory) : -1;
   const auto rows = static_cast<long long>(problem.contact.rows.size());
   const std::string solver = tfeti::FetiSolver::dualSolverFor(fetiParameters(params, spec), rows);

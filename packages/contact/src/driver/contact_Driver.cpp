@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "contact_ContactPairs.hpp"
 #include "contact_ContactParameters.hpp"
@@ -38,6 +39,19 @@ Array<T> arr(std::initializer_list<T> values) {
 tfeti::strict::Validator withLength(tfeti::strict::Validator v, int lo, int hi) {
   v->lengthBetween(lo, hi);
   return v;
+}
+
+// Teuchos names a sublist by its path from the root list, whose name is the XML's or Teuchos'
+// "ANONYMOUS": the user's file has no such list, so the paths start below it.
+std::string withoutRootName(std::string message, const std::string& root) {
+  auto replaceAll = [&message](const std::string& from, const std::string& to) {
+    for (std::size_t at = message.find(from); at != std::string::npos;
+         at = message.find(from, at + to.size()))
+      message.replace(at, from.size(), to);
+  };
+  replaceAll("the sublist \"" + root + "\"", "the top-level list");
+  replaceAll("\"" + root + "->", "\"");
+  return message;
 }
 
 }  // namespace
@@ -156,7 +170,8 @@ void validateDriverParameters(ParameterList& params, const std::string& source) 
         throw std::invalid_argument("Scalability: \"Preconditioners\" has \"" + p +
                                     "\"; valid: none, lumped, dirichlet");
   } catch (const std::exception& e) {
-    throw std::invalid_argument(source + ": invalid parameters:\n" + e.what());
+    throw std::invalid_argument(source + ": invalid parameters:\n" +
+                                withoutRootName(e.what(), params.name()));
   }
   // A relative mesh file is looked up next to the input file first, then in the working
   // directory, so that inputs and their meshes can travel together.

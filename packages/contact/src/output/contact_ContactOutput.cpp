@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
@@ -210,15 +211,31 @@ bool lineContact(const Teuchos::ParameterList& params, int dim) {
   return zone == "line" || (zone == "auto" && dim == 2);
 }
 
+void checkHertzInput(const Teuchos::ParameterList& params, int dim,
+                     const std::vector<plasticity::ElasticLaw>& contactLaws) {
+  const auto& hz = params.sublist("Contact problem").sublist("Hertz");
+  if (!hz.get<bool>("Compare")) return;
+  if (contactLaws.empty())
+    throw std::invalid_argument(
+        "Contact problem/Hertz: the Slave boundary lies on no body of Contact problem/Bodies; "
+        "Hertz needs the materials of the bodies in contact");
+  const bool line = lineContact(params, dim);
+  const char* load = line ? "Line load" : "Force";
+  if (!(hz.get<double>(load) > 0.0)) {
+    std::ostringstream msg;
+    msg << "Contact problem/Hertz: \"Compare\" = true needs \"" << load << "\" > 0 ("
+        << (line ? "the line contact's force per unit length" : "the point contact's total force")
+        << " of the full model), not " << hz.get<double>(load);
+    throw std::invalid_argument(msg.str());
+  }
+}
+
 std::optional<HertzReference> hertzReference(
     const Teuchos::ParameterList& params, double pMax, double extent, int dim,
     const std::vector<plasticity::ElasticLaw>& contactLaws) {
   const auto& hz = params.sublist("Contact problem").sublist("Hertz");
   if (!hz.get<bool>("Compare")) return std::nullopt;
-  if (contactLaws.empty())
-    throw std::invalid_argument(
-        "Contact problem/Hertz: the Slave boundary lies on no body of Contact problem/Bodies; "
-        "Hertz needs the materials of the bodies in contact");
+  checkHertzInput(params, dim, contactLaws);
   const double R1 = hz.get<double>("Radius 1"), R2 = hz.get<double>("Radius 2");
   const double R = R2 > 0.0 ? R1 * R2 / (R1 + R2) : R1;
   // Two bodies: 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2; against a rigid obstacle the body's

@@ -124,7 +124,12 @@ struct HertzReference {
   // averaged nodes), set by addRecoveredErrors.
   double pMaxRecoveredError = 0.0, maxVonMisesError = 0.0, maxVonMisesNodalError = 0.0;
 };
-// Empty when Hertz/Compare is not set.
+// Before a run: where Hertz/Compare is set, the Slave boundary lies on a body (contactLaws not
+// empty) and the load of the contact's closed form, Force (point) or Line load (line), is
+// positive; otherwise std::invalid_argument naming the parameter (the reference would be 0/0).
+void checkHertzInput(const Teuchos::ParameterList& params, int dim,
+                     const std::vector<plasticity::ElasticLaw>& contactLaws);
+// Empty when Hertz/Compare is not set; checkHertzInput's errors otherwise.
 std::optional<HertzReference> hertzReference(
     const Teuchos::ParameterList& params, double pMax, double extent, int dim,
     const std::vector<plasticity::ElasticLaw>& contactLaws);

@@ -186,7 +186,9 @@ void addElasticContactParameters(ParameterList& pl) {
   auto& h = cp.sublist("Hertz", false,
                        "compare with Hertz: line contact of two cylinders (Contact zone line) or "
                        "point contact of two spheres (point)");
-  h.set("Compare", false, "report Hertz's p_max and half-width (contact radius) and the errors");
+  h.set("Compare", false,
+        "report Hertz's p_max and half-width (contact radius) and the errors; needs Line load "
+        "(line contact) or Force (point contact) > 0");
   h.set("Radius 1", 1.0, "R1", tfeti::strict::positive());
   h.set("Radius 2", 0.0, "R2; 0 means infinity (a flat body)", tfeti::strict::nonNegative());
   h.set("Line load", 0.0,
