@@ -143,9 +143,10 @@ void ContactSolver::setup() {
   ElasticContactProblem& problem = model.problem;
   const int dim = problem.dim();
   policy.fitOptions(params, dim, obstacles, r.options);
-  // Hertz's reference is made after the solve: its input is checked before it.
-  checkHertzInput(params, dim, contactBodyLaws(r.spec, problem));
   r.loadNorm = policy.loadNorm(*comm_, problem, r.options);
+  // Hertz's reference is made after the solve: its input is checked before it (in the dry
+  // run's order).
+  checkHertzInput(params, dim, contactBodyLaws(r.spec, problem));
   setLoadDirection(r, dim);
 
   r.history.stepSize = 1.0 / r.options.steps;
