@@ -1385,6 +1385,49 @@ def friction(d, expect, force, mu, tol, resultant_tol=None, magnitudes=False):
           f"{c['stick_nodes']} stick, max ratio {c['max_tangential_ratio']:.6f}")
 
 
+def friction_held(d, tol):
+    """A body held along the surface by friction alone (no support): the run converged to load
+    factor 1, the resultant contact force (normal and tangential) is the load in magnitude and
+    along it (force_relative_error), the friction rows' conditions hold, and some node sticks
+    (were all sliding, nothing would fix the body's sliding)."""
+    s = load(d)
+    if not s["converged"] or abs(s["nonlinear"]["load_factor"] - 1.0) > 1e-12:
+        fail(f"{d}: did not reach load factor 1")
+    c = s["contact"]
+    k = c["last_solve"]
+    u = s["max_abs_u"]
+    resultant = math.sqrt(sum(f * f for f in c["contact_force"]))
+    if abs(resultant - c["applied_force"]) > tol * c["applied_force"]:
+        fail(f"{d}: |contact_force| {resultant:.10e} against the load {c['applied_force']:.10e}")
+    if c["force_relative_error"] > tol:
+        fail(f"{d}: force {c['force']:.10e} along the load, applied {c['applied_force']:.10e}")
+    if k["max_friction_bound_excess"] > 1e-10 * c["applied_force"]:
+        fail(f"{d}: a tangential multiplier beyond its bound by {k['max_friction_bound_excess']}")
+    if c["max_tangential_ratio"] > 1.0 + 1e-5:
+        fail(f"{d}: max |lambda_T| / bound {c['max_tangential_ratio']}")
+    if k["max_friction_slip_residual"] > KKT_TOL * u or k["max_penetration"] > KKT_TOL * u:
+        fail(f"{d}: slip residual {k['max_friction_slip_residual']:.2e}, penetration "
+             f"{k['max_penetration']:.2e} (max |u| {u:.2e})")
+    if c["stick_nodes"] < 1:
+        fail(f"{d}: no node sticks")
+    print(f"OK: contact force {c['contact_force']} against the load {c['applied_force']:.6e}, "
+          f"{c['stick_nodes']} stick, {c['slip_nodes']} slip")
+
+
+def friction_beyond(d, limit):
+    """A body held by friction alone, loaded beyond what friction can hold from the load factor
+    `limit` on: the run stops with the step control's failure, its summary written, at the last
+    converged load factor, below the limit and within 5 % of it."""
+    s = load(d)
+    nl = s["nonlinear"]
+    if s["converged"]:
+        fail(f"{d}: converged beyond the friction's limit")
+    t = nl["load_factor"]
+    if not (0.95 * limit < t <= limit):
+        fail(f"{d}: last converged load factor {t}, expected just below {limit}")
+    print(f"OK: stopped at load factor {t:.6f} (limit {limit:.6f}): {nl.get('message', '')[:120]}")
+
+
 def cattaneo(d, tol):
     """Cattaneo-Mindlin partial slip (a 2D Coulomb run loaded normally, then tangentially by a
     loading plate: a coupled and a prescribed component of one boundary): Q/(mu P) about 1/2,
@@ -1726,6 +1769,10 @@ if __name__ == "__main__":
         friction(args[0], args[1], option(args, "--force", 0.0), option(args, "--mu", 0.0),
                  option(args, "--tol", 1e-6), option(args, "--resultant-tol", None),
                  "--magnitudes" in args)
+    elif mode == "friction_held":
+        friction_held(args[0], option(args, "--tol", 1e-6))
+    elif mode == "friction_beyond":
+        friction_beyond(args[0], option(args, "--limit", 1.0))
     elif mode == "friction_fields":
         friction_fields(args[0])
     elif mode == "tresca_bonded":

@@ -42,6 +42,9 @@ struct ContactRun {
   NonlinearHistory history;
   ModelFriction friction;
   FrictionHistory frictionHistory;  // read by a restart, kept up to date by the load steps
+  // Coulomb friction alone holds a body along the surface: every load step starts sticking
+  // (stickingBounds), as the previous step's bounds may not hold the new load.
+  bool frictionSticks = false;
   // The final state, once the policy has evaluated it: its stresses and contact nodes.
   bool evaluated = false;
   std::vector<plasticity::StressField> stresses;

@@ -157,6 +157,16 @@ void ContactSolver::setup() {
   // K of the undeformed bodies, factorized once; loads and rows change per iteration.
   policy.initialContact(*comm_, model, r.options,
                         std::min(1.0, r.history.loadFactor + r.history.stepSize));
+  // Friction rows with a bound from the start hold the bodies from the first solve: the solver
+  // is built with them, as the first iteration will have them; then what holds every body is
+  // checked, before any factorization.
+  const InitialFriction friction = addInitialFrictionRows(
+      r.spec, problem, r.friction, r.frictionHistory.bounds, problem.inequalities, *comm_);
+  r.frictionHistory.bounds = friction.bounds;
+  r.frictionSticks = friction.sticks;
+  if (r.frictionSticks && r.verbosity > 0 && comm_->getRank() == 0)
+    std::cout << "nonlinear_contact: Coulomb friction alone holds a body along the contact "
+                 "surface: every load step starts sticking, then takes mu lambda_N\n";
   r.solver = std::make_unique<tfeti::FetiSolver>(
       comm_, problem.numSubdomains(), handOverStiffness(problem.local), r.feti,
       problem.inequalities, policy.initialEqualityRows(problem, r.history.loadFactor, model.u));
@@ -236,6 +246,8 @@ void ContactSolver::runLoadSteps(LoadSteps& s) {
     const double t = s.control.nextLoadFactor();
     const int step = s.control.nextStep();
     FixedPointRecord fixedPoint;
+    if (r.frictionSticks)
+      s.iteration.frictionBounds = stickingBounds(r.spec, r.model->problem, r.friction);
     StepOutcome out = attemptFrictionalStep(s.iteration, *r.solver, r.model->problem,
                                             r.options.rule, step, t, fixedPoint);
     s.lastQp = out.qp;

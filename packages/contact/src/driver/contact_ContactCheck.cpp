@@ -14,6 +14,7 @@
 #include "contact_FrictionHistory.hpp"
 #include "contact_GmshMesh.hpp"
 #include "contact_NonlinearHistory.hpp"
+#include "contact_NonlinearIteration.hpp"
 #include "contact_NonlinearOptions.hpp"
 #include "contact_NonlinearSetup.hpp"
 #include "contact_PrescribedDisplacement.hpp"
@@ -139,6 +140,44 @@ void addBoundaryLines(const tfeti::Comm& comm, const ElasticContactSpec& spec,
   }
 }
 
+// The run's check that every rigid motion is held, on the rows of its first solve: the rigid
+// obstacle where the first increment moves it, and the friction rows with a bound from the start
+// (Tresca). A restart starts from its saved state, which the dry run does not read: its run
+// checks.
+void checkRigidMotions(const tfeti::Comm& comm, const ParameterList& params,
+                       const ElasticContactSpec& spec, ElasticContactProblem& problem,
+                       const NonlinearOptions* options) {
+  const int rank = comm.getRank();
+  const ModelFriction friction = modelFriction(params, spec.pairs);
+  std::vector<tfeti::InequalityRow> rows;
+  auto addFriction = [&] { addInitialFrictionRows(spec, problem, friction, {}, rows, comm); };
+  if (options != nullptr && !options->obstacleDisplacement.empty()) {
+    // The report is of the reference configuration: the moved obstacle's rows only for this.
+    const auto contact = problem.contact;
+    const auto rowPair = problem.rowPair;
+    const auto inequalities = problem.inequalities;
+    const auto pairs = problem.pairs;
+    searchContactAtReference(problem, *options, std::min(1.0, 1.0 / options->steps), rank);
+    rows = problem.inequalities;
+    try {
+      addFriction();
+    } catch (...) {
+      problem.contact = contact;
+      problem.rowPair = rowPair;
+      problem.inequalities = inequalities;
+      problem.pairs = pairs;
+      throw;
+    }
+    problem.contact = contact;
+    problem.rowPair = rowPair;
+    problem.inequalities = inequalities;
+    problem.pairs = pairs;
+  } else {
+    rows = problem.inequalities;
+    addFriction();
+  }
+}
+
 }  // namespace
 
 void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterList& params,
@@ -148,9 +187,10 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   if (nonlinear) checkNonlinearParameters(params);
   const ElasticContactSpec spec =
       nonlinear ? nonlinearContactSpec(params) : elasticContactSpec(params);
-  const ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
+  ElasticContactProblem problem = buildElasticContactProblem(spec, *comm);
+  NonlinearOptions options;
   if (nonlinear) {
-    const NonlinearOptions options = nonlinearOptionsFrom(params);
+    options = nonlinearOptionsFrom(params);
     checkNonlinearOptionsFor(options, problem.dim(),
                              static_cast<int>(std::count_if(
                                  spec.pairs.begin(), spec.pairs.end(),
@@ -159,6 +199,8 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   }
   checkHertzInput(params, problem.dim(), contactBodyLaws(spec, problem));
   const int restartStep = nonlinear ? checkRestart(params, spec, problem, outputDirectory) : -1;
+  if (restartStep < 0)
+    checkRigidMotions(*comm, params, spec, problem, nonlinear ? &options : nullptr);
   const auto rows = static_cast<long long>(problem.contact.rows.size());
   const std::string solver = tfeti::FetiSolver::dualSolverFor(fetiParameters(params, spec), rows);
 

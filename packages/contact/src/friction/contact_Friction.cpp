@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "contact_RigidMotions.hpp"
 #include "contact_TangentialRows.hpp"
 #include "tfeti_StrictParameters.hpp"
 
@@ -247,6 +248,48 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
     }
   }
   return out;
+}
+
+SlipBounds stickingBounds(const ElasticContactSpec& spec, const ElasticContactProblem& p,
+                          const ModelFriction& friction) {
+  double E = 0.0;
+  for (const auto& body : spec.bodies) E = std::max(E, body.law.E);
+  const std::vector<double> w = contactRowWeights(p);
+  SlipBounds bounds;
+  for (std::size_t k = 0; k < p.contact.rows.size(); ++k)
+    if (friction.ofRow(p, k).law == FrictionSpec::Law::Coulomb)
+      bounds[p.contact.rows[k].slaveNode] = 10.0 * E * w[k];
+  return bounds;
+}
+
+InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
+                                       const ElasticContactProblem& p,
+                                       const ModelFriction& friction, const SlipBounds& bounds,
+                                       std::vector<tfeti::InequalityRow>& rows,
+                                       const tfeti::Comm& comm) {
+  const int rank = comm.getRank();
+  auto withFriction = [&](const SlipBounds& b) {
+    std::vector<tfeti::InequalityRow> all = rows;
+    const auto f = frictionRows(p, friction, b, {}, {}, rank);
+    all.insert(all.end(), f.begin(), f.end());
+    return all;
+  };
+  InitialFriction start{bounds, false};
+  std::vector<tfeti::InequalityRow> with = withFriction(bounds);
+  // Does Coulomb friction hold a body? Free without its rows (Tresca's stay), held with them
+  // sticking (docs/friction.md, "A body held by friction alone"). Where the sticking rows do
+  // not hold it either, the check below names the motions free without them.
+  if (friction.coulomb() && !freeRigidMotions(spec, p, withFriction({}), comm).empty()) {
+    const SlipBounds stick = stickingBounds(spec, p, friction);
+    std::vector<tfeti::InequalityRow> stuck = withFriction(stick);
+    if (freeRigidMotions(spec, p, stuck, comm).empty()) {
+      with = std::move(stuck);
+      start = {stick, true};
+    }
+  }
+  requireRigidMotionsHeld(spec, p, with, comm);
+  rows = std::move(with);
+  return start;
 }
 
 namespace {

@@ -98,6 +98,30 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
                                                const std::vector<double>& stepStart,
                                                const std::vector<double>& current, int rank);
 
+// The friction rows the solver is built with, appended to `rows` (the first solve's contact rows),
+// then the check that every rigid motion is held (requireRigidMotionsHeld: collective, throws on
+// every rank naming the free motions). Rows with a bound from the start: Tresca's, and Coulomb's
+// from `bounds` (a restart's). Coulomb without bounds solves its first iteration frictionless,
+// and a step starts from the previous step's bounds. Where Coulomb friction alone holds a body
+// along the surface, the first would be singular and the second may not hold the new load: the
+// Coulomb rows then start every step from stickingBounds (`sticks` is set, and the bounds the
+// first step starts from are returned; otherwise `bounds`).
+struct InitialFriction {
+  SlipBounds bounds;
+  bool sticks = false;
+};
+InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
+                                       const ElasticContactProblem& p,
+                                       const ModelFriction& friction, const SlipBounds& bounds,
+                                       std::vector<tfeti::InequalityRow>& rows,
+                                       const tfeti::Comm& comm);
+
+// A bound no tangential force reaches, per slave node of the Coulomb pairs' contact rows: ten
+// times the largest Young's modulus of the bodies times the node's weight (a traction of 10 E).
+// The solve with it sticks; mu lambda_N replaces it after.
+SlipBounds stickingBounds(const ElasticContactSpec& spec, const ElasticContactProblem& p,
+                          const ModelFriction& friction);
+
 // Per contact node: the tangential force and traction, the slip of the step and the state, from
 // the solver's last multipliers (matched to the rows by their entries). 3D: the tangential
 // force's magnitude |lambda_T|, its direction as the node's tangent, the slip along it, slip

@@ -77,6 +77,12 @@ void searchContactAt(const tfeti::Comm& comm, NonlinearModel& model,
   contact::updateContact(model.problem, model.surfaceDisplacement(comm, model.u), comm.getRank());
 }
 
+void searchContactAtReference(ElasticContactProblem& problem, const NonlinearOptions& options,
+                              double t, int rank) {
+  placeObstacles(problem, options, t, 1.0, false);
+  contact::updateContact(problem, {}, rank);
+}
+
 bool LoadStepIteration::keepsRowsInStep() const {
   const ElasticContactProblem& problem = model_.problem;
   if (problem.pairs.size() != 1 || friction.active()) return false;

@@ -54,6 +54,10 @@ ResidualCheck checkResidual(const tfeti::Comm& comm, const Field& load,
 // finds again.
 void searchContactAt(const tfeti::Comm& comm, NonlinearModel& model,
                      const NonlinearOptions& options, double t);
+// The same search without a model, at the reference configuration (a run that does not restart
+// starts there): what the dry run's check of the rigid motions sees of the first solve's rows.
+void searchContactAtReference(ElasticContactProblem& problem, const NonlinearOptions& options,
+                              double t, int rank);
 
 class LoadStepIteration {
  public:

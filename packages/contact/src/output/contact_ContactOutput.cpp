@@ -90,8 +90,11 @@ double maxPressure(const std::vector<ContactNode>& nodes) {
 
 double resultantForce(const std::vector<ContactNode>& nodes, const double direction[], int dim) {
   double f = 0.0;
+  // A node with friction rows: its whole force, so that a load friction carries (a block pushed
+  // along the surface) is part of the resultant.
   for (const auto& n : nodes)
-    for (int c = 0; c < dim; ++c) f += n.lambda * n.normal[c] * direction[c];
+    for (int c = 0; c < dim; ++c)
+      f += (n.frictionState >= 0 ? n.force[c] : n.lambda * n.normal[c]) * direction[c];
   return std::abs(f);
 }
 

@@ -80,7 +80,8 @@ std::vector<ContactNode> contactNodes(const ElasticContactProblem& problem,
                                       const std::vector<double>& surfaceSolution = {});
 
 double maxPressure(const std::vector<ContactNode>& nodes);
-// The resultant contact force on the slave body, sum of lambda * normal, along `direction`
+// The resultant contact force on the slave body, sum of lambda * normal (with friction the
+// nodes' whole force, ContactNode::force, tangential part included), along `direction`
 // (a unit vector; e.g. the applied load's direction: symmetry rows carry the other component
 // of the contact force on a half model). 2D: direction has 2 entries, 3D: 3.
 double resultantForce(const std::vector<ContactNode>& nodes, const double direction[], int dim = 2);

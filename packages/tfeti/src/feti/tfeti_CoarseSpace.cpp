@@ -47,7 +47,8 @@ void CoarseSpace::leastSquaresOnRows(const Vector& x, const Vector& rowMask, Vec
   } catch (const std::exception& e) {
     throw std::runtime_error(
         std::string("the active constraints do not fix every rigid body mode (G_A G_A^T is "
-                    "singular): a body held only by contact has no active contact (") +
+                    "singular): a body held only by contact has no active contact, or only "
+                    "friction rows at their bound (sliding) hold it along the surface (") +
         e.what() + ")");
   }
   Vector masked(x.getMap());

@@ -456,10 +456,11 @@ class FetiSolver {
   Teuchos::RCP<Vector> contactGapLevels(const MultiVector* discs = nullptr) const;
   Belos::ReturnType solvePenalty(DualQp& dual, QpCounters& counters);
   void completeQpResult(Belos::ReturnType ret, DualResult& result) const;
-  // The primal solution (tfeti_PrimalRecovery.cpp).
-  void recoverPrimal();
+  // The primal solution (tfeti_PrimalRecovery.cpp). Both return "" or, where the rows holding
+  // with equality leave a rigid motion free, why (u then takes the fit on all rows).
+  std::string recoverPrimal();
   bool nothingActs() const;  // collective: no load, no multiplier, no prescribed value
-  void addKernelComponent(MultiVector& u) const;
+  std::string addKernelComponent(MultiVector& u) const;
   void markRowsHoldingWithEquality(Vector& mask) const;
   void keepSubdomainSolutions(const MultiVector& u);
   // Results (tfeti_FetiSolverResults.cpp).

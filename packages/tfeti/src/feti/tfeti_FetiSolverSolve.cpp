@@ -9,8 +9,16 @@ namespace tfeti {
 DualResult FetiSolver::solve() {
   const std::string method = dualSolverFor(params_, tearing_.numInequalityRows);
   lambda_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
-  const DualResult result = method == "PCPG" ? solvePcpg() : solveQp(method);
-  recoverPrimal();
+  DualResult result = method == "PCPG" ? solvePcpg() : solveQp(method);
+  const std::string fitFailure = recoverPrimal();
+  // A converged QP whose rows holding with equality leave a rigid motion free (a body held by
+  // friction alone with every node at its slip bound) does not determine u: reported as not
+  // converged, so that a load step is cut back and a single solve exits as unconverged, with
+  // its last state written, instead of an error that loses the run.
+  if (result.converged && !fitFailure.empty()) {
+    result.converged = result.qp.converged = false;
+    result.qp.message = "the dual solve converged, but " + fitFailure;
+  }
   return result;
 }
 

@@ -10,7 +10,7 @@
 
 namespace tfeti {
 
-void FetiSolver::recoverPrimal() {
+std::string FetiSolver::recoverPrimal() {
   PhaseTimer t(*comm_, timings_.recovery, &memory_, "recovery");
   MultiVector rhs(tearing_.primalMap, 1);
   u_vec_ = Teuchos::rcp(new MultiVector(tearing_.primalMap, 1));
@@ -22,8 +22,10 @@ void FetiSolver::recoverPrimal() {
   // singular when a body is held by contact alone and, unloaded, touches nothing; of the rigid
   // motions it leaves free, zero is the smallest.
   const bool unloaded = nothingActs();
-  if (coarse_->dimension() > 0 && !unloaded) addKernelComponent(u);
+  std::string fitFailure;
+  if (coarse_->dimension() > 0 && !unloaded) fitFailure = addKernelComponent(u);
   keepSubdomainSolutions(u);
+  return fitFailure;
 }
 
 bool FetiSolver::nothingActs() const {
@@ -41,7 +43,7 @@ bool FetiSolver::nothingActs() const {
   return anyActing[0] == 0.0 && anyActing[1] == 0.0 && anyActing[2] == 0.0;
 }
 
-void FetiSolver::addKernelComponent(MultiVector& u) const {
+std::string FetiSolver::addKernelComponent(MultiVector& u) const {
   Vector g(tearing_.multiplierMap);
   F_->apply(*lambda_, g);
   g.update(-1.0, *d_, 1.0);
@@ -52,9 +54,20 @@ void FetiSolver::addKernelComponent(MultiVector& u) const {
     // Inactive inequality rows (lambda_i = 0) have a gap: they must not enter the fit.
     Vector mask(tearing_.multiplierMap);
     markRowsHoldingWithEquality(mask);
-    coarse_->leastSquaresOnRows(g, mask, alpha, params_.get<std::string>("Coarse solver"));
+    try {
+      coarse_->leastSquaresOnRows(g, mask, alpha, params_.get<std::string>("Coarse solver"));
+    } catch (const std::runtime_error& e) {
+      // Too few rows hold with equality to fix the rigid motions: a dual solve that did not
+      // converge (every friction row at its bound, where the bounds cannot balance the load),
+      // or a body held along the surface by friction rows that all slide. The fit on all rows
+      // (G G^T is regular) gives the last state; solve() reports the failure.
+      coarse_->leastSquaresCoefficients(g, alpha);
+      coarse_->addKernelCombination(alpha, u);
+      return e.what();
+    }
   }
   coarse_->addKernelCombination(alpha, u);
+  return "";
 }
 
 void FetiSolver::markRowsHoldingWithEquality(Vector& mask) const {
