@@ -169,7 +169,7 @@ std::vector<std::vector<double>> nullSpace(Gram& gram) {
   const double wMax = n > 0 ? std::max(w[n - 1], 0.0) : 0.0;
   std::vector<std::vector<double>> v;
   for (int k = 0; k < n; ++k)
-    if (!(w[k] > 1e-10 * wMax))
+    if (!(w[k] > 1e-12 * wMax))
       v.emplace_back(M.begin() + static_cast<std::ptrdiff_t>(k) * n,
                      M.begin() + static_cast<std::ptrdiff_t>(k + 1) * n);
   std::size_t rank = 0;
@@ -207,16 +207,21 @@ std::string point(const double* x, int dim) {
   return s + ")";
 }
 
-// "along x" for an axis, else "along (a, b, c)" (unit length).
+// "along x" for an axis, else "along (a, b, c)" (unit length, its largest component positive:
+// a free motion's sign says nothing).
 std::string direction(const double* a, int dim) {
   double norm = 0.0;
-  for (int k = 0; k < dim; ++k) norm += a[k] * a[k];
+  int largest = 0;
+  for (int k = 0; k < dim; ++k) {
+    norm += a[k] * a[k];
+    if (std::abs(a[k]) > std::abs(a[largest])) largest = k;
+  }
   norm = std::sqrt(norm);
   for (int k = 0; k < dim; ++k)
-    if (std::abs(std::abs(a[k]) - norm) <= 1e-9 * norm)
-      return std::string("along ") + (a[k] < 0 ? "-" : "") + "xyz"[k];
+    if (std::abs(std::abs(a[k]) - norm) <= 1e-9 * norm) return std::string("along ") + "xyz"[k];
+  const double sign = a[largest] < 0.0 ? -1.0 : 1.0;
   double u[3];
-  for (int k = 0; k < dim; ++k) u[k] = a[k] / norm;
+  for (int k = 0; k < dim; ++k) u[k] = sign * a[k] / norm;
   return "along " + point(u, dim);
 }
 
