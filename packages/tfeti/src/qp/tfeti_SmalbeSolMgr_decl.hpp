@@ -24,6 +24,9 @@
 //  "Equality tolerance"        1e-6  ||A|| * ||Q x|| <= tolE * ||b|| (||A|| Q x has the units
 //                                    of b)
 //  "Maximum outer iterations"  100   limit on the multiplier updates
+//  "Stall window"              50    stop (not converged) when ||Q x|| > the equality tolerance
+//                                    has not halved over this many outer iterations, M
+//                                    unchanged: an infeasible QP; 0: never
 //  "Penalty"                   1.0   rho = Penalty * ||A||
 //  "Initial M"                 1.0   M_0 = value * ||A||
 //  "Beta"                      10.0  M is divided by Beta when the Lagrangian does not increase

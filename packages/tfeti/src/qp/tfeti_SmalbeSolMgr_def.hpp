@@ -36,6 +36,13 @@ Teuchos::RCP<const Teuchos::ParameterList> SmalbeSolMgr<S, MV, OP>::getValidPara
     pl->set("Equality tolerance", 1e-6, "... and ||A|| ||Q x|| <= tolerance * ||b||",
             strict::positive());
     pl->set("Maximum outer iterations", 100, "limit on multiplier updates", strict::count());
+    pl->set("Stall window", 50,
+            "stop, not converged, after this many outer iterations in which ||Q x|| (above the "
+            "equality tolerance) did not fall below half its smallest value before them, M "
+            "unchanged: the bounds leave no point with Q x = 0 (an infeasible QP, e.g. a load "
+            "beyond what friction holds); 0: never. A feasible QP halves ||Q x|| at about "
+            "every outer iteration",
+            strict::count(0));
     pl->set("Penalty", 1.0, "rho = Penalty * ||A||", strict::positive());
     pl->set("Initial M", 1.0, "M_0 = value * ||A||", strict::positive());
     pl->set("Beta", 10.0, "M is divided by Beta when the Lagrangian does not increase enough",
@@ -211,6 +218,11 @@ struct SmalbeSolMgr<S, MV, OP>::SolveState {
   magnitude_type noisePrev = 0;
   std::vector<long long> activePrev;
   int settled = 0;
+  // The stall test: the smallest ||Q x|| so far, the outer iteration that halved it last (or
+  // reduced M), and whether the window since then has run out.
+  magnitude_type stallBest = std::numeric_limits<magnitude_type>::infinity();
+  int stallSince = 0, stallWindow = 0;
+  bool stalled = false;
 };
 
 template <class S, class MV, class OP>
@@ -234,7 +246,7 @@ Belos::ReturnType SmalbeSolMgr<S, MV, OP>::solveTimed() {
   const std::string initialFace = params_.get<std::string>("Initial face");
   if (s.faceMode && initialFace == "levels" && !levels_.is_null()) startFromLevelFace(s);
   if (s.faceMode && initialFace == "start") startFromInitialFace(s);
-  for (; s.k < s.maxOuter && !s.converged; ++s.k) outerIteration(s);
+  for (; s.k < s.maxOuter && !s.converged && !s.stalled; ++s.k) outerIteration(s);
   finishSolve(s);
   return s.converged ? Belos::Converged : Belos::Unconverged;
 }
@@ -281,6 +293,7 @@ void SmalbeSolMgr<S, MV, OP>::setUpOuterIterations(SolveState& s) {
   s.shiftedTest = params_.get<std::string>("Lagrangian test") == "shifted";
   s.reuseGradient = params_.get<bool>("Reuse gradient");
   s.maxOuter = params_.get<int>("Maximum outer iterations");
+  s.stallWindow = params_.get<int>("Stall window");
   s.gNext = MVT::Clone(*qp_.x, 1);
   mu_ = MVT::Clone(*qp_.x, 1);
   if (mu0_.is_null())
@@ -439,6 +452,13 @@ void SmalbeSolMgr<S, MV, OP>::outerIteration(SolveState& s) {
     return;
   }
   if (reduceM) M_ /= s.beta;
+  // Stalled: ||Q x|| has not halved for a window of outer iterations with M unchanged. Feasible
+  // QPs halve it at about every one (docs/qp_solvers.md, "When the equality constraints stall").
+  if (s.qxNorm < magnitude_type(0.5) * s.stallBest || reduceM) {
+    s.stallBest = std::min(s.stallBest, s.qxNorm);
+    s.stallSince = s.k;
+  }
+  s.stalled = s.stallWindow > 0 && s.qxNorm > s.eTol && s.k - s.stallSince >= s.stallWindow;
   if (s.reuseGradient) {
     // The next inner gradient at the same x: H x - b + mu_{k+1} = g + rho Q x.
     MVT::MvAddMv(S(1), *mprgp.getGradient(), S(rho_), *s.Qx, *s.gNext);
@@ -520,6 +540,14 @@ std::string SmalbeSolMgr<S, MV, OP>::summaryMessage(const SolveState& s) const {
         << (face_.accepted ? " (the last a face solve)" : "")
         << ": ||g^P||/||b|| = " << s.gp / s.scale
         << ", ||A|| ||Qx||/||b|| = " << normA_ * s.qxNorm / s.scale;
+  else if (s.stalled)
+    msg << "not converged: the equality constraints stalled: ||A|| ||Qx||/||b|| = "
+        << normA_ * s.qxNorm / s.scale << " (tolerance "
+        << params_.get<double>("Equality tolerance") << ") did not halve in the last "
+        << s.stallWindow << " outer iterations (\"Stall window\"), after " << s.k
+        << ": the bounds may leave no multipliers that meet them (a load beyond what friction "
+           "or contact can hold); ||g^P||/||b|| = "
+        << s.gp / s.scale;
   else
     msg << "not converged: the limit of " << s.maxOuter
         << " outer iterations was reached with ||g^P||/||b|| = " << s.gp / s.scale << " (tolerance "
