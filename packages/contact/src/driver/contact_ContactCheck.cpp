@@ -142,40 +142,39 @@ void addBoundaryLines(const tfeti::Comm& comm, const ElasticContactSpec& spec,
 
 // The run's check that every rigid motion is held, on the rows of its first solve: the rigid
 // obstacle where the first increment moves it, and the friction rows with a bound from the start
-// (Tresca). A restart starts from its saved state, which the dry run does not read: its run
-// checks.
-void checkRigidMotions(const tfeti::Comm& comm, const ParameterList& params,
+// (Tresca; Coulomb sticking where friction alone holds a body, which it returns). A restart
+// starts from its saved state, which the dry run does not read: its run checks.
+bool checkRigidMotions(const tfeti::Comm& comm, const ParameterList& params,
                        const ElasticContactSpec& spec, ElasticContactProblem& problem,
                        const NonlinearOptions* options) {
-  const int rank = comm.getRank();
   const ModelFriction friction = modelFriction(params, spec.pairs);
-  std::vector<tfeti::InequalityRow> rows;
-  auto addFriction = [&] { addInitialFrictionRows(spec, problem, friction, {}, rows, comm); };
-  if (options != nullptr && !options->obstacleDisplacement.empty()) {
-    // The report is of the reference configuration: the moved obstacle's rows only for this.
-    const auto contact = problem.contact;
-    const auto rowPair = problem.rowPair;
-    const auto inequalities = problem.inequalities;
-    const auto pairs = problem.pairs;
-    searchContactAtReference(problem, *options, std::min(1.0, 1.0 / options->steps), rank);
-    rows = problem.inequalities;
-    try {
-      addFriction();
-    } catch (...) {
-      problem.contact = contact;
-      problem.rowPair = rowPair;
-      problem.inequalities = inequalities;
-      problem.pairs = pairs;
-      throw;
-    }
-    problem.contact = contact;
-    problem.rowPair = rowPair;
-    problem.inequalities = inequalities;
-    problem.pairs = pairs;
-  } else {
-    rows = problem.inequalities;
-    addFriction();
+  if (options == nullptr || options->obstacleDisplacement.empty()) {
+    std::vector<tfeti::InequalityRow> rows = problem.inequalities;
+    return addInitialFrictionRows(spec, problem, friction, {}, rows, comm).sticks;
   }
+  // The report is of the reference configuration: the moved obstacle's rows only for this.
+  struct Saved {
+    ElasticContactProblem& p;
+    NodeToSegmentResult contact;
+    std::vector<int> rowPair;
+    std::vector<tfeti::InequalityRow> inequalities;
+    std::vector<ElasticContactProblem::Pair> pairs;
+    explicit Saved(ElasticContactProblem& q)
+        : p(q),
+          contact(q.contact),
+          rowPair(q.rowPair),
+          inequalities(q.inequalities),
+          pairs(q.pairs) {}
+    ~Saved() {
+      p.contact = std::move(contact);
+      p.rowPair = std::move(rowPair);
+      p.inequalities = std::move(inequalities);
+      p.pairs = std::move(pairs);
+    }
+  } saved(problem);
+  searchContactAtReference(problem, *options, std::min(1.0, 1.0 / options->steps), comm.getRank());
+  std::vector<tfeti::InequalityRow> rows = problem.inequalities;
+  return addInitialFrictionRows(spec, problem, friction, {}, rows, comm).sticks;
 }
 
 }  // namespace
@@ -199,8 +198,8 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   }
   checkHertzInput(params, problem.dim(), contactBodyLaws(spec, problem));
   const int restartStep = nonlinear ? checkRestart(params, spec, problem, outputDirectory) : -1;
-  if (restartStep < 0)
-    checkRigidMotions(*comm, params, spec, problem, nonlinear ? &options : nullptr);
+  const bool sticks = restartStep < 0 && checkRigidMotions(*comm, params, spec, problem,
+                                                           nonlinear ? &options : nullptr);
   const auto rows = static_cast<long long>(problem.contact.rows.size());
   const std::string solver = tfeti::FetiSolver::dualSolverFor(fetiParameters(params, spec), rows);
 
@@ -208,6 +207,10 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
       problemLine(params, spec, nonlinear, restartStep, outputDirectory, solver)};
   addBodyLines(spec, problem, nonlinear, lines);
   addBoundaryLines(*comm, spec, problem, rows, lines);
+  if (sticks)
+    lines.push_back(
+        "friction: Coulomb friction alone holds a body along the contact surface: "
+        "every load step starts sticking, then takes mu lambda_N");
   printDryRunReport(comm, problem.numSubdomains(), lines, problem.local, rows,
                     fetiParameters(params, spec), out, problem.inequalities, problem.equalities);
 }
