@@ -3,6 +3,7 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -147,12 +148,7 @@ void addBoundaryLines(const tfeti::Comm& comm, const ElasticContactSpec& spec,
 bool checkRigidMotions(const tfeti::Comm& comm, const ParameterList& params,
                        const ElasticContactSpec& spec, ElasticContactProblem& problem,
                        const NonlinearOptions* options) {
-  const ModelFriction friction = modelFriction(params, spec.pairs);
-  if (options == nullptr || options->obstacleDisplacement.empty()) {
-    std::vector<tfeti::InequalityRow> rows = problem.inequalities;
-    return addInitialFrictionRows(spec, problem, friction, {}, rows, comm).sticks;
-  }
-  // The report is of the reference configuration: the moved obstacle's rows only for this.
+  // The report is of the reference configuration: a moved obstacle's rows only for this check.
   struct Saved {
     ElasticContactProblem& p;
     NodeToSegmentResult contact;
@@ -171,10 +167,16 @@ bool checkRigidMotions(const tfeti::Comm& comm, const ParameterList& params,
       p.inequalities = std::move(inequalities);
       p.pairs = std::move(pairs);
     }
-  } saved(problem);
-  searchContactAtReference(problem, *options, std::min(1.0, 1.0 / options->steps), comm.getRank());
+  };
+  std::optional<Saved> saved;
+  if (options != nullptr && !options->obstacleDisplacement.empty()) {
+    saved.emplace(problem);
+    searchContactAtReference(problem, *options, std::min(1.0, 1.0 / options->steps),
+                             comm.getRank());
+  }
   std::vector<tfeti::InequalityRow> rows = problem.inequalities;
-  return addInitialFrictionRows(spec, problem, friction, {}, rows, comm).sticks;
+  return addInitialFrictionRows(spec, problem, modelFriction(params, spec.pairs), {}, rows, comm)
+      .sticks;
 }
 
 }  // namespace

@@ -267,29 +267,27 @@ InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
                                        const ModelFriction& friction, const SlipBounds& bounds,
                                        std::vector<tfeti::InequalityRow>& rows,
                                        const tfeti::Comm& comm) {
-  const int rank = comm.getRank();
   auto withFriction = [&](const SlipBounds& b) {
     std::vector<tfeti::InequalityRow> all = rows;
-    const auto f = frictionRows(p, friction, b, {}, {}, rank);
+    const auto f = frictionRows(p, friction, b, {}, {}, comm.getRank());
     all.insert(all.end(), f.begin(), f.end());
     return all;
   };
-  InitialFriction start{bounds, false};
-  std::vector<tfeti::InequalityRow> with = withFriction(bounds);
   // Does Coulomb friction hold a body? Free without its rows (Tresca's stay), held with them
   // sticking (docs/friction.md, "A body held by friction alone"). Where the sticking rows do
   // not hold it either, the check below names the motions free without them.
   if (friction.coulomb() && !freeRigidMotions(spec, p, withFriction({}), comm).empty()) {
-    const SlipBounds stick = stickingBounds(spec, p, friction);
+    SlipBounds stick = stickingBounds(spec, p, friction);
     std::vector<tfeti::InequalityRow> stuck = withFriction(stick);
     if (freeRigidMotions(spec, p, stuck, comm).empty()) {
-      with = std::move(stuck);
-      start = {stick, true};
+      rows = std::move(stuck);
+      return {std::move(stick), true};
     }
   }
+  std::vector<tfeti::InequalityRow> with = withFriction(bounds);
   requireRigidMotionsHeld(spec, p, with, comm);
   rows = std::move(with);
-  return start;
+  return {bounds, false};
 }
 
 namespace {

@@ -31,10 +31,11 @@ int findRoot(std::vector<int>& parent, int i) {
   return i;
 }
 
-Pieces findPieces(const ElasticContactProblem& p) {
-  const int dim = p.dim(), ns = p.numSubdomains();
-  const std::size_t nodes = p.mesh.coords.size() / dim;
-  std::vector<int> parent(ns), first(nodes, -1);
+// The piece of every subdomain (numbered by first appearance) and of every mesh node (-1: in
+// no subdomain).
+Pieces joinSubdomains(const ElasticContactProblem& p) {
+  const int ns = p.numSubdomains();
+  std::vector<int> parent(ns), first(p.mesh.coords.size() / p.dim(), -1);
   std::iota(parent.begin(), parent.end(), 0);
   for (int s = 0; s < ns; ++s)
     for (long long g : p.subdomains[s].globalNode) {
@@ -48,18 +49,24 @@ Pieces findPieces(const ElasticContactProblem& p) {
   std::map<int, int> index;
   for (int s = 0; s < ns; ++s) {
     const int root = findRoot(parent, s);
-    auto it = index.emplace(root, static_cast<int>(index.size())).first;
-    pieces.ofSubdomain.push_back(it->second);
+    pieces.ofSubdomain.push_back(index.emplace(root, static_cast<int>(index.size())).first->second);
   }
   pieces.count = static_cast<int>(index.size());
-  pieces.ofNode.assign(nodes, -1);
+  pieces.ofNode.assign(first.size(), -1);
+  for (std::size_t g = 0; g < first.size(); ++g)
+    if (first[g] >= 0) pieces.ofNode[g] = pieces.ofSubdomain[first[g]];
+  return pieces;
+}
+
+// Each piece's centroid (of its nodes) and size (the largest side of its bounding box).
+void measurePieces(const ElasticContactProblem& p, Pieces& pieces) {
+  const int dim = p.dim();
   std::vector<std::array<double, 3>> lo(pieces.count, {1e300, 1e300, 1e300}),
-      hi(pieces.count, {-1e300, -1e300, -1e300});
-  std::vector<std::array<double, 3>> sum(pieces.count, {0.0, 0.0, 0.0});
+      hi(pieces.count, {-1e300, -1e300, -1e300}), sum(pieces.count, {0.0, 0.0, 0.0});
   std::vector<long long> n(pieces.count, 0);
-  for (std::size_t g = 0; g < nodes; ++g) {
-    if (first[g] < 0) continue;
-    const int q = pieces.ofNode[g] = pieces.ofSubdomain[first[g]];
+  for (std::size_t g = 0; g < pieces.ofNode.size(); ++g) {
+    const int q = pieces.ofNode[g];
+    if (q < 0) continue;
     ++n[q];
     for (int c = 0; c < dim; ++c) {
       const double x = p.mesh.coords[dim * g + c];
@@ -78,7 +85,6 @@ Pieces findPieces(const ElasticContactProblem& p) {
     pieces.centre.push_back(c);
     pieces.length.push_back(extent > 0.0 ? extent : 1.0);
   }
-  return pieces;
 }
 
 int modesPerPiece(int dim) {
@@ -151,6 +157,24 @@ void addRows(Gram& gram, const ElasticContactProblem& p, const Pieces& pieces,
     }
     gram.endRow();
   }
+}
+
+// The Gram matrix of every row of B but the gluing: Fixed, Symmetry and Prescribed components
+// (one row per held node and component), the couplings (rank 0 holds them) and `inequalities`.
+Gram gramOfRows(const ElasticContactProblem& p, const Pieces& pieces,
+                const std::vector<tfeti::InequalityRow>& inequalities) {
+  const int dim = p.dim();
+  Gram gram(pieces, dim);
+  for (const auto& [node, c] : p.heldComponents) {
+    const int q = pieces.ofNode[node];
+    if (q < 0) continue;
+    gram.beginRow();
+    gram.add(q, &p.mesh.coords[static_cast<std::size_t>(dim) * node], c, 1.0);
+    gram.endRow();
+  }
+  addRows(gram, p, pieces, p.couplingRows);
+  addRows(gram, p, pieces, inequalities);
+  return gram;
 }
 
 // The null space of the Gram matrix, k x n row-major in reduced row echelon form (each vector
@@ -296,37 +320,35 @@ std::vector<std::string> describe(const ElasticContactSpec& spec, const ElasticC
   return out;
 }
 
+// Rank 0's lines on every rank.
+std::vector<std::string> broadcastLines(const std::vector<std::string>& lines,
+                                        const tfeti::Comm& comm) {
+  std::string text;
+  for (const std::string& l : lines) text += l + "\n";
+  long long size = static_cast<long long>(text.size());
+  Teuchos::broadcast(comm, 0, &size);
+  text.resize(static_cast<std::size_t>(size));
+  if (size > 0) Teuchos::broadcast(comm, 0, static_cast<int>(size), text.data());
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::string> freeRigidMotions(const ElasticContactSpec& spec,
                                           const ElasticContactProblem& p,
                                           const std::vector<tfeti::InequalityRow>& inequalities,
                                           const tfeti::Comm& comm) {
-  std::string text;
-  if (comm.getRank() == 0) {
-    const Pieces pieces = findPieces(p);
-    const int dim = p.dim();
-    Gram gram(pieces, dim);
-    // Fixed, Symmetry and Prescribed: one row per held (node, component).
-    for (const auto& [node, c] : p.heldComponents) {
-      const int q = pieces.ofNode[node];
-      if (q < 0) continue;
-      gram.beginRow();
-      gram.add(q, &p.mesh.coords[static_cast<std::size_t>(dim) * node], c, 1.0);
-      gram.endRow();
-    }
-    addRows(gram, p, pieces, p.couplingRows);  // rank 0 holds them
-    addRows(gram, p, pieces, inequalities);
-    for (const std::string& s : describe(spec, p, pieces, nullSpace(gram))) text += s + "\n";
-  }
-  long long size = static_cast<long long>(text.size());
-  Teuchos::broadcast(comm, 0, &size);
-  text.resize(static_cast<std::size_t>(size));
-  if (size > 0) Teuchos::broadcast(comm, 0, static_cast<int>(size), text.data());
   std::vector<std::string> motions;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) motions.push_back(line);
-  return motions;
+  if (comm.getRank() == 0) {  // it holds the inequality and coupling rows
+    Pieces pieces = joinSubdomains(p);
+    measurePieces(p, pieces);
+    Gram gram = gramOfRows(p, pieces, inequalities);
+    motions = describe(spec, p, pieces, nullSpace(gram));
+  }
+  return broadcastLines(motions, comm);
 }
 
 void requireRigidMotionsHeld(const ElasticContactSpec& spec, const ElasticContactProblem& p,

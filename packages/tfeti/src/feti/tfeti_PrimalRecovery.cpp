@@ -48,6 +48,7 @@ std::string FetiSolver::addKernelComponent(MultiVector& u) const {
   F_->apply(*lambda_, g);
   g.update(-1.0, *d_, 1.0);
   Vector alpha(coarse_->coarseMap());
+  std::string fitFailure;
   if (tearing_.numInequalityRows == 0 || inequalitiesTied(params_)) {
     coarse_->leastSquaresCoefficients(g, alpha);
   } else {
@@ -61,13 +62,12 @@ std::string FetiSolver::addKernelComponent(MultiVector& u) const {
       // converge (every friction row at its bound, where the bounds cannot balance the load),
       // or a body held along the surface by friction rows that all slide. The fit on all rows
       // (G G^T is regular) gives the last state; solve() reports the failure.
+      fitFailure = e.what();
       coarse_->leastSquaresCoefficients(g, alpha);
-      coarse_->addKernelCombination(alpha, u);
-      return e.what();
     }
   }
   coarse_->addKernelCombination(alpha, u);
-  return "";
+  return fitFailure;
 }
 
 void FetiSolver::markRowsHoldingWithEquality(Vector& mask) const {
