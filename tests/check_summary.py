@@ -368,6 +368,14 @@ def contact(d, force_tol):
                 "proportioning_steps", "projected_gradient_norm", "equality_residual_norm"):
         if key not in q:
             fail(f"qp.{key} missing from summary.json")
+    if q["method"] == "penalty" and s["parameters"]["FETI"].get("Penalty", {}).get(
+            "Equality projection", True):
+        # The penalty's Q mu (about ||PFP|| / rho of mu) removed: G lambda = e to rounding.
+        if "equality_projection_norm" not in q:
+            fail("qp.equality_projection_norm missing from summary.json (penalty)")
+        if not q["equality_residual_norm"] <= 1e-8 * q["equality_projection_norm"]:
+            fail(f"penalty: ||Q mu|| {q['equality_residual_norm']:.3e} after the equality "
+                 f"projection, {q['equality_projection_norm']:.3e} before")
     steps = q["cg_steps"] + q["expansion_steps"] + q["proportioning_steps"]
     if q["hessian_multiplications"] < steps:
         fail(f"{q['hessian_multiplications']} Hessian multiplications < {steps} MPRGP steps")
@@ -1310,7 +1318,7 @@ def arc_grows(d09, d099):
     print(f"OK: contact half-angle {t09:.2f} deg (R_pin/R_hole = 0.9) < {t099:.2f} deg (0.99)")
 
 
-def friction(d, expect, force, mu, tol, resultant_tol=None, magnitudes=False):
+def friction(d, expect, force, mu, tol, resultant_tol=None, magnitudes=False, kkt_tol=None):
     """A frictional nonlinear run: the friction rows' conditions of the last solve (multipliers
     within their box, no slip where they stick, slip along the multiplier where it is at the
     bound), and per node in the contact CSV: expect = slide: every closed node slips and the
@@ -1319,8 +1327,13 @@ def friction(d, expect, force, mu, tol, resultant_tol=None, magnitudes=False):
     increment zero against the largest displacement. magnitudes (3D, --magnitudes): at full
     sliding the nodes' tangential forces point different ways, so `force` is compared with the
     sum of their magnitudes |lambda_T| (Tresca: g times the slave area), and every closed node
-    has a non-zero slip increment."""
+    has a non-zero slip increment. kkt_tol (--kkt-tol): the friction rows' conditions to this,
+    the multipliers' excess over their bound relative to g (default 1e-10) and the slip where
+    they stick relative to max |u| (default KKT_TOL); the penalty method meets them only to about
+    ||PFP|| / rho."""
     resultant_tol = tol if resultant_tol is None else resultant_tol
+    bound_tol = 1e-10 if kkt_tol is None else kkt_tol
+    slip_tol = KKT_TOL if kkt_tol is None else kkt_tol
     s = load(d)
     if not s["converged"]:
         fail(f"{d}: did not converge")
@@ -1336,9 +1349,9 @@ def friction(d, expect, force, mu, tol, resultant_tol=None, magnitudes=False):
                 "friction_law"):
         if key not in c:
             fail(f"{d}: contact lacks {key}")
-    if k["max_friction_bound_excess"] > 1e-10 * g:
+    if k["max_friction_bound_excess"] > bound_tol * g:
         fail(f"{d}: a tangential multiplier beyond its bound by {k['max_friction_bound_excess']}")
-    if k["max_friction_slip_residual"] > KKT_TOL * u:
+    if k["max_friction_slip_residual"] > slip_tol * u:
         fail(f"{d}: friction rows' slip residual {k['max_friction_slip_residual']:.2e} "
              f"(max |u| {u:.2e})")
     with open(s["contact_csv"]) as f:
@@ -1371,6 +1384,8 @@ def friction(d, expect, force, mu, tol, resultant_tol=None, magnitudes=False):
         # (1.7e-6 seen for a 1e-6 tolerance): 10x the tolerance per node.
         ratio_tol = 1e-8 if mu == 0 else max(
             1e-8, 10 * s["parameters"]["Contact problem"]["Friction"]["Fixed-point tolerance"])
+        if kkt_tol is not None:
+            ratio_tol = max(ratio_tol, 10 * kkt_tol)
         if abs(c["max_tangential_ratio"] - 1.0) > ratio_tol:
             fail(f"{d}: max |lambda_T| / bound {c['max_tangential_ratio']} at full sliding")
     else:
@@ -1768,7 +1783,7 @@ if __name__ == "__main__":
     elif mode == "friction":
         friction(args[0], args[1], option(args, "--force", 0.0), option(args, "--mu", 0.0),
                  option(args, "--tol", 1e-6), option(args, "--resultant-tol", None),
-                 "--magnitudes" in args)
+                 "--magnitudes" in args, option(args, "--kkt-tol", None))
     elif mode == "friction_held":
         friction_held(args[0], option(args, "--tol", 1e-6))
     elif mode == "friction_beyond":

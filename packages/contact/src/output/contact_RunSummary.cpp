@@ -310,6 +310,7 @@ Json qpJson(const tfeti::DualResult& r) {
   q["proportioning_steps"] = r.qp.proportioningSteps;
   q["projected_gradient_norm"] = r.qp.projectedGradientNorm;
   q["equality_residual_norm"] = r.qp.equalityResidualNorm;
+  if (r.method == "penalty") q["equality_projection_norm"] = r.qp.equalityProjectionNorm;
   q["rhs_norm"] = r.qp.rhsNorm;
   q["rho"] = r.rho;
   if (!r.qp.message.empty()) q["message"] = r.qp.message;

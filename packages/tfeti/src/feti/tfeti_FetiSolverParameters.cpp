@@ -153,6 +153,11 @@ void addPenaltyParameters(Teuchos::ParameterList& pen) {
           strict::positive());
   pen.set("Power iterations", 20, "power iterations for the estimate of ||P F P||",
           strict::count());
+  pen.set("Equality projection", true,
+          "true: the penalty solution is projected onto G lambda = e (mu <- P mu), so every "
+          "subdomain's rigid-mode balance holds to rounding and a Newton loop's residual can fall "
+          "below the penalty's ~1/rho; the bounds are then off by at most the ||Q mu|| removed "
+          "(summary: equality_projection_norm). false: the reference paper's plain penalty");
 }
 
 }  // namespace

@@ -40,7 +40,8 @@ struct QpCounters {
   long long expansionSteps = 0;          // MPRGP expansion steps (feasible + projected step)
   long long proportioningSteps = 0;      // MPRGP proportioning steps (along the chopped gradient)
   double projectedGradientNorm = 0;      // final ||g^P||
-  double equalityResidualNorm = 0;       // final ||Q x|| (SMALBE)
+  double equalityResidualNorm = 0;       // final ||Q x|| (SMALBE, penalty)
+  double equalityProjectionNorm = 0;     // penalty: ||Q x|| removed by the equality projection
   double rhsNorm = 0;                    // ||b||, the scale of the relative tolerances
   std::vector<double> history;           // ||g^P|| / ||b|| per MPRGP step (first: initial guess)
   std::string message;                   // why the solver stopped
