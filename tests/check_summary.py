@@ -145,6 +145,7 @@
                                           same steps; the final p_max, contact extent, force
                                           and von Mises agree to T (1e-4), the plastic strain
                                           to 100 T; the tangent needs fewer iterations
+  check_summary.py penalty_vs_smalbe PENALTY_DIR SMALBE_DIR [--tol T]
   check_summary.py same_indentation DIR1 DIR2 [--tol T]
                                           two runs of one indentation (e.g. gaps along the
                                           normal and along a fixed direction): both reached
@@ -1152,6 +1153,30 @@ def newton(ndir, rdir, tol):
           f"{n['contact']['force']:.6e} vs {r['contact']['force']:.6e}")
 
 
+def penalty_vs_smalbe(pdir, sdir, tol):
+    """One nonlinear problem by the penalty method and by SMALBE: both converged to load factor 1,
+    the penalty in at most 2 more Newton iterations, and the same p_max, contact force, largest
+    von Mises stress and plastic strain to tol (the penalty's accuracy, about ||PFP|| / rho)."""
+    p, q = load(pdir), load(sdir)
+    for s, d in ((p, pdir), (q, sdir)):
+        if not s["converged"] or s["nonlinear"]["load_factor"] != 1:
+            fail(f"{d}: did not reach load factor 1")
+    if p["parameters"]["FETI"]["Dual solver"] != "penalty":
+        fail(f"{pdir}: not a penalty run")
+    pi, si = p["nonlinear"]["total_iterations"], q["nonlinear"]["total_iterations"]
+    if pi > si + 2:
+        fail(f"the penalty took {pi} Newton iterations, SMALBE {si}")
+    pairs = [("p_max", p["contact"]["p_max"], q["contact"]["p_max"]),
+             ("force", p["contact"]["force"], q["contact"]["force"]),
+             ("max_von_mises", p["max_von_mises"], q["max_von_mises"]),
+             ("max_plastic_strain", p["max_plastic_strain"], q["max_plastic_strain"])]
+    for key, a, b in pairs:
+        if abs(a - b) > tol * max(abs(b), 1e-300):
+            fail(f"{key}: penalty {a:.8e}, SMALBE {b:.8e}: more than {tol:.0e} apart")
+    print(f"OK: penalty {pi} Newton iterations, SMALBE {si}; p_max {pairs[0][1]:.6e} vs "
+          f"{pairs[0][2]:.6e}, force {pairs[1][1]:.6e} vs {pairs[1][2]:.6e}")
+
+
 def same_indentation(d1, d2, tol):
     """Two formulations of one indentation by a prescribed obstacle motion: the same contact force
     and contact zone to tol (what separates them, e.g. the gap along the normal and along a fixed
@@ -1760,6 +1785,8 @@ if __name__ == "__main__":
                              option(args, "--force-tol", 1e-6))
     elif mode == "newton":
         newton(args[0], args[1], float(option(args, "--tol", 1e-4)))
+    elif mode == "penalty_vs_smalbe":
+        penalty_vs_smalbe(args[0], args[1], float(option(args, "--tol", 1e-3)))
     elif mode == "same_indentation":
         same_indentation(args[0], args[1], float(option(args, "--tol", 1e-3)))
     elif mode == "reference_force":

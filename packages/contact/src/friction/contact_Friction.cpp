@@ -297,8 +297,8 @@ namespace {
 // displacement, w the node's weight.
 void setNodeFriction(ContactNode& node, const ContactRow& row,
                      const std::vector<ContactRow>& tangents, const std::vector<double>& lambda,
-                     const std::vector<double>& bound, const FrictionSpec& friction, int dim,
-                     const std::vector<double>& step, double w) {
+                     const std::vector<double>& bound, bool sticks, const FrictionSpec& friction,
+                     int dim, const std::vector<double>& step, double w) {
   if (tangents.empty()) {
     // Held in every tangential direction: no slip, and the supports carry the tangential
     // force. The bound is the one the rows would have had (Coulomb: of the final state).
@@ -319,7 +319,7 @@ void setNodeFriction(ContactNode& node, const ContactRow& row,
     tfeti::InequalityRow box;
     box.lowerBound = -bound[0];
     box.upperBound = bound[0];
-    node.frictionState = !(node.lambda > 0.0) ? 0 : box.boundActive(lambda[0]) == 0 ? 1 : 2;
+    node.frictionState = !(node.lambda > 0.0) ? 0 : sticks ? 1 : 2;
   } else {
     // A disc: the tangent is the direction of the tangential force (the first tangent where
     // it is zero), tangentialForce its magnitude, slip the step's slip along it; slip where
@@ -334,8 +334,7 @@ void setNodeFriction(ContactNode& node, const ContactRow& row,
         step.empty()
             ? 0.0
             : -(c1 * applyRow(tangents[0], dim, step) + c2 * applyRow(tangents[1], dim, step));
-    const double g = bound[0];
-    node.frictionState = !(node.lambda > 0.0) ? 0 : (g > 0.0 && lt < g * (1.0 - 1e-10)) ? 1 : 2;
+    node.frictionState = !(node.lambda > 0.0) ? 0 : sticks ? 1 : 2;
   }
   node.tangentialTraction = w > 0.0 ? node.tangentialForce / w : 0.0;
 }
@@ -350,6 +349,8 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
   // Tangential rows differ from every other row in their entries (the coefficients are the
   // tangent's, not the normal's), whatever their right-hand side was in the last iteration.
   const auto lambdas = solver.inequalityMultipliers();
+  // Stick or slip as the solver's primal fit took each row (FetiSolver::inequalityRowsHolding).
+  const auto holding = solver.inequalityRowsHolding();
   const auto& rows = solver.tearing().inequalityRows;
   std::map<EntryKey, std::size_t> byEntries;
   for (std::size_t i = 0; i < rows.size(); ++i)
@@ -368,6 +369,7 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
     // Each tangential row's multiplier and bound; a node without its rows had a zero bound
     // (frictionRows leaves them out): multipliers 0.
     std::vector<double> lambda, bound;
+    bool sticks = true;
     for (const ContactRow& t : tangents) {
       const auto it = byEntries.find(entryKey(toInequalityRow(t, dofOf)));
       if (it == byEntries.end() && !lambda.empty())
@@ -376,13 +378,16 @@ void addFrictionResults(std::vector<ContactNode>& nodes, const ElasticContactPro
       if (it == byEntries.end()) break;
       lambda.push_back(lambdas[it->second]);
       bound.push_back(rows[it->second].upperBound);
+      sticks = sticks && holding[it->second] != 0.0;
     }
+    // A node without its rows (a zero bound) slips.
+    sticks = sticks && lambda.size() == tangents.size();
     lambda.resize(tangents.size(), 0.0);
     bound.resize(tangents.size(), 0.0);
     for (int c = 0; c < 3; ++c) node.force[c] = node.lambda * node.normal[c];
     for (std::size_t j = 0; j < tangents.size(); ++j)
       for (int c = 0; c < dim; ++c) node.force[c] += lambda[j] * tangents[j].normal[c];
-    setNodeFriction(node, row, tangents, lambda, bound, f, dim, step, w[k]);
+    setNodeFriction(node, row, tangents, lambda, bound, sticks, f, dim, step, w[k]);
   }
 }
 

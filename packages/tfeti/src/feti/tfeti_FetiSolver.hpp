@@ -233,6 +233,10 @@ class FetiSolver {
   const Vector& multipliers() const { return *lambda_; }
   // The inequality multipliers on every rank, in the order of tearing().inequalityRows.
   std::vector<double> inequalityMultipliers() const;
+  // Likewise 1 where the row holds with equality (a contact row in contact, a friction row
+  // sticking) and 0 where its multiplier is at a bound, as the primal fit took them: after the
+  // penalty's equality projection MPRGP's, not the projected multipliers' (a hair off a bound).
+  std::vector<double> inequalityRowsHolding() const;
   // The multipliers of the caller's equality rows on every rank, in the order of
   // tearing().userEqualityRows (the canonical order): the row's reaction, its force on dof k
   // being -coef_k * lambda.
@@ -461,11 +465,14 @@ class FetiSolver {
   std::string recoverPrimal();
   bool nothingActs() const;  // collective: no load, no multiplier, no prescribed value
   std::string addKernelComponent(MultiVector& u) const;
-  void markRowsHoldingWithEquality(Vector& mask) const;
+  void markRowsHoldingWithEquality(const Vector& lambda, Vector& mask) const;
   void keepSubdomainSolutions(const MultiVector& u);
   // Results (tfeti_FetiSolverResults.cpp).
-  std::vector<double> multipliersOfRows(GO first, GO count) const;
+  // source: lambda_ if null.
+  std::vector<double> multipliersOfRows(GO first, GO count, const Vector* source = nullptr) const;
   Teuchos::RCP<Vector> d_, lambda0_, lambda_;
+  // The penalty's rows holding with equality before its equality projection (null: from lambda_).
+  Teuchos::RCP<Vector> holdingRows_;
   // Warm start (update()): the last solve's multipliers, SMALBE's equality multiplier and the
   // estimate of ||P F P||.
   Teuchos::RCP<const Vector> previousLambda_, previousEqualityMultiplier_;

@@ -349,6 +349,15 @@ Belos::ReturnType FetiSolver::solvePenalty(DualQp& dual, QpCounters& counters) {
   // converge.)
   if (params_.sublist("Penalty").get<bool>("Equality projection")) {
     counters.equalityProjectionNorm = counters.equalityResidualNorm;
+    // The primal fit takes the rows holding with equality from MPRGP's solution: the projection
+    // moves a row at its bound a hair off it, and counted after it, inactive rows with an open
+    // gap entered the fit (the pin in its hole with 1 % clearance then converged 5 % per Newton
+    // iteration, the Cattaneo cylinders not at all).
+    Vector lambda(tearing_.multiplierMap);
+    Tpetra::deep_copy(lambda, *lambda0_);
+    lambda.update(1.0, *dual.mu, 1.0);
+    holdingRows_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+    markRowsHoldingWithEquality(lambda, *holdingRows_);
     coarse_->project(*dual.mu, *dual.mu);
     dual.Q->apply(*dual.mu, qmu);
     counters.equalityResidualNorm = qmu.norm2();

@@ -54,7 +54,10 @@ std::string FetiSolver::addKernelComponent(MultiVector& u) const {
   } else {
     // Inactive inequality rows (lambda_i = 0) have a gap: they must not enter the fit.
     Vector mask(tearing_.multiplierMap);
-    markRowsHoldingWithEquality(mask);
+    if (holdingRows_.is_null())
+      markRowsHoldingWithEquality(*lambda_, mask);
+    else
+      Tpetra::deep_copy(mask, *holdingRows_);
     try {
       coarse_->leastSquaresOnRows(g, mask, alpha, params_.get<std::string>("Coarse solver"));
     } catch (const std::runtime_error& e) {
@@ -70,9 +73,9 @@ std::string FetiSolver::addKernelComponent(MultiVector& u) const {
   return fitFailure;
 }
 
-void FetiSolver::markRowsHoldingWithEquality(Vector& mask) const {
+void FetiSolver::markRowsHoldingWithEquality(const Vector& lambda, Vector& mask) const {
   auto m = mask.getDataNonConst();
-  auto l = lambda_->getData();
+  auto l = lambda.getData();
   const auto& map = *tearing_.multiplierMap;
   // Likewise a friction row whose multiplier is at a bound (slip): only the rows with the
   // multiplier strictly inside its bounds hold with equality.
