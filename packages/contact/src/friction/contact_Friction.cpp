@@ -316,10 +316,6 @@ void setNodeFriction(ContactNode& node, const ContactRow& row,
     node.tangentialForce = lambda[0];
     node.slip = step.empty() ? 0.0 : -applyRow(tangents[0], dim, step);
     for (int c = 0; c < 3; ++c) node.tangent[c] = tangents[0].normal[c];
-    tfeti::InequalityRow box;
-    box.lowerBound = -bound[0];
-    box.upperBound = bound[0];
-    node.frictionState = !(node.lambda > 0.0) ? 0 : sticks ? 1 : 2;
   } else {
     // A disc: the tangent is the direction of the tangential force (the first tangent where
     // it is zero), tangentialForce its magnitude, slip the step's slip along it; slip where
@@ -334,8 +330,9 @@ void setNodeFriction(ContactNode& node, const ContactRow& row,
         step.empty()
             ? 0.0
             : -(c1 * applyRow(tangents[0], dim, step) + c2 * applyRow(tangents[1], dim, step));
-    node.frictionState = !(node.lambda > 0.0) ? 0 : sticks ? 1 : 2;
   }
+  // Stick where the solver's rows hold with equality (its primal fit's), slip at the bound.
+  if (!tangents.empty()) node.frictionState = !(node.lambda > 0.0) ? 0 : sticks ? 1 : 2;
   node.tangentialTraction = w > 0.0 ? node.tangentialForce / w : 0.0;
 }
 

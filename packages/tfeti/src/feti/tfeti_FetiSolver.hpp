@@ -466,6 +466,8 @@ class FetiSolver {
   bool nothingActs() const;  // collective: no load, no multiplier, no prescribed value
   std::string addKernelComponent(MultiVector& u) const;
   void markRowsHoldingWithEquality(const Vector& lambda, Vector& mask) const;
+  // The rows holding with equality as the primal fit takes them: holdingRows_, else from lambda_.
+  void rowsHoldingWithEquality(Vector& mask) const;
   void keepSubdomainSolutions(const MultiVector& u);
   // Results (tfeti_FetiSolverResults.cpp).
   // source: lambda_ if null.

@@ -358,7 +358,7 @@ Belos::ReturnType FetiSolver::solvePenalty(DualQp& dual, QpCounters& counters) {
     lambda.update(1.0, *dual.mu, 1.0);
     holdingRows_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
     markRowsHoldingWithEquality(lambda, *holdingRows_);
-    coarse_->project(*dual.mu, *dual.mu);
+    dual.mu->update(-1.0, qmu, 1.0);  // P mu = mu - Q mu
     dual.Q->apply(*dual.mu, qmu);
     counters.equalityResidualNorm = qmu.norm2();
   }

@@ -44,10 +44,10 @@ ConstraintReport FetiSolver::constraintReport() const {
   double sums[2] = {0.0, 0.0};                                // force, active rows
   double fr[4] = {0.0, 0.0, 0.0, 0.0};  // friction: bound excess, slip residual, rows, stick rows
   const bool tied = inequalitiesTied(params_);
-  // Stick or slip as the primal fit has it: after the penalty's equality projection, MPRGP's
-  // (the projection moves a multiplier at its bound a hair off it; null: from lambda).
-  Teuchos::ArrayRCP<const double> holds;
-  if (!holdingRows_.is_null()) holds = holdingRows_->getData();
+  // Stick or slip as the primal fit has it (after the penalty's equality projection, MPRGP's).
+  Vector holding(tearing_.multiplierMap);
+  rowsHoldingWithEquality(holding);
+  auto holds = holding.getData();
   for (std::size_t i = 0; i < map.getNodeNumElements(); ++i) {
     const GO row = map.getGlobalElement(static_cast<LO>(i));
     if (tearing_.isInequality(row) &&
@@ -62,7 +62,7 @@ ConstraintReport FetiSolver::constraintReport() const {
         // along lambda at the circle (slip).
         const double lt = std::hypot(l[i], l[i + 1]), g = r.upperBound;
         fr[0] = std::max(fr[0], lt - g);
-        const bool slips = holds.is_null() ? g == 0.0 || lt >= g * (1.0 - 1e-10) : holds[i] == 0.0;
+        const bool slips = holds[i] == 0.0;
         if (g > 0.0)
           fr[1] = std::max(fr[1], slips ? std::max(std::abs(v[i] * l[i + 1] - v[i + 1] * l[i]) / lt,
                                                    -(v[i] * l[i] + v[i + 1] * l[i + 1]) / lt)
@@ -71,11 +71,12 @@ ConstraintReport FetiSolver::constraintReport() const {
         fr[3] += slips ? 0.0 : 2.0;
         continue;
       }
+      // At a bound where the row does not hold: the bound lambda is at, or nearest to.
       int side = r.boundActive(l[i]);
-      if (!holds.is_null())
-        side = holds[i] != 0.0 ? 0
-               : side != 0     ? side
-                               : (l[i] - r.lowerBound < r.upperBound - l[i] ? -1 : 1);
+      if (holds[i] != 0.0)
+        side = 0;
+      else if (side == 0)
+        side = l[i] - r.lowerBound < r.upperBound - l[i] ? -1 : 1;
       fr[0] = std::max({fr[0], r.lowerBound - l[i], l[i] - r.upperBound});
       // A degenerate box (l = u: an open node's zero Coulomb bound) holds lambda at both bounds
       // at once: any slip is admissible there.
@@ -139,11 +140,9 @@ std::vector<double> FetiSolver::inequalityMultipliers() const {
 }
 
 std::vector<double> FetiSolver::inequalityRowsHolding() const {
-  if (lambda_.is_null() || !holdingRows_.is_null())
-    return multipliersOfRows(tearing_.firstInequalityRow, tearing_.numInequalityRows,
-                             holdingRows_.get());
+  if (lambda_.is_null()) return std::vector<double>(tearing_.numInequalityRows, 0.0);
   Vector mask(tearing_.multiplierMap);
-  markRowsHoldingWithEquality(*lambda_, mask);
+  rowsHoldingWithEquality(mask);
   return multipliersOfRows(tearing_.firstInequalityRow, tearing_.numInequalityRows, &mask);
 }
 

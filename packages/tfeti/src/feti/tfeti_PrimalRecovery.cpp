@@ -54,10 +54,7 @@ std::string FetiSolver::addKernelComponent(MultiVector& u) const {
   } else {
     // Inactive inequality rows (lambda_i = 0) have a gap: they must not enter the fit.
     Vector mask(tearing_.multiplierMap);
-    if (holdingRows_.is_null())
-      markRowsHoldingWithEquality(*lambda_, mask);
-    else
-      Tpetra::deep_copy(mask, *holdingRows_);
+    rowsHoldingWithEquality(mask);
     try {
       coarse_->leastSquaresOnRows(g, mask, alpha, params_.get<std::string>("Coarse solver"));
     } catch (const std::runtime_error& e) {
@@ -71,6 +68,15 @@ std::string FetiSolver::addKernelComponent(MultiVector& u) const {
   }
   coarse_->addKernelCombination(alpha, u);
   return fitFailure;
+}
+
+void FetiSolver::rowsHoldingWithEquality(Vector& mask) const {
+  // After the penalty's equality projection, MPRGP's rows (the projection moves a multiplier at
+  // its bound a hair off it).
+  if (!holdingRows_.is_null())
+    Tpetra::deep_copy(mask, *holdingRows_);
+  else
+    markRowsHoldingWithEquality(*lambda_, mask);
 }
 
 void FetiSolver::markRowsHoldingWithEquality(const Vector& lambda, Vector& mask) const {
