@@ -44,9 +44,43 @@ TEUCHOS_UNIT_TEST(LoadStepControl, CutBackAndGrowBack) {
   TEST_FLOATING_EQUALITY(c.nextLoadFactor(), 0.875, 1e-15);
   c.accept();
   TEST_FLOATING_EQUALITY(c.nextLoadFactor(), 1.0, 1e-15);  // clipped at the full load
+  // The increment tried was 0.125, the smallest allowed (0.5 / 2^2): halving it would go below.
+  TEST_ASSERT(!c.reject());
+  TEST_ASSERT(c.belowSmallest());
+  TEST_EQUALITY(c.cutbacks(), 0);
+}
+
+TEUCHOS_UNIT_TEST(LoadStepControl, ClippedIncrementHalved) {
+  NonlinearHistory h;
+  h.stepSize = 0.5;
+  h.loadFactor = 0.75;
+  LoadStepControl c(h, 2, 4, 0);
+  TEST_FLOATING_EQUALITY(c.smallestIncrement(), 0.03125, 1e-15);
+  TEST_FLOATING_EQUALITY(c.nextLoadFactor(), 1.0, 1e-15);  // 0.25 tried, clipped
+  // Halving the nominal 0.5 would try 1.0 again; the increment tried is halved instead.
   TEST_ASSERT(c.reject());
-  TEST_ASSERT(c.reject());
-  TEST_ASSERT(!c.reject());  // the allowed cut-backs are used up
+  TEST_FLOATING_EQUALITY(c.nextLoadFactor(), 0.875, 1e-15);
+}
+
+TEUCHOS_UNIT_TEST(LoadStepControl, NoCreepBelowSmallestIncrement) {
+  // A load the run cannot pass (0.8): every attempt beyond it is rejected. Each converged small
+  // step renews the cut-backs, and without the floor the run crept towards 0.8 step after step.
+  NonlinearHistory h;
+  h.stepSize = 0.5;
+  LoadStepControl c(h, 2, 2, 0);  // smallest increment 0.125
+  int attempts = 0;
+  bool stopped = false;
+  while (!stopped && attempts < 1000) {
+    ++attempts;
+    if (c.nextLoadFactor() < 0.8)
+      c.accept();
+    else
+      stopped = !c.reject();
+  }
+  TEST_ASSERT(stopped);
+  TEST_ASSERT(c.belowSmallest());
+  TEST_ASSERT(attempts < 10);
+  TEST_FLOATING_EQUALITY(h.loadFactor, 0.75, 1e-15);
 }
 
 TEUCHOS_UNIT_TEST(LoadStepControl, StopAfterStepAndRestart) {

@@ -280,7 +280,12 @@ bool ContactSolver::rejectStep(LoadSteps& s, int step, double t, const std::stri
     s.failed = true;
     std::ostringstream msg;
     msg << "load step " << step << " (load factor " << t << ") did not converge after " << cutbacks
-        << " cut-backs: " << reason;
+        << " cut-backs";
+    if (s.control.belowSmallest())
+      msg << " (a smaller increment would fall below the smallest allowed, the nominal one / 2^"
+             "Maximum cutbacks = "
+          << s.control.smallestIncrement() << ")";
+    msg << ": " << reason;
     s.failure = msg.str();
     return false;
   }

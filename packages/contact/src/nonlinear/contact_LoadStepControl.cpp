@@ -1,6 +1,7 @@
 #include "contact_LoadStepControl.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace contact {
 
@@ -35,10 +36,18 @@ void LoadStepControl::accept() {
   cutbacks_ = 0;
 }
 
+double LoadStepControl::smallestIncrement() const {
+  return std::ldexp(nominal_, -maxCutbacks_);
+}
+
 bool LoadStepControl::reject() {
-  if (cutbacks_ >= maxCutbacks_) return false;
+  // The increment tried, which the full load may have clipped: halving the nominal one instead
+  // would try the same load factor again.
+  const double halved = 0.5 * std::min(history_.stepSize, 1.0 - history_.loadFactor);
+  belowSmallest_ = halved < smallestIncrement() * (1.0 - 1e-12);
+  if (cutbacks_ >= maxCutbacks_ || belowSmallest_) return false;
   ++cutbacks_;
-  history_.stepSize *= 0.5;
+  history_.stepSize = halved;
   return true;
 }
 

@@ -98,7 +98,8 @@ void addNonlinearContactParameters(ParameterList& pl) {
          "... and ||f - B^T lambda - f_int|| / ||f|| < Eta 2 (||f_int|| when no load is applied)",
          tfeti::strict::positive());
   nl.set("Maximum cutbacks", 4,
-         "consecutive halvings of a load increment that does not converge before the run stops",
+         "consecutive halvings of a load increment that does not converge before the run stops; no "
+         "increment below 1 / (Load steps 2^Maximum cutbacks) is tried",
          tfeti::strict::count(0));
   nl.set("Stiffness", "initial",
          "initial: K of the undeformed elastic body, factorized once (the paper's algorithm); "

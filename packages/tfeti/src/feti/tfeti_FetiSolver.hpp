@@ -449,7 +449,7 @@ class FetiSolver {
   // each friction box (frictionBox: 2D, or a direction held on both sides in 3D); -1 on every
   // other row.
   Teuchos::RCP<Vector> discRadii() const;
-  Teuchos::RCP<Vector> initialIncrement(bool warm) const;
+  Teuchos::RCP<Vector> initialIncrement(bool warm, bool penalty) const;
   // The warm start before its projection onto ker G (previous lambda - lambda~).
   Teuchos::RCP<Vector> warmIncrement() const;
   double projectedNormEstimate(const Operator& PFP, const MultiVector& b, bool smalbe, bool warm);
@@ -479,6 +479,10 @@ class FetiSolver {
   // estimate of ||P F P||.
   Teuchos::RCP<const Vector> previousLambda_, previousEqualityMultiplier_;
   Teuchos::RCP<const Vector> previousDiscRadii_;  // the discs previousLambda_ was solved in
+  // The penalty's Q mu as MPRGP left it (before the equality projection; null after SMALBE or
+  // PCPG), and the last one kept for the warm start: its minimizer is P mu + Q mu, not P mu.
+  Teuchos::RCP<Vector> penaltyOffset_;
+  Teuchos::RCP<const Vector> previousPenaltyOffset_;
   Teuchos::RCP<Vector> equalityMultiplier_;
   double normEstimate_ = 0.0, previousNorm_ = 0.0;
   Teuchos::RCP<Vector> normVector_;  // the last power iterate ("Warm power iterations")

@@ -45,13 +45,13 @@ DualResult FetiSolver::solveQp(const std::string& method) {
   DualQp dual;
   dual.qp.b = dualQpLinearTerm();
   setDualQpBounds(dual.qp);
+  const bool smalbe = method == "SMALBE";
   dual.warm = warmStartAgreed();
-  dual.mu = initialIncrement(dual.warm);
+  dual.mu = initialIncrement(dual.warm, !smalbe);
   dual.qp.x = dual.mu;
   dual.PFP = Teuchos::rcp(new ProjectedDualOperator(F_, *coarse_));
   dual.Q = Teuchos::rcp(new ComplementProjector(map, *coarse_));
   const long long before = F_->numApplies();
-  const bool smalbe = method == "SMALBE";
   dual.norm = projectedNormEstimate(*dual.PFP, *dual.qp.b, smalbe, dual.warm);
   normEstimate_ = dual.norm;
   dual.rho = (smalbe ? params_.sublist("SMALBE").get<double>("Penalty")
@@ -174,13 +174,21 @@ Teuchos::RCP<Vector> FetiSolver::warmIncrement() const {
   return mu;
 }
 
-Teuchos::RCP<Vector> FetiSolver::initialIncrement(bool warm) const {
+Teuchos::RCP<Vector> FetiSolver::initialIncrement(bool warm, bool penalty) const {
   // From 0, or (warm start) from P (lambda_previous - lambda~): in the kernel of G, projected
   // onto the bounds by MPRGP. The rows of a nonlinear iteration keep their canonical order as
   // long as each slave node keeps its segment; any start is valid, a close one is cheap.
   if (!warm) return Teuchos::rcp(new Vector(tearing_.multiplierMap));
   auto mu = warmIncrement();
   coarse_->project(*mu, *mu);
+  // The penalty's minimizer is not in the kernel of G: the last one's Q mu (about ||P F P|| / rho,
+  // from the rows at their bounds) is added back. From P mu alone every QP of a converging Newton
+  // loop went 60-100 multiplications back to it and ended a tolerance's width elsewhere, so that
+  // Coulomb's slip bounds did not settle (nl_cattaneo_alone_mu03.xml: exit code 3 after 25,375
+  // multiplications; 960 now). docs/qp_solvers.md, "The penalty's warm start".
+  if (penalty && !previousPenaltyOffset_.is_null() &&
+      previousPenaltyOffset_->getMap()->isSameAs(*mu->getMap()))
+    mu->update(1.0, *previousPenaltyOffset_, 1.0);
   return mu;
 }
 
@@ -339,6 +347,7 @@ Belos::ReturnType FetiSolver::solvePenalty(DualQp& dual, QpCounters& counters) {
   Vector qmu(tearing_.multiplierMap);
   dual.Q->apply(*dual.mu, qmu);
   counters.equalityResidualNorm = qmu.norm2();
+  penaltyOffset_ = Teuchos::rcp(new Vector(qmu, Teuchos::Copy));
   // The penalty meets G lambda = e only to about ||P F P|| / rho: each subdomain's rigid-mode
   // balance is off by that much, a residual R (e - G lambda) that no Newton iteration removes,
   // since every QP solves for the whole lambda again (nl_hertz_sphere_elastic.xml stalled at

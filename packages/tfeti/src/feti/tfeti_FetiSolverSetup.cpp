@@ -537,6 +537,7 @@ void FetiSolver::update(const std::vector<std::vector<double>>& loads,
   });
   previousLambda_ = lambda_;
   previousEqualityMultiplier_ = equalityMultiplier_;
+  previousPenaltyOffset_ = penaltyOffset_;
   previousNorm_ = normEstimate_;
   const RowIdentities before = rowIdentities(tearing_);
   const auto radii = discRadii();
@@ -603,6 +604,7 @@ void FetiSolver::updateStiffness(std::vector<CsrMatrix> K,
   }
   previousLambda_ = lambda_;
   previousEqualityMultiplier_ = equalityMultiplier_;
+  previousPenaltyOffset_ = penaltyOffset_;
   previousNorm_ = 0.0;  // a new K: estimate ||P F P|| again
   if (inPlace)
     refactorizeSubdomains();
@@ -641,6 +643,7 @@ void FetiSolver::carryWarmStartOver(const RowIdentities& before,
   };
   previousLambda_ = carry(previousLambda_);
   previousEqualityMultiplier_ = carry(previousEqualityMultiplier_);
+  previousPenaltyOffset_ = carry(previousPenaltyOffset_);
   normVector_ = carry(normVector_);
   previousDiscRadii_ = carry(radiiBefore);
 }

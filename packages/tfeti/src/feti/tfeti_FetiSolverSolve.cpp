@@ -10,6 +10,7 @@ DualResult FetiSolver::solve() {
   const std::string method = dualSolverFor(params_, tearing_.numInequalityRows);
   lambda_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
   holdingRows_ = Teuchos::null;
+  penaltyOffset_ = Teuchos::null;
   DualResult result = method == "PCPG" ? solvePcpg() : solveQp(method);
   const std::string fitFailure = recoverPrimal();
   // A converged QP whose rows holding with equality leave a rigid motion free (a body held by
