@@ -36,6 +36,13 @@ TEUCHOS_UNIT_TEST(LoadStepControl, CutBackAndGrowBack) {
   TEST_ASSERT(c.reject());
   TEST_FLOATING_EQUALITY(c.nextLoadFactor(), 0.125, 1e-15);
   TEST_EQUALITY(c.cutbacks(), 2);
+  {  // a third rejection: the count is used up (the message then names the count, not the floor)
+    NonlinearHistory fresh;
+    fresh.stepSize = 0.5;
+    LoadStepControl d(fresh, 2, 2, 0);
+    TEST_ASSERT(d.reject() && d.reject() && !d.reject());
+    TEST_ASSERT(!d.belowSmallest());
+  }
   c.accept();  // converged at 0.125: the count resets, the increment doubles to 0.25
   TEST_EQUALITY(c.cutbacks(), 0);
   TEST_EQUALITY(h.step, 1);
