@@ -44,6 +44,7 @@ bool LoadStepControl::reject() {
   // The increment tried, which the full load may have clipped: halving the nominal one instead
   // would try the same load factor again.
   const double halved = 0.5 * std::min(history_.stepSize, 1.0 - history_.loadFactor);
+  belowSmallest_ = false;
   if (cutbacks_ >= maxCutbacks_) return false;
   belowSmallest_ = halved < smallestIncrement() * (1.0 - 1e-12);
   if (belowSmallest_) return false;
