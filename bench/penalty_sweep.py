@@ -37,7 +37,10 @@ def variant(src, dst, penalty):
             e.set("value", os.path.normpath(os.path.join(os.path.dirname(src), value)))
     if penalty:
         feti = root.find("ParameterList[@name='FETI']")
-        feti.find("Parameter[@name='Dual solver']").set("value", "penalty")
+        solver = None if feti is None else feti.find("Parameter[@name='Dual solver']")
+        if solver is None:
+            sys.exit(f"penalty_sweep: {src}: no FETI/Dual solver parameter to set to penalty")
+        solver.set("value", "penalty")
         smalbe = feti.find("ParameterList[@name='SMALBE']")
         if smalbe is not None:
             tol = smalbe.find("Parameter[@name='Relative tolerance']")
@@ -90,9 +93,12 @@ def main():
     if not os.access(exe, os.X_OK):
         sys.exit(f"penalty_sweep: {exe}: not built (bash scripts/build.sh)")
     only = set(filter(None, a.only.split(",")))
-    inputs = [f for f in sorted(glob.glob(os.path.join(ROOT, "tests", "inputs", "nl_*.xml")))
-              if not SKIP.search(os.path.basename(f))
-              and (not only or os.path.basename(f)[:-4] in only)]
+    swept = [f for f in sorted(glob.glob(os.path.join(ROOT, "tests", "inputs", "nl_*.xml")))
+             if not SKIP.search(os.path.basename(f))]
+    unknown = only - {os.path.basename(f)[:-4] for f in swept}
+    if unknown:
+        sys.exit(f"penalty_sweep: --only: not among the swept inputs: {', '.join(sorted(unknown))}")
+    inputs = [f for f in swept if not only or os.path.basename(f)[:-4] in only]
     solvers = [s for s in a.solvers.split(",") if s]
     for s in solvers:
         if s not in ("penalty", "smalbe"):

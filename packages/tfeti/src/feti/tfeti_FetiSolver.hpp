@@ -459,6 +459,8 @@ class FetiSolver {
   // discs (may be null): the dual's disc vector, whose components get no level.
   Teuchos::RCP<Vector> contactGapLevels(const MultiVector* discs = nullptr) const;
   Belos::ReturnType solvePenalty(DualQp& dual, QpCounters& counters);
+  // mu <- P mu (Penalty/Equality projection), the rows holding taken before it.
+  void projectPenaltySolution(DualQp& dual, QpCounters& counters);
   void completeQpResult(Belos::ReturnType ret, DualResult& result) const;
   // The primal solution (tfeti_PrimalRecovery.cpp). Both return "" or, where the rows holding
   // with equality leave a rigid motion free, why (u then takes the fit on all rows).

@@ -344,10 +344,16 @@ Belos::ReturnType FetiSolver::solvePenalty(DualQp& dual, QpCounters& counters) {
   solver.setOutputStream(out_);
   const Belos::ReturnType ret = solver.solve();
   counters = solver.counters();
-  Vector qmu(tearing_.multiplierMap);
-  dual.Q->apply(*dual.mu, qmu);
-  counters.equalityResidualNorm = qmu.norm2();
-  penaltyOffset_ = Teuchos::rcp(new Vector(qmu, Teuchos::Copy));
+  // Q mu, kept for the next warm start (initialIncrement) and removed by the projection.
+  penaltyOffset_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  dual.Q->apply(*dual.mu, *penaltyOffset_);
+  counters.equalityResidualNorm = penaltyOffset_->norm2();
+  if (params_.sublist("Penalty").get<bool>("Equality projection"))
+    projectPenaltySolution(dual, counters);
+  return ret;
+}
+
+void FetiSolver::projectPenaltySolution(DualQp& dual, QpCounters& counters) {
   // The penalty meets G lambda = e only to about ||P F P|| / rho: each subdomain's rigid-mode
   // balance is off by that much, a residual R (e - G lambda) that no Newton iteration removes,
   // since every QP solves for the whole lambda again (nl_hertz_sphere_elastic.xml stalled at
@@ -356,22 +362,20 @@ Belos::ReturnType FetiSolver::solvePenalty(DualQp& dual, QpCounters& counters) {
   // ||Q mu||. (Moving only the rows off their bounds instead, so that the rows at a bound stay
   // there, changes P mu too, and the Newton iterations drifted: the Hertz sphere did not
   // converge.)
-  if (params_.sublist("Penalty").get<bool>("Equality projection")) {
-    counters.equalityProjectionNorm = counters.equalityResidualNorm;
-    // The primal fit takes the rows holding with equality from MPRGP's solution: the projection
-    // moves a row at its bound a hair off it, and counted after it, inactive rows with an open
-    // gap entered the fit (the pin in its hole with 1 % clearance then converged 5 % per Newton
-    // iteration, the Cattaneo cylinders not at all).
-    Vector lambda(tearing_.multiplierMap);
-    Tpetra::deep_copy(lambda, *lambda0_);
-    lambda.update(1.0, *dual.mu, 1.0);
-    holdingRows_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
-    markRowsHoldingWithEquality(lambda, *holdingRows_);
-    dual.mu->update(-1.0, qmu, 1.0);  // P mu = mu - Q mu
-    dual.Q->apply(*dual.mu, qmu);
-    counters.equalityResidualNorm = qmu.norm2();
-  }
-  return ret;
+  counters.equalityProjectionNorm = counters.equalityResidualNorm;
+  // The primal fit takes the rows holding with equality from MPRGP's solution: the projection
+  // moves a row at its bound a hair off it, and counted after it, inactive rows with an open
+  // gap entered the fit (the pin in its hole with 1 % clearance then converged 5 % per Newton
+  // iteration, the Cattaneo cylinders not at all).
+  Vector lambda(tearing_.multiplierMap);
+  Tpetra::deep_copy(lambda, *lambda0_);
+  lambda.update(1.0, *dual.mu, 1.0);
+  holdingRows_ = Teuchos::rcp(new Vector(tearing_.multiplierMap));
+  markRowsHoldingWithEquality(lambda, *holdingRows_);
+  dual.mu->update(-1.0, *penaltyOffset_, 1.0);  // P mu = mu - Q mu
+  Vector left(tearing_.multiplierMap);
+  dual.Q->apply(*dual.mu, left);
+  counters.equalityResidualNorm = left.norm2();
 }
 
 void FetiSolver::completeQpResult(Belos::ReturnType ret, DualResult& result) const {
