@@ -117,6 +117,10 @@
                                           a nonlinear run: converged, at most N Hessian
                                           multiplications over all its QPs, the same count in
                                           every DIR (other rank counts)
+  check_summary.py tightened_qps DIR        a nonlinear run converged with some QPs solved tighter
+                                          than configured (iterations.csv's
+                                          qp_tolerance_factor below 1), its last one among them,
+                                          none before the residual met Eta 2
   check_summary.py same_nonlinear DIR1 DIR2 ...
                                           the same load steps and, per step, p_max, contact
                                           extent and max von Mises to 1e-5, max plastic strain
@@ -910,6 +914,32 @@ def bounded_multiplications(dirs, max_mults):
             fail(f"{d}: {n} Hessian multiplications, "
                  f"{ref['nonlinear']['total_hessian_multiplications']} in {dirs[0]}")
         print(f"OK: {d}: {s['ranks']} ranks: {n} Hessian multiplications (at most {max_mults})")
+
+
+def tightened_qps(d):
+    """A Newton loop whose test stalled at the QPs' accuracy (LoadStepIteration::tightenQps): the
+    run converged, some QPs were solved at a factor below 1 of the configured tolerances, among
+    them the last one (whose multipliers are reported), and each only once an earlier iteration
+    of its step had brought the residual below Eta 2."""
+    s = load(d)
+    if not s["converged"]:
+        fail(f"{d}: did not converge")
+    eta2 = s["parameters"]["Nonlinear"]["Eta 2"]
+    with open(os.path.join(d, "iterations.csv")) as f:
+        rows = list(csv.DictReader(f))
+    tight = [r for r in rows if float(r["qp_tolerance_factor"]) < 1.0]
+    if not tight:
+        fail(f"{d}: no QP solved tighter than configured")
+    if float(rows[-1]["qp_tolerance_factor"]) >= 1.0:
+        fail(f"{d}: the last QP was not among the tightened ones")
+    for r in tight:
+        earlier = [q for q in rows if q["step"] == r["step"] and q["accepted"] == r["accepted"]
+                   and int(q["iteration"]) < int(r["iteration"])]
+        if not any(float(q["relative_residual"]) < eta2 for q in earlier):
+            fail(f"{d}: step {r['step']} iteration {r['iteration']} tightened before the residual "
+                 f"met Eta 2 = {eta2}")
+    print(f"OK: {d}: {len(tight)} of {len(rows)} QPs at factor "
+          f"{min(float(r['qp_tolerance_factor']) for r in tight)}, the last one among them")
 
 
 def zero_load(dirs):
@@ -1768,6 +1798,8 @@ if __name__ == "__main__":
         tiny_load(args[0], option(args, "--full-load", 0.0))
     elif mode == "tied":
         tied(args)
+    elif mode == "tightened_qps":
+        tightened_qps(args[0])
     elif mode == "bounded_multiplications":
         bounded_multiplications([a for i, a in enumerate(args) if a != "--max" and
                                  (i == 0 or args[i - 1] != "--max")], int(option(args, "--max", 0)))

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -627,6 +628,25 @@ TEUCHOS_UNIT_TEST(FetiSolver, WarmStartFollowsKeyedRowsAcrossAnUpdate) {
   }
 }
 
+// The 4 x 2 x 1 elastic box of 3^3-element subdomains on a rigid floor with zero gaps (a row for
+// each node of its bottom at x >= 6), and a solver's solution in one vector of its local dofs.
+struct FloorBox {
+  tfeti_test::Box3d box{4, 2, 1, 3, 3, 3, false};
+  tfeti_test::Material3d mat;
+  FloorBox() { mat.dofsPerNode = 3; }
+  std::vector<tfeti::InequalityRow> rows() const {
+    return floorRows(
+        box, [](double) { return 0.0; }, 6.0, false);
+  }
+};
+
+std::vector<double> flatSolution(const tfeti::FetiSolver& s) {
+  std::vector<double> u;
+  for (std::size_t i = 0; i < s.data().size(); ++i)
+    u.insert(u.end(), s.solution(i).begin(), s.solution(i).end());
+  return u;
+}
+
 // An inexact Newton QP (setToleranceFactor > 1) stops its face CG at "Inexact face relative
 // tolerance" times its loosened tolerance, not two digits beyond it: the box on a rigid floor
 // (a row for each node of its bottom at x >= 6, on the first subdomain that holds it), its load
@@ -636,13 +656,10 @@ TEUCHOS_UNIT_TEST(FetiSolver, WarmStartFollowsKeyedRowsAcrossAnUpdate) {
 // does not read the parameter.
 TEUCHOS_UNIT_TEST(FetiSolver, InexactQpStopsTheFaceCgAtItsOwnTolerance) {
   auto comm = Tpetra::getDefaultComm();
-  const tfeti_test::Box3d box(4, 2, 1, 3, 3, 3, false);
-  tfeti_test::Material3d mat;
-  mat.dofsPerNode = 3;
-  const auto floor = [&] {
-    return floorRows(
-        box, [](double) { return 0.0; }, 6.0, false);
-  };
+  const FloorBox fb;
+  const tfeti_test::Box3d& box = fb.box;
+  const tfeti_test::Material3d& mat = fb.mat;
+  const auto floor = [&] { return fb.rows(); };
   const auto solve = [&](double factor, double inexactFace, std::vector<double>& u) {
     Teuchos::ParameterList params = tightSmalbeParameters();
     params.set("Inexact face relative tolerance", inexactFace);
@@ -654,9 +671,7 @@ TEUCHOS_UNIT_TEST(FetiSolver, InexactQpStopsTheFaceCgAtItsOwnTolerance) {
     s.update(loads, floor());
     s.setToleranceFactor(factor);
     const tfeti::DualResult r = s.solve();
-    u.clear();
-    for (std::size_t i = 0; i < s.data().size(); ++i)
-      u.insert(u.end(), s.solution(i).begin(), s.solution(i).end());
+    u = flatSolution(s);
     TEST_ASSERT(r.converged);
     return r.qp.hessianMultiplications;
   };
@@ -694,6 +709,64 @@ TEUCHOS_UNIT_TEST(FetiSolver, InexactQpStopsTheFaceCgAtItsOwnTolerance) {
     }
     out << value << ": " << message.substr(0, 200) << "\n";
     TEST_ASSERT(message.find("Inexact face relative tolerance") != std::string::npos);
+  }
+}
+
+// A tolerance factor below 1 solves tighter than configured (a Newton loop whose test stalls at
+// the QPs' accuracy asks for it: contact::LoadStepIteration::tightenQps): the box on the rigid
+// floor by SMALBE and by the penalty method configured at 1e-5, solved at factors 1 and 0.01,
+// against the same problem solved at 1e-11. The factor 0.01 takes more multiplications and
+// lands closer. A factor that is not positive and finite is an error naming the call.
+TEUCHOS_UNIT_TEST(FetiSolver, ToleranceFactorBelowOneSolvesTighter) {
+  auto comm = Tpetra::getDefaultComm();
+  const FloorBox fb;
+  const tfeti_test::Box3d& box = fb.box;
+  const tfeti_test::Material3d& mat = fb.mat;
+  const auto floor = [&] { return fb.rows(); };
+  for (const std::string method : {"SMALBE", "penalty"}) {
+    const auto solve = [&](double tolerance, double factor, std::vector<double>& u) {
+      Teuchos::ParameterList params = solverParameters(Options());
+      params.set("Dual solver", method);
+      params.sublist(method == "SMALBE" ? "SMALBE" : "MPRGP").set("Relative tolerance", tolerance);
+      if (method == "SMALBE") params.sublist("SMALBE").set("Equality tolerance", tolerance);
+      tfeti::FetiSolver s(comm, box.numSubdomains(), localBoxSubdomains(box, mat), params, floor());
+      s.setToleranceFactor(factor);
+      const tfeti::DualResult r = s.solve();
+      TEST_ASSERT(r.converged);
+      u = flatSolution(s);
+      return r.qp.hessianMultiplications;
+    };
+    std::vector<double> reference, u;
+    solve(1e-11, 1.0, reference);
+    double scale = 0.0;
+    for (const double v : reference) scale = std::max(scale, std::abs(v));
+    scale = tfeti_test::globalMax(*comm, scale);
+    const auto error = [&] {
+      double e = 0.0;
+      for (std::size_t k = 0; k < u.size(); ++k) e = std::max(e, std::abs(u[k] - reference[k]));
+      return tfeti_test::globalMax(*comm, e) / scale;
+    };
+    const int configured = solve(1e-5, 1.0, u);
+    const double configuredError = error();
+    const int tighter = solve(1e-5, 0.01, u);
+    const double tighterError = error();
+    out << method << ": factor 1 " << configured << " multiplications, error " << configuredError
+        << "; factor 0.01 " << tighter << ", error " << tighterError << "\n";
+    TEST_COMPARE(tighter, >, configured);
+    TEST_COMPARE(tighterError, <, 0.1 * configuredError);
+  }
+  Teuchos::ParameterList params = tightSmalbeParameters();
+  tfeti::FetiSolver s(comm, box.numSubdomains(), localBoxSubdomains(box, mat), params, floor());
+  for (const double bad : {0.0, -0.01, std::numeric_limits<double>::infinity(),
+                           std::numeric_limits<double>::quiet_NaN()}) {
+    std::string message;
+    try {
+      s.setToleranceFactor(bad);
+    } catch (const std::invalid_argument& e) {
+      message = e.what();
+    }
+    out << bad << ": " << message << "\n";
+    TEST_ASSERT(message.find("setToleranceFactor") != std::string::npos);
   }
 }
 

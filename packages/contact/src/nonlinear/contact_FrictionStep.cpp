@@ -41,14 +41,15 @@ StepOutcome attemptInNewton(LoadStepIteration& iteration, const tfeti::FetiSolve
                             int step, double t, FixedPointRecord& record) {
   const ModelFriction& f = iteration.friction;
   const SlipBounds start = iteration.frictionBounds;
-  iteration.boundsSettled = [&]() {
+  iteration.updateBounds = [&]() {
     iteration.frictionBounds =
         coulombBounds(solver, problem, rule, f, iteration.frictionBounds, record.change);
     ++record.iterations;
-    return record.change < f.fixedPointTolerance;
+    return LoadStepIteration::BoundsUpdate{record.change < f.fixedPointTolerance, record.change,
+                                           f.fixedPointTolerance};
   };
   StepOutcome out = iteration.attempt(step, t);
-  iteration.boundsSettled = nullptr;
+  iteration.updateBounds = nullptr;
   if (!out.converged) {
     iteration.frictionBounds = start;
     std::ostringstream s;

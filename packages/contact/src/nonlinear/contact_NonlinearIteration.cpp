@@ -128,6 +128,19 @@ void LoadStepIteration::updateContact(const Field& u, double t) const {
     if (keeps) rememberStepRows();
   }
   contactAt_ = current;
+  // FNV-1a over each row's slave node, facet and entries' nodes: the rows' topology (their
+  // gaps and coefficients move with u every iteration).
+  std::size_t topology = 1469598103934665603ull;
+  const auto mix = [&](long long v) {
+    topology = (topology ^ static_cast<std::size_t>(v)) * 1099511628211ull;
+  };
+  for (const ContactRow& row : problem.contact.rows) {
+    mix(row.slaveNode);
+    mix(row.facet);
+    for (const NodeEntry& e : row.entries) mix(e.node);
+  }
+  rowsMoved_ = rowsMoved_ || topology != rowTopology_;
+  rowTopology_ = topology;
   if (friction.active()) {
     const std::vector<tfeti::InequalityRow> rows =
         frictionRows(problem, friction, frictionBounds,
@@ -255,9 +268,21 @@ void LoadStepIteration::freezeContact(int step, int iteration, double relativeIn
               << std::endl;
 }
 
+void LoadStepIteration::tightenQps(int step, int iteration, double relativeIncrement,
+                                   const BoundsUpdate& bounds, double factor) const {
+  if (comm_->getRank() != 0) return;
+  std::cout << "  step " << step << " iteration " << iteration
+            << ": with the residual below Eta 2, ||du||/||u|| = " << relativeIncrement;
+  if (bounds.tolerance > 0.0)
+    std::cout << " and the slip bounds' relative change " << bounds.change;
+  std::cout << " stopped decreasing (the QPs' accuracy): the step's next QPs stop at " << factor
+            << " times the configured tolerances" << std::endl;
+}
+
 StepOutcome LoadStepIteration::attempt(int step, double t) const {
   contactFrozen_ = false;
   stepRowNodes_.clear();
+  rowsMoved_ = true;
   StepOutcome out;
   out.u = model_.u;
   Field& u = out.u;
@@ -267,6 +292,10 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
     // Inexact Newton: the first QP of a step at the loosest tolerance, later ones from the
     // residual they start from.
     double factor = options_.inexactQpFactor;
+    // An exact QP's factor: 1 unless the step's test stalls (tightenQps).
+    double exactFactor = 1.0;
+    int stalls = 0;
+    double previousDistance = 0.0;
     Field previousForces;
     double previousResidual = 0.0;
     for (int it = 1; it <= options_.maxIterations; ++it) {
@@ -324,17 +353,35 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
         if (!qp.converged) out.reason = "the contact QP did not converge (" + qp.qp.message + ")";
         return out;
       }
-      const bool settled = !boundsSettled || boundsSettled();
+      const BoundsUpdate bounds = updateBounds ? updateBounds() : BoundsUpdate();
       // Only a full step of an exact QP ends a step: the multipliers reported are that QP's.
-      if (check.converged && settled && factor == 1.0 && trial.alpha == 1.0) {
+      if (check.converged && bounds.settled && factor <= 1.0 && trial.alpha == 1.0) {
         out.converged = true;
         return out;
       }
       if (!contactFrozen_ && !check.converged && twoCycle(out.iterations))
         freezeContact(step, it, check.relativeIncrement);
-      factor = check.converged ? 1.0
-                               : std::clamp(check.relativeResidual / options_.eta2, 1.0,
-                                            options_.inexactQpFactor);
+      // How far from the step's test the residual's equilibrium leaves it (above 1: not there).
+      const double distance =
+          std::max(check.relativeIncrement / options_.eta1,
+                   bounds.tolerance > 0.0 ? bounds.change / bounds.tolerance : 0.0);
+      // Every rank finds the same rows; the decision sets every rank's QP tolerance, so it is
+      // made collectively all the same.
+      int moved = rowsMoved_ ? 1 : 0, anyMoved = 0;
+      Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &moved, &anyMoved);
+      rowsMoved_ = false;
+      const bool stalled = check.relativeResidual < options_.eta2 && factor <= 1.0 &&
+                           anyMoved == 0 && distance > kStallContraction * previousDistance;
+      stalls = stalled ? stalls + 1 : 0;
+      previousDistance = distance;
+      if (stalls == kStalls && exactFactor == 1.0) {
+        exactFactor = kTighterQp;
+        tightenQps(step, it, check.relativeIncrement, bounds, exactFactor);
+      }
+      factor =
+          check.converged || options_.inexactQpFactor == 1.0
+              ? exactFactor
+              : std::clamp(check.relativeResidual / options_.eta2, 1.0, options_.inexactQpFactor);
       previousForces = std::move(trial.forces);
       previousResidual = check.relativeResidual;
     }

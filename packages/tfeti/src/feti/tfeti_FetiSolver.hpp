@@ -175,8 +175,9 @@ class FetiSolver {
   void setOutputStream(Teuchos::RCP<std::ostream> os) { out_ = std::move(os); }
 
   // Inexact solves, for a Newton method's forcing terms: the following solve() calls stop at
-  // `factor` (>= 1) times the configured relative tolerances (PCPG's, SMALBE's relative and
-  // equality tolerances, MPRGP's); 1, the default, solves as configured.
+  // `factor` times the configured relative tolerances (PCPG's, SMALBE's relative and equality
+  // tolerances, MPRGP's); 1, the default, solves as configured. A factor below 1 (positive)
+  // solves tighter than configured: a Newton loop whose own test stalls at the QPs' accuracy.
   void setToleranceFactor(double factor);
   double toleranceFactor() const { return toleranceFactor_; }
   // The next solve() calls start a load step: their warm start (the previous solution) is the

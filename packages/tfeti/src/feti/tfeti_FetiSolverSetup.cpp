@@ -462,9 +462,10 @@ void FetiSolver::buildDualRhs() {
 }
 
 void FetiSolver::setToleranceFactor(double factor) {
-  if (!(factor >= 1.0) || !std::isfinite(factor))
-    throw std::invalid_argument("FetiSolver::setToleranceFactor: the factor must be >= 1, got " +
-                                std::to_string(factor));
+  if (!(factor > 0.0) || !std::isfinite(factor))
+    throw std::invalid_argument(
+        "FetiSolver::setToleranceFactor: the factor must be positive and finite, got " +
+        std::to_string(factor));
   toleranceFactor_ = factor;
 }
 
