@@ -1459,7 +1459,8 @@ def friction_held(d, tol):
     """A body held along the surface by friction alone (no support): the run converged to load
     factor 1, the resultant contact force (normal and tangential) is the load in magnitude and
     along it (force_relative_error), the friction rows' conditions hold, and some node sticks
-    (were all sliding, nothing would fix the body's sliding)."""
+    (were all sliding, nothing would fix the body's sliding); with Tresca the summary's
+    friction_limit beyond load factor 1, with Coulomb none."""
     s = load(d)
     if not s["converged"] or abs(s["nonlinear"]["load_factor"] - 1.0) > 1e-12:
         fail(f"{d}: did not reach load factor 1")
@@ -1480,6 +1481,12 @@ def friction_held(d, tol):
              f"{k['max_penetration']:.2e} (max |u| {u:.2e})")
     if c["stick_nodes"] < 1:
         fail(f"{d}: no node sticks")
+    # Tresca's limit, known from the data, lies beyond load factor 1 (Coulomb's is not computed).
+    limit = s["nonlinear"].get("friction_limit")
+    if c["friction_law"] == "Tresca" and (limit is None or not limit["load_factor"] > 1.0):
+        fail(f"{d}: nonlinear.friction_limit {limit}: a Tresca body held to load factor 1")
+    if c["friction_law"] != "Tresca" and limit is not None:
+        fail(f"{d}: nonlinear.friction_limit {limit} without Tresca friction")
     print(f"OK: contact force {c['contact_force']} against the load {c['applied_force']:.6e}, "
           f"{c['stick_nodes']} stick, {c['slip_nodes']} slip")
 
@@ -1487,7 +1494,8 @@ def friction_held(d, tol):
 def friction_beyond(d, limit):
     """A body held by friction alone, loaded beyond what friction can hold from the load factor
     `limit` on: the run stops with the step control's failure, its summary written, at the last
-    converged load factor, below the limit and within 5 % of it."""
+    converged load factor, below the limit and within 5 % of it; the summary's
+    nonlinear.friction_limit (known from the data) is the limit to 1e-12."""
     s = load(d)
     nl = s["nonlinear"]
     if s["converged"]:
@@ -1495,6 +1503,9 @@ def friction_beyond(d, limit):
     t = nl["load_factor"]
     if not (0.95 * limit < t <= limit):
         fail(f"{d}: last converged load factor {t}, expected just below {limit}")
+    known = nl.get("friction_limit", {}).get("load_factor")
+    if known is None or abs(known - limit) > 1e-12 * limit:
+        fail(f"{d}: nonlinear.friction_limit.load_factor {known}, expected {limit}")
     print(f"OK: stopped at load factor {t:.6f} (limit {limit:.6f}): {nl.get('message', '')[:120]}")
 
 

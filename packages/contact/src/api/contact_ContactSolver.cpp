@@ -164,9 +164,13 @@ void ContactSolver::setup() {
       r.spec, problem, r.friction, r.frictionHistory.bounds, problem.inequalities, *comm_);
   r.frictionHistory.bounds = friction.bounds;
   r.frictionSticks = friction.sticks;
+  r.frictionLimit = friction.limit;
   if (r.frictionSticks && r.verbosity > 0 && comm_->getRank() == 0)
     std::cout << "nonlinear_contact: Coulomb friction alone holds a body along the contact "
                  "surface: every load step starts sticking, then takes mu lambda_N\n";
+  if (r.frictionLimit && r.frictionLimit->loadFactor < 1.0 && r.verbosity > 0 &&
+      comm_->getRank() == 0)
+    std::cout << "nonlinear_contact: " << frictionLimitText(*r.frictionLimit) << "\n";
   r.solver = std::make_unique<tfeti::FetiSolver>(
       comm_, problem.numSubdomains(), handOverStiffness(problem.local), r.feti,
       problem.inequalities, policy.initialEqualityRows(problem, r.history.loadFactor, model.u));
@@ -286,6 +290,8 @@ bool ContactSolver::rejectStep(LoadSteps& s, int step, double t, const std::stri
              "Maximum cutbacks = "
           << s.control.smallestIncrement() << ")";
     msg << ": " << reason;
+    if (r.frictionLimit && t > r.frictionLimit->loadFactor)
+      msg << " (" << frictionLimitText(*r.frictionLimit) << ")";
     s.failure = msg.str();
     return false;
   }
@@ -388,6 +394,7 @@ ContactResult ContactSolver::fillResult(const LoadSteps& s) const {
   res.materials = r.spec.bodies;
   res.friction = s.iteration.friction;
   res.fixedPoint = s.fixedPointSteps;
+  res.frictionLimit = r.frictionLimit;
   return res;
 }
 

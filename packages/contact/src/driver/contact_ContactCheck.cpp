@@ -143,11 +143,13 @@ void addBoundaryLines(const tfeti::Comm& comm, const ElasticContactSpec& spec,
 
 // The run's check that every rigid motion is held, on the rows of its first solve: the rigid
 // obstacle where the first increment moves it, and the friction rows with a bound from the start
-// (Tresca; Coulomb sticking where friction alone holds a body, which it returns). A restart
-// starts from its saved state, which the dry run does not read: its run checks.
-bool checkRigidMotions(const tfeti::Comm& comm, const ParameterList& params,
-                       const ElasticContactSpec& spec, ElasticContactProblem& problem,
-                       const NonlinearOptions* options) {
+// (Tresca; Coulomb sticking where friction alone holds a body, which it says). It returns what
+// addInitialFrictionRows found: that, and with Tresca alone the load factor beyond which the
+// friction rows cannot hold the load. A restart starts from its saved state, which the dry run
+// does not read: its run checks.
+InitialFriction checkRigidMotions(const tfeti::Comm& comm, const ParameterList& params,
+                                  const ElasticContactSpec& spec, ElasticContactProblem& problem,
+                                  const NonlinearOptions* options) {
   // The report is of the reference configuration: a moved obstacle's rows only for this check.
   struct Saved {
     ElasticContactProblem& p;
@@ -175,8 +177,7 @@ bool checkRigidMotions(const tfeti::Comm& comm, const ParameterList& params,
                              comm.getRank());
   }
   std::vector<tfeti::InequalityRow> rows = problem.inequalities;
-  return addInitialFrictionRows(spec, problem, modelFriction(params, spec.pairs), {}, rows, comm)
-      .sticks;
+  return addInitialFrictionRows(spec, problem, modelFriction(params, spec.pairs), {}, rows, comm);
 }
 
 }  // namespace
@@ -200,8 +201,10 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
   }
   checkHertzInput(params, problem.dim(), contactBodyLaws(spec, problem));
   const int restartStep = nonlinear ? checkRestart(params, spec, problem, outputDirectory) : -1;
-  const bool sticks = restartStep < 0 && checkRigidMotions(*comm, params, spec, problem,
-                                                           nonlinear ? &options : nullptr);
+  const InitialFriction friction =
+      restartStep < 0
+          ? checkRigidMotions(*comm, params, spec, problem, nonlinear ? &options : nullptr)
+          : InitialFriction();
   const auto rows = static_cast<long long>(problem.contact.rows.size());
   const std::string solver = tfeti::FetiSolver::dualSolverFor(fetiParameters(params, spec), rows);
 
@@ -209,10 +212,12 @@ void checkContactProblem(const Teuchos::RCP<const tfeti::Comm>& comm, ParameterL
       problemLine(params, spec, nonlinear, restartStep, outputDirectory, solver)};
   addBodyLines(spec, problem, nonlinear, lines);
   addBoundaryLines(*comm, spec, problem, rows, lines);
-  if (sticks)
+  if (friction.sticks)
     lines.push_back(
         "friction: Coulomb friction alone holds a body along the contact surface: "
         "every load step starts sticking, then takes mu lambda_N");
+  if (friction.limit && friction.limit->loadFactor < 1.0)
+    lines.push_back("friction: " + frictionLimitText(*friction.limit));
   printDryRunReport(comm, problem.numSubdomains(), lines, problem.local, rows,
                     fetiParameters(params, spec), out, problem.inequalities, problem.equalities);
 }

@@ -281,13 +281,21 @@ InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
     std::vector<tfeti::InequalityRow> stuck = withFriction(stick);
     if (freeRigidMotions(spec, p, stuck, comm).empty()) {
       rows = std::move(stuck);
-      return {std::move(stick), true};
+      return {std::move(stick), true, std::nullopt};
     }
   }
   std::vector<tfeti::InequalityRow> with = withFriction(bounds);
   requireRigidMotionsHeld(spec, p, with, comm);
+  InitialFriction out{bounds, false, std::nullopt};
+  // Tresca's bounds are the data's: what they can hold is known before any solve.
+  if (friction.active() && !friction.coulomb() && p.rampedLoads.empty())
+    out.limit =
+        frictionLoadLimit(spec, p, rows,
+                          std::vector<tfeti::InequalityRow>(
+                              with.begin() + static_cast<std::ptrdiff_t>(rows.size()), with.end()),
+                          comm);
   rows = std::move(with);
-  return {bounds, false};
+  return out;
 }
 
 namespace {

@@ -23,11 +23,13 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "contact_ContactOutput.hpp"
 #include "contact_ElasticContactProblem.hpp"
+#include "contact_RigidMotions.hpp"
 
 namespace contact {
 
@@ -109,6 +111,9 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
 struct InitialFriction {
   SlipBounds bounds;
   bool sticks = false;
+  // Tresca alone, proportional loads: the load factor beyond which the friction rows cannot hold
+  // a motion the other rows leave free (contact_RigidMotions.hpp), where the load meets one.
+  std::optional<FrictionLoadLimit> limit;
 };
 InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
                                        const ElasticContactProblem& p,

@@ -152,6 +152,14 @@ Json nonlinearSummary(const ContactResult& r) {
     nl["fixed_point"] = std::move(fp);
     nl["fixed_point_tolerance"] = r.friction.fixedPointTolerance;
   }
+  if (r.frictionLimit) {
+    Json f = Json::object();
+    f["load_factor"] = r.frictionLimit->loadFactor;
+    f["motion"] = r.frictionLimit->motion;
+    f["load"] = r.frictionLimit->load;
+    f["capacity"] = r.frictionLimit->capacity;
+    nl["friction_limit"] = std::move(f);
+  }
   s["nonlinear"] = std::move(nl);
   s["steps"] = stepsJson(r.history);
   if (r.haveContact) {

@@ -143,6 +143,8 @@ struct ContactResult {
   // converged step; the per-node friction results are in contactNodes.
   ModelFriction friction;
   std::vector<FixedPointStep> fixedPoint;
+  // Tresca alone: the load factor beyond which friction cannot hold the load (friction_limit).
+  std::optional<FrictionLoadLimit> frictionLimit;
 
   tfeti::FetiTimings timings;
   double wallTime = 0.0, peakRssMb = 0.0;

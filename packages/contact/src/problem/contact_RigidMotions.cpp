@@ -351,6 +351,118 @@ std::vector<std::string> freeRigidMotions(const ElasticContactSpec& spec,
   return broadcastLines(motions, comm);
 }
 
+namespace {
+
+// The motion r (mode coefficients per piece) at the subdomain copy's dof: component c at x.
+double motionAt(const Pieces& pieces, int q, int dim, const std::vector<double>& r, const double* x,
+                int c) {
+  const int nm = modesPerPiece(dim);
+  double m[6];
+  modeValues(pieces, q, dim, x, c, m);
+  double u = 0.0;
+  for (int i = 0; i < nm; ++i) u += r[static_cast<std::size_t>(q) * nm + i] * m[i];
+  return u;
+}
+
+// C(r): sum over the friction rows of bound * |B_i r|, a disc pair (disc 1 then 2) as one.
+double frictionCapacity(const ElasticContactProblem& p, const Pieces& pieces,
+                        const std::vector<tfeti::InequalityRow>& friction,
+                        const std::vector<double>& r) {
+  const int dim = p.dim();
+  const auto along = [&](const tfeti::InequalityRow& row) {
+    double b = 0.0;
+    for (const auto& e : row.entries) {
+      const UnstructuredSubdomain& s = p.subdomains[e.subdomain];
+      b += e.coef * motionAt(pieces, pieces.ofSubdomain[e.subdomain], dim, r,
+                             &s.coords[dim * (e.dof / dim)], e.dof % dim);
+    }
+    return b;
+  };
+  double c = 0.0;
+  for (std::size_t k = 0; k < friction.size(); ++k) {
+    const tfeti::InequalityRow& row = friction[k];
+    const double bound = std::max(std::abs(row.upperBound), std::abs(row.lowerBound));
+    if (row.disc == 1 && k + 1 < friction.size() && friction[k + 1].disc == 2) {
+      c += bound * std::hypot(along(row), along(friction[k + 1]));
+      ++k;
+    } else {
+      c += bound * std::abs(along(row));
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+std::optional<FrictionLoadLimit> frictionLoadLimit(
+    const ElasticContactSpec& spec, const ElasticContactProblem& p,
+    const std::vector<tfeti::InequalityRow>& others,
+    const std::vector<tfeti::InequalityRow>& friction, const tfeti::Comm& comm) {
+  const int dim = p.dim(), nm = modesPerPiece(dim);
+  Pieces pieces = joinSubdomains(p);
+  measurePieces(p, pieces);
+  const int n = pieces.count * nm;
+  // The load's generalized forces on every piece's modes: each rank its subdomains, summed.
+  std::vector<double> mine(n, 0.0), force(n, 0.0);
+  for (const tfeti::SubdomainData& sd : p.local) {
+    const int id = sd.mesh.id, q = pieces.ofSubdomain[id];
+    const std::vector<double>& x = p.subdomains[id].coords;
+    for (std::size_t d = 0; d < sd.f.size(); ++d) {
+      if (sd.f[d] == 0.0) continue;
+      double m[6];
+      modeValues(pieces, q, dim, &x[dim * (d / dim)], static_cast<int>(d % dim), m);
+      for (int i = 0; i < nm; ++i) mine[static_cast<std::size_t>(q) * nm + i] += sd.f[d] * m[i];
+    }
+  }
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, n, mine.data(), force.data());
+  double found[3] = {0.0, 0.0, 0.0};  // load, capacity, a limit found (1)
+  std::vector<std::string> motion;
+  if (comm.getRank() == 0) {  // it holds the inequality and coupling rows
+    Gram gram = gramOfRows(p, pieces, others);
+    const std::vector<std::vector<double>> free = nullSpace(gram);
+    std::vector<std::vector<double>> tried = free;
+    // The load's direction within the free motions.
+    std::vector<double> own(n, 0.0);
+    for (const auto& v : free) {
+      double a = 0.0;
+      for (int j = 0; j < n; ++j) a += v[j] * force[j];
+      for (int j = 0; j < n; ++j) own[j] += a * v[j];
+    }
+    if (free.size() > 1) tried.push_back(own);
+    double scale = 0.0;
+    for (int j = 0; j < n; ++j) scale = std::max(scale, std::abs(force[j]));
+    for (const auto& r : tried) {
+      double work = 0.0;
+      for (int j = 0; j < n; ++j) work += r[j] * force[j];
+      if (!(std::abs(work) > 1e-12 * scale)) continue;  // the load does no work along r
+      const double capacity = frictionCapacity(p, pieces, friction, r);
+      if (found[2] == 0.0 || capacity * found[0] < found[1] * std::abs(work)) {
+        found[0] = std::abs(work);
+        found[1] = capacity;
+        found[2] = 1.0;
+        motion = describe(spec, p, pieces, {r});
+      }
+    }
+  }
+  Teuchos::broadcast(comm, 0, 3, found);
+  motion = broadcastLines(motion, comm);
+  if (found[2] == 0.0) return std::nullopt;
+  FrictionLoadLimit limit;
+  limit.motion = motion.empty() ? "" : motion.front();
+  limit.load = found[0];
+  limit.capacity = found[1];
+  limit.loadFactor = found[1] / found[0];
+  return limit;
+}
+
+std::string frictionLimitText(const FrictionLoadLimit& limit) {
+  std::ostringstream s;
+  s << "the friction rows' bounds can hold " << limit.motion << " only up to the load factor "
+    << limit.loadFactor << " (along it the load at factor 1 does " << limit.load
+    << ", the friction rows at most " << limit.capacity << "): no equilibrium exists beyond it";
+  return s.str();
+}
+
 void requireRigidMotionsHeld(const ElasticContactSpec& spec, const ElasticContactProblem& p,
                              const std::vector<tfeti::InequalityRow>& inequalities,
                              const tfeti::Comm& comm) {
