@@ -267,12 +267,15 @@ InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
                                        const ModelFriction& friction, const SlipBounds& bounds,
                                        std::vector<tfeti::InequalityRow>& rows,
                                        const tfeti::Comm& comm) {
-  auto withFriction = [&](const SlipBounds& b) {
+  const auto frictionRowsWith = [&](const SlipBounds& b) {
+    return frictionRows(p, friction, b, {}, {}, comm.getRank());
+  };
+  const auto withRows = [&](const std::vector<tfeti::InequalityRow>& f) {
     std::vector<tfeti::InequalityRow> all = rows;
-    const auto f = frictionRows(p, friction, b, {}, {}, comm.getRank());
     all.insert(all.end(), f.begin(), f.end());
     return all;
   };
+  const auto withFriction = [&](const SlipBounds& b) { return withRows(frictionRowsWith(b)); };
   // Does Coulomb friction hold a body? Free without its rows (Tresca's stay), held with them
   // sticking (docs/friction.md, "A body held by friction alone"). Where the sticking rows do
   // not hold it either, the check below names the motions free without them.
@@ -284,16 +287,13 @@ InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
       return {std::move(stick), true, std::nullopt};
     }
   }
-  std::vector<tfeti::InequalityRow> with = withFriction(bounds);
+  const std::vector<tfeti::InequalityRow> f = frictionRowsWith(bounds);
+  std::vector<tfeti::InequalityRow> with = withRows(f);
   requireRigidMotionsHeld(spec, p, with, comm);
   InitialFriction out{bounds, false, std::nullopt};
   // Tresca's bounds are the data's: what they can hold is known before any solve.
   if (friction.active() && !friction.coulomb() && p.rampedLoads.empty())
-    out.limit =
-        frictionLoadLimit(spec, p, rows,
-                          std::vector<tfeti::InequalityRow>(
-                              with.begin() + static_cast<std::ptrdiff_t>(rows.size()), with.end()),
-                          comm);
+    out.limit = frictionLoadLimit(spec, p, rows, f, comm);
   rows = std::move(with);
   return out;
 }

@@ -69,6 +69,19 @@ void placeObstacles(ElasticContactProblem& problem, const NonlinearOptions& opti
   }
 }
 
+// FNV-1a over each row's slave node, facet and entries' nodes: the rows' topology (their gaps
+// and coefficients move with u every iteration).
+std::size_t rowTopology(const std::vector<ContactRow>& rows) {
+  std::size_t h = 1469598103934665603ull;
+  const auto mix = [&](long long v) { h = (h ^ static_cast<std::size_t>(v)) * 1099511628211ull; };
+  for (const ContactRow& row : rows) {
+    mix(row.slaveNode);
+    mix(row.facet);
+    for (const NodeEntry& e : row.entries) mix(e.node);
+  }
+  return h;
+}
+
 }  // namespace
 
 void searchContactAt(const tfeti::Comm& comm, NonlinearModel& model,
@@ -128,17 +141,7 @@ void LoadStepIteration::updateContact(const Field& u, double t) const {
     if (keeps) rememberStepRows();
   }
   contactAt_ = current;
-  // FNV-1a over each row's slave node, facet and entries' nodes: the rows' topology (their
-  // gaps and coefficients move with u every iteration).
-  std::size_t topology = 1469598103934665603ull;
-  const auto mix = [&](long long v) {
-    topology = (topology ^ static_cast<std::size_t>(v)) * 1099511628211ull;
-  };
-  for (const ContactRow& row : problem.contact.rows) {
-    mix(row.slaveNode);
-    mix(row.facet);
-    for (const NodeEntry& e : row.entries) mix(e.node);
-  }
+  const std::size_t topology = rowTopology(problem.contact.rows);
   rowsMoved_ = rowsMoved_ || topology != rowTopology_;
   rowTopology_ = topology;
   if (friction.active()) {
@@ -279,6 +282,23 @@ void LoadStepIteration::tightenQps(int step, int iteration, double relativeIncre
             << " times the configured tolerances" << std::endl;
 }
 
+bool LoadStepIteration::stalledAtQpAccuracy(const ResidualCheck& check, const BoundsUpdate& bounds,
+                                            double factor, StallWatch& watch) const {
+  // How far from the step's test the residual's equilibrium leaves it (above 1: not there).
+  const double distance = std::max(check.relativeIncrement / options_.eta1,
+                                   bounds.tolerance > 0.0 ? bounds.change / bounds.tolerance : 0.0);
+  // Every rank finds the same rows; the decision sets every rank's QP tolerance, so it is made
+  // collectively all the same.
+  int moved = rowsMoved_ ? 1 : 0, anyMoved = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &moved, &anyMoved);
+  rowsMoved_ = false;
+  const bool stalled = check.relativeResidual < options_.eta2 && factor <= 1.0 && anyMoved == 0 &&
+                       distance > kStallContraction * watch.previousDistance;
+  watch.stalls = stalled ? watch.stalls + 1 : 0;
+  watch.previousDistance = distance;
+  return watch.stalls == kStalls;
+}
+
 StepOutcome LoadStepIteration::attempt(int step, double t) const {
   contactFrozen_ = false;
   stepRowNodes_.clear();
@@ -294,8 +314,7 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
     double factor = options_.inexactQpFactor;
     // An exact QP's factor: 1 unless the step's test stalls (tightenQps).
     double exactFactor = 1.0;
-    int stalls = 0;
-    double previousDistance = 0.0;
+    StallWatch stall;
     Field previousForces;
     double previousResidual = 0.0;
     for (int it = 1; it <= options_.maxIterations; ++it) {
@@ -361,20 +380,7 @@ StepOutcome LoadStepIteration::attempt(int step, double t) const {
       }
       if (!contactFrozen_ && !check.converged && twoCycle(out.iterations))
         freezeContact(step, it, check.relativeIncrement);
-      // How far from the step's test the residual's equilibrium leaves it (above 1: not there).
-      const double distance =
-          std::max(check.relativeIncrement / options_.eta1,
-                   bounds.tolerance > 0.0 ? bounds.change / bounds.tolerance : 0.0);
-      // Every rank finds the same rows; the decision sets every rank's QP tolerance, so it is
-      // made collectively all the same.
-      int moved = rowsMoved_ ? 1 : 0, anyMoved = 0;
-      Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &moved, &anyMoved);
-      rowsMoved_ = false;
-      const bool stalled = check.relativeResidual < options_.eta2 && factor <= 1.0 &&
-                           anyMoved == 0 && distance > kStallContraction * previousDistance;
-      stalls = stalled ? stalls + 1 : 0;
-      previousDistance = distance;
-      if (stalls == kStalls && exactFactor == 1.0) {
+      if (stalledAtQpAccuracy(check, bounds, factor, stall) && exactFactor == 1.0) {
         exactFactor = kTighterQp;
         tightenQps(step, it, check.relativeIncrement, bounds, exactFactor);
       }

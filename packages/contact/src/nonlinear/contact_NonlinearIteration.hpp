@@ -153,6 +153,13 @@ class LoadStepIteration {
   // contact update changed it (updateContact; the first update of an attempt always does).
   mutable std::size_t rowTopology_ = 0;
   mutable bool rowsMoved_ = true;
+  struct StallWatch {
+    int stalls = 0;  // iterations in a row that did not get closer
+    double previousDistance = 0.0;
+  };
+  // This iteration is the kStalls-th in a row that stalled (collective).
+  bool stalledAtQpAccuracy(const ResidualCheck& check, const BoundsUpdate& bounds, double factor,
+                           StallWatch& watch) const;
   void tightenQps(int step, int iteration, double relativeIncrement, const BoundsUpdate& bounds,
                   double factor) const;
   // The frozen rows' gaps at the surface displacement `current`, and their dual rows.

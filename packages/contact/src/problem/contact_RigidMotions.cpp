@@ -392,17 +392,11 @@ double frictionCapacity(const ElasticContactProblem& p, const Pieces& pieces,
   return c;
 }
 
-}  // namespace
-
-std::optional<FrictionLoadLimit> frictionLoadLimit(
-    const ElasticContactSpec& spec, const ElasticContactProblem& p,
-    const std::vector<tfeti::InequalityRow>& others,
-    const std::vector<tfeti::InequalityRow>& friction, const tfeti::Comm& comm) {
-  const int dim = p.dim(), nm = modesPerPiece(dim);
-  Pieces pieces = joinSubdomains(p);
-  measurePieces(p, pieces);
-  const int n = pieces.count * nm;
-  // The load's generalized forces on every piece's modes: each rank its subdomains, summed.
+// The load's generalized forces on every piece's modes, r^T f for a motion r being their dot
+// product: each rank its subdomains' loads, summed over the ranks.
+std::vector<double> loadOnModes(const ElasticContactProblem& p, const Pieces& pieces,
+                                const tfeti::Comm& comm) {
+  const int dim = p.dim(), nm = modesPerPiece(dim), n = pieces.count * nm;
   std::vector<double> mine(n, 0.0), force(n, 0.0);
   for (const tfeti::SubdomainData& sd : p.local) {
     const int id = sd.mesh.id, q = pieces.ofSubdomain[id];
@@ -415,25 +409,43 @@ std::optional<FrictionLoadLimit> frictionLoadLimit(
     }
   }
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, n, mine.data(), force.data());
+  return force;
+}
+
+// The motions tried: each free one, and with several the load's own direction among them (its
+// projection onto their span).
+std::vector<std::vector<double>> candidateMotions(const std::vector<std::vector<double>>& free,
+                                                  const std::vector<double>& force) {
+  std::vector<std::vector<double>> tried = free;
+  if (free.size() < 2) return tried;
+  std::vector<double> own(force.size(), 0.0);
+  for (const auto& v : free) {
+    double a = 0.0;
+    for (std::size_t j = 0; j < force.size(); ++j) a += v[j] * force[j];
+    for (std::size_t j = 0; j < force.size(); ++j) own[j] += a * v[j];
+  }
+  tried.push_back(std::move(own));
+  return tried;
+}
+
+}  // namespace
+
+std::optional<FrictionLoadLimit> frictionLoadLimit(
+    const ElasticContactSpec& spec, const ElasticContactProblem& p,
+    const std::vector<tfeti::InequalityRow>& others,
+    const std::vector<tfeti::InequalityRow>& friction, const tfeti::Comm& comm) {
+  Pieces pieces = joinSubdomains(p);
+  measurePieces(p, pieces);
+  const std::vector<double> force = loadOnModes(p, pieces, comm);
   double found[3] = {0.0, 0.0, 0.0};  // load, capacity, a limit found (1)
   std::vector<std::string> motion;
   if (comm.getRank() == 0) {  // it holds the inequality and coupling rows
     Gram gram = gramOfRows(p, pieces, others);
-    const std::vector<std::vector<double>> free = nullSpace(gram);
-    std::vector<std::vector<double>> tried = free;
-    // The load's direction within the free motions.
-    std::vector<double> own(n, 0.0);
-    for (const auto& v : free) {
-      double a = 0.0;
-      for (int j = 0; j < n; ++j) a += v[j] * force[j];
-      for (int j = 0; j < n; ++j) own[j] += a * v[j];
-    }
-    if (free.size() > 1) tried.push_back(own);
     double scale = 0.0;
-    for (int j = 0; j < n; ++j) scale = std::max(scale, std::abs(force[j]));
-    for (const auto& r : tried) {
+    for (const double x : force) scale = std::max(scale, std::abs(x));
+    for (const auto& r : candidateMotions(nullSpace(gram), force)) {
       double work = 0.0;
-      for (int j = 0; j < n; ++j) work += r[j] * force[j];
+      for (std::size_t j = 0; j < force.size(); ++j) work += r[j] * force[j];
       if (!(std::abs(work) > 1e-12 * scale)) continue;  // the load does no work along r
       const double capacity = frictionCapacity(p, pieces, friction, r);
       if (found[2] == 0.0 || capacity * found[0] < found[1] * std::abs(work)) {
