@@ -33,7 +33,8 @@ std::vector<std::string> freeRigidMotions(const ElasticContactSpec& spec,
 // can do at most C(r) = sum_i g_i |B_i r| (pairs: g_i |(B_1 r, B_2 r)|). So no equilibrium exists
 // beyond the load factor C(r) / |r^T f| with proportional loads f(t) = t f. Tried along each free
 // motion and along the load's own direction within them (the reference geometry; a necessary
-// condition: with several free motions a combination may give out earlier).
+// condition: with several free motions a combination may give out earlier, and the contact rows
+// count as holding both ways, so a motion that lifts nodes off, e.g. rolling, is not tried).
 struct FrictionLoadLimit {
   std::string motion;       // as freeRigidMotions describes it
   double load = 0.0;        // |r^T f| at load factor 1
