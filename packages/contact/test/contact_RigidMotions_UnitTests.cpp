@@ -2,10 +2,13 @@
 // y = 0.5, tests/meshes/patch_blocks_2d.geo: "lower" (0, 1) x (0, 0.5), "upper" (0, 1) x (0.5, 1),
 // the upper one's bottom the slave against the lower one's top): the free motions found and how
 // they read, for supports that hold everything, nothing along x, and only a line of u_y.
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "contact_ElasticContactProblem.hpp"
@@ -76,6 +79,92 @@ TEUCHOS_UNIT_TEST(RigidMotions, RotationsNameTheirCentre) {
   TEST_EQUALITY(free[1],
                 "body \"lower\": rotation about (0, 0.25), with body \"upper\": rotation about "
                 "(0, 0.75)");
+}
+
+// The load limit (frictionLoadLimit) with the upper block held along x and against turning by
+// u_x = 0 on its left edge: only its translation along y is free, and the contact rows push
+// against it one way. Pressed down, they hold it at every load factor (no limit); pulled up,
+// at none: the limit is 0 along that translation, every contact row lifted, and
+// requireLoadHeld names it. The same on every rank (rank 0 holds the rows).
+TEUCHOS_UNIT_TEST(RigidMotions, ContactRowsPushOnly) {
+  const auto comm = Tpetra::getDefaultComm();
+  contact::ElasticContactSpec spec = patchSpec();
+  spec.fixed = {"lower_bottom"};
+  spec.symmetry = {{"upper_left", 0}};
+  {
+    const contact::ElasticContactProblem p = contact::buildElasticContactProblem(spec, *comm);
+    const auto limit = contact::frictionLoadLimit(spec, p, p.inequalities, *comm);
+    TEST_ASSERT(!limit.has_value());
+    TEST_NOTHROW(contact::requireLoadHeld(limit));
+  }
+  spec.tractions = {{"upper_top", {0.0, 1.0e7}}};
+  const contact::ElasticContactProblem p = contact::buildElasticContactProblem(spec, *comm);
+  const auto limit = contact::frictionLoadLimit(spec, p, p.inequalities, *comm);
+  TEST_ASSERT(limit.has_value());
+  if (!limit) return;
+  TEST_EQUALITY(limit->motion, "body \"upper\": translation along y");
+  TEST_EQUALITY(limit->loadFactor, 0.0);
+  TEST_FLOATING_EQUALITY(limit->load, 1.0e7, 1e-12);  // the traction times the top's length 1
+  int contactRows = static_cast<int>(p.inequalities.size());
+  Teuchos::broadcast(*comm, 0, &contactRows);
+  TEST_EQUALITY(limit->liftedRows, contactRows);
+  TEST_COMPARE(limit->liftedRows, >, 0);
+  TEST_THROW(contact::requireLoadHeld(limit), std::invalid_argument);
+  try {
+    contact::requireLoadHeld(limit);
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    out << what << "\n";
+    TEST_ASSERT(what.find("nothing holds body \"upper\": translation along y against the load") !=
+                std::string::npos);
+  }
+}
+
+// Friction rows with fixed bounds on the free motions (rows made here: u_x of the upper block's
+// bottom nodes, each with the bound 1e5, beside the contact rows), the upper block free to
+// slide, lift and turn. Pushed along x by 3e5 and down by 1e6 on its top, it slides at the load
+// factor (bounds' sum) / 3e5; pushed along x harder than down, it tips over its lower right
+// corner at any load factor (the contact rows lift off, the friction rows do nothing along it).
+TEUCHOS_UNIT_TEST(RigidMotions, SlidingAndTipping) {
+  const auto comm = Tpetra::getDefaultComm();
+  contact::ElasticContactSpec spec = patchSpec();
+  spec.fixed = {"lower_bottom"};
+  const auto limitFor = [&](double fx, double fy) {
+    spec.tractions = {{"upper_top", {fx, fy}}};
+    const contact::ElasticContactProblem p = contact::buildElasticContactProblem(spec, *comm);
+    std::vector<tfeti::InequalityRow> rows = p.inequalities;
+    double bounds = 0.0;
+    for (const tfeti::InequalityRow& contactRow : p.inequalities) {
+      tfeti::InequalityRow row;
+      for (const auto& e : contactRow.entries)  // the slave node's u_y entry: its u_x instead
+        if (p.bodyOfSubdomain[e.subdomain] == 1 && e.dof % 2 == 1) {
+          row.entries.push_back({e.subdomain, e.dof - 1, 1.0});
+          break;
+        }
+      row.lowerBound = -1.0e5;
+      row.upperBound = 1.0e5;
+      rows.push_back(row);
+      bounds += 1.0e5;
+    }
+    Teuchos::broadcast(*comm, 0, &bounds);
+    return std::make_pair(contact::frictionLoadLimit(spec, p, rows, *comm), bounds);
+  };
+  const auto [sliding, bounds] = limitFor(3.0e5, -1.0e6);
+  TEST_ASSERT(sliding.has_value());
+  if (sliding) {
+    out << sliding->motion << ": " << sliding->loadFactor << "\n";
+    TEST_EQUALITY(sliding->motion, "body \"upper\": translation along x");
+    TEST_FLOATING_EQUALITY(sliding->loadFactor, bounds / 3.0e5, 1e-12);
+    TEST_EQUALITY(sliding->liftedRows, 0);
+  }
+  const auto tipping = limitFor(2.0e6, -1.0e6).first;
+  TEST_ASSERT(tipping.has_value());
+  if (tipping) {
+    out << tipping->motion << ": " << tipping->loadFactor << "\n";
+    TEST_EQUALITY(tipping->motion, "body \"upper\": rotation about (1, 0.5)");
+    TEST_COMPARE(tipping->loadFactor, <=, 1e-12);
+    TEST_COMPARE(tipping->liftedRows, >, 0);
+  }
 }
 
 }  // namespace

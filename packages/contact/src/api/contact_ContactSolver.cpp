@@ -165,6 +165,9 @@ void ContactSolver::setup() {
   r.frictionHistory.bounds = friction.bounds;
   r.frictionSticks = friction.sticks;
   r.frictionLimit = friction.limit;
+  // A load the rows hold at no load factor fails every step: said before any factorization. A
+  // restart's state is not the reference geometry the limit is of.
+  if (!r.options.restart) requireLoadHeld(friction.limit);
   if (r.frictionSticks && r.verbosity > 0 && comm_->getRank() == 0)
     std::cout << "nonlinear_contact: Coulomb friction alone holds a body along the contact "
                  "surface: every load step starts sticking, then takes mu lambda_N\n";

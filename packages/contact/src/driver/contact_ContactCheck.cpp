@@ -144,9 +144,9 @@ void addBoundaryLines(const tfeti::Comm& comm, const ElasticContactSpec& spec,
 // The run's check that every rigid motion is held, on the rows of its first solve: the rigid
 // obstacle where the first increment moves it, and the friction rows with a bound from the start
 // (Tresca; Coulomb sticking where friction alone holds a body, which it says). It returns what
-// addInitialFrictionRows found: that, and with Tresca alone the load factor beyond which the
-// friction rows cannot hold the load. A restart starts from its saved state, which the dry run
-// does not read: its run checks.
+// addInitialFrictionRows found: that, and the load factor beyond which the contact and friction
+// rows cannot hold the load (an error where it is 0). A restart starts from its saved state, which
+// the dry run does not read: its run checks.
 InitialFriction checkRigidMotions(const tfeti::Comm& comm, const ParameterList& params,
                                   const ElasticContactSpec& spec, ElasticContactProblem& problem,
                                   const NonlinearOptions* options) {
@@ -177,7 +177,10 @@ InitialFriction checkRigidMotions(const tfeti::Comm& comm, const ParameterList& 
                              comm.getRank());
   }
   std::vector<tfeti::InequalityRow> rows = problem.inequalities;
-  return addInitialFrictionRows(spec, problem, modelFriction(params, spec.pairs), {}, rows, comm);
+  InitialFriction friction =
+      addInitialFrictionRows(spec, problem, modelFriction(params, spec.pairs), {}, rows, comm);
+  requireLoadHeld(friction.limit);
+  return friction;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <tuple>
@@ -276,6 +277,15 @@ InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
     return all;
   };
   const auto withFriction = [&](const SlipBounds& b) { return withRows(frictionRowsWith(b)); };
+  InitialFriction out{bounds, false, std::nullopt};
+  // What the rows can hold along the free rigid motions is known before any solve where the
+  // loads are proportional: Tresca's bounds are the data's; a Coulomb row's, mu lambda_N, are
+  // not, so the limit counts them as holding any tangential force.
+  if (p.rampedLoads.empty()) {
+    SlipBounds unbounded = stickingBounds(spec, p, friction);
+    for (auto& entry : unbounded) entry.second = std::numeric_limits<double>::infinity();
+    out.limit = frictionLoadLimit(spec, p, withFriction(unbounded), comm);
+  }
   // Does Coulomb friction hold a body? Free without its rows (Tresca's stay), held with them
   // sticking (docs/friction.md, "A body held by friction alone"). Where the sticking rows do
   // not hold it either, the check below names the motions free without them.
@@ -284,16 +294,13 @@ InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
     std::vector<tfeti::InequalityRow> stuck = withFriction(stick);
     if (freeRigidMotions(spec, p, stuck, comm).empty()) {
       rows = std::move(stuck);
-      return {std::move(stick), true, std::nullopt};
+      out.bounds = std::move(stick);
+      out.sticks = true;
+      return out;
     }
   }
-  const std::vector<tfeti::InequalityRow> f = frictionRowsWith(bounds);
-  std::vector<tfeti::InequalityRow> with = withRows(f);
+  std::vector<tfeti::InequalityRow> with = withFriction(bounds);
   requireRigidMotionsHeld(spec, p, with, comm);
-  InitialFriction out{bounds, false, std::nullopt};
-  // Tresca's bounds are the data's: what they can hold is known before any solve.
-  if (friction.active() && !friction.coulomb() && p.rampedLoads.empty())
-    out.limit = frictionLoadLimit(spec, p, rows, f, comm);
   rows = std::move(with);
   return out;
 }

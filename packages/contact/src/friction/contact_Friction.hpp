@@ -111,8 +111,10 @@ std::vector<tfeti::InequalityRow> frictionRows(const ElasticContactProblem& p,
 struct InitialFriction {
   SlipBounds bounds;
   bool sticks = false;
-  // Tresca alone, proportional loads: the load factor beyond which the friction rows cannot hold
-  // a motion the other rows leave free (contact_RigidMotions.hpp), where the load meets one.
+  // Proportional loads: the load factor beyond which the contact and friction rows cannot hold
+  // a rigid motion the supports leave free (contact_RigidMotions.hpp, frictionLoadLimit), where
+  // the load meets one. Finite only with Tresca rows (Coulomb's count as unbounded); 0 where the
+  // load pulls a body off (the caller's requireLoadHeld says so, a restart's state aside).
   std::optional<FrictionLoadLimit> limit;
 };
 InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,

@@ -158,6 +158,7 @@ Json nonlinearSummary(const ContactResult& r) {
     f["motion"] = r.frictionLimit->motion;
     f["load"] = r.frictionLimit->load;
     f["capacity"] = r.frictionLimit->capacity;
+    f["lifted_contact_rows"] = r.frictionLimit->liftedRows;
     nl["friction_limit"] = std::move(f);
   }
   s["nonlinear"] = std::move(nl);

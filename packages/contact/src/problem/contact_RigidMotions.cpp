@@ -2,6 +2,8 @@
 // rigid modes, the Gram matrix of the rows against them and its null space, described.
 #include "contact_RigidMotions.hpp"
 
+#include "contact_RigidModes.hpp"
+
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_LAPACK.hpp>
 
@@ -15,16 +17,7 @@
 
 namespace contact {
 
-namespace {
-
-// Subdomains that share a node are glued: they move as one piece. Union-find over subdomains.
-struct Pieces {
-  int count = 0;
-  std::vector<int> ofSubdomain;
-  std::vector<int> ofNode;  // -1: a node in no subdomain
-  std::vector<std::array<double, 3>> centre;
-  std::vector<double> length;  // the largest side of the piece's bounding box (> 0)
-};
+namespace rigid {
 
 int findRoot(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -105,43 +98,6 @@ void modeValues(const Pieces& pieces, int q, int dim, const double* x, int c, do
   const double rot[3][3] = {{0.0, -r[2], r[1]}, {r[2], 0.0, -r[0]}, {-r[1], r[0], 0.0}};
   for (int a = 0; a < 3; ++a) out[3 + a] = rot[a][c];
 }
-
-// The Gram matrix sum_rows (R^T b)(R^T b)^T over the pieces' modes, a row given as (piece,
-// position, component, coefficient) entries.
-class Gram {
- public:
-  Gram(const Pieces& pieces, int dim)
-      : pieces_(pieces),
-        dim_(dim),
-        nm_(modesPerPiece(dim)),
-        n_(pieces.count * nm_),
-        m_(static_cast<std::size_t>(n_) * n_, 0.0) {}
-
-  void beginRow() { row_.clear(); }
-  void add(int piece, const double* x, int component, double coef) {
-    std::vector<double>& v = row_[piece];
-    v.resize(nm_, 0.0);
-    double m[6];
-    modeValues(pieces_, piece, dim_, x, component, m);
-    for (int i = 0; i < nm_; ++i) v[i] += coef * m[i];
-  }
-  void endRow() {
-    for (const auto& [a, va] : row_)
-      for (const auto& [b, vb] : row_)
-        for (int i = 0; i < nm_; ++i)
-          for (int j = 0; j < nm_; ++j)
-            m_[static_cast<std::size_t>(a * nm_ + i) +
-               static_cast<std::size_t>(b * nm_ + j) * n_] += va[i] * vb[j];
-  }
-  int size() const { return n_; }
-  std::vector<double>& matrix() { return m_; }
-
- private:
-  const Pieces& pieces_;
-  int dim_, nm_, n_;
-  std::vector<double> m_;  // column-major n x n
-  std::map<int, std::vector<double>> row_;
-};
 
 // The rows' entries on subdomain dofs: the node's coordinates are the subdomain's copy's.
 template <class Row>
@@ -335,7 +291,9 @@ std::vector<std::string> broadcastLines(const std::vector<std::string>& lines,
   return out;
 }
 
-}  // namespace
+}  // namespace rigid
+
+using namespace rigid;
 
 std::vector<std::string> freeRigidMotions(const ElasticContactSpec& spec,
                                           const ElasticContactProblem& p,
@@ -349,130 +307,6 @@ std::vector<std::string> freeRigidMotions(const ElasticContactSpec& spec,
     motions = describe(spec, p, pieces, nullSpace(gram));
   }
   return broadcastLines(motions, comm);
-}
-
-namespace {
-
-// The motion r (mode coefficients per piece) at the subdomain copy's dof: component c at x.
-double motionAt(const Pieces& pieces, int q, int dim, const std::vector<double>& r, const double* x,
-                int c) {
-  const int nm = modesPerPiece(dim);
-  double m[6];
-  modeValues(pieces, q, dim, x, c, m);
-  double u = 0.0;
-  for (int i = 0; i < nm; ++i) u += r[static_cast<std::size_t>(q) * nm + i] * m[i];
-  return u;
-}
-
-// C(r): sum over the friction rows of bound * |B_i r|, a disc pair (disc 1 then 2) as one.
-double frictionCapacity(const ElasticContactProblem& p, const Pieces& pieces,
-                        const std::vector<tfeti::InequalityRow>& friction,
-                        const std::vector<double>& r) {
-  const int dim = p.dim();
-  const auto along = [&](const tfeti::InequalityRow& row) {
-    double b = 0.0;
-    for (const auto& e : row.entries) {
-      const UnstructuredSubdomain& s = p.subdomains[e.subdomain];
-      b += e.coef * motionAt(pieces, pieces.ofSubdomain[e.subdomain], dim, r,
-                             &s.coords[dim * (e.dof / dim)], e.dof % dim);
-    }
-    return b;
-  };
-  double c = 0.0;
-  for (std::size_t k = 0; k < friction.size(); ++k) {
-    const tfeti::InequalityRow& row = friction[k];
-    const double bound = std::max(std::abs(row.upperBound), std::abs(row.lowerBound));
-    if (row.disc == 1 && k + 1 < friction.size() && friction[k + 1].disc == 2) {
-      c += bound * std::hypot(along(row), along(friction[k + 1]));
-      ++k;
-    } else {
-      c += bound * std::abs(along(row));
-    }
-  }
-  return c;
-}
-
-// The load's generalized forces on every piece's modes, r^T f for a motion r being their dot
-// product: each rank its subdomains' loads, summed over the ranks.
-std::vector<double> loadOnModes(const ElasticContactProblem& p, const Pieces& pieces,
-                                const tfeti::Comm& comm) {
-  const int dim = p.dim(), nm = modesPerPiece(dim), n = pieces.count * nm;
-  std::vector<double> mine(n, 0.0), force(n, 0.0);
-  for (const tfeti::SubdomainData& sd : p.local) {
-    const int id = sd.mesh.id, q = pieces.ofSubdomain[id];
-    const std::vector<double>& x = p.subdomains[id].coords;
-    for (std::size_t d = 0; d < sd.f.size(); ++d) {
-      if (sd.f[d] == 0.0) continue;
-      double m[6];
-      modeValues(pieces, q, dim, &x[dim * (d / dim)], static_cast<int>(d % dim), m);
-      for (int i = 0; i < nm; ++i) mine[static_cast<std::size_t>(q) * nm + i] += sd.f[d] * m[i];
-    }
-  }
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, n, mine.data(), force.data());
-  return force;
-}
-
-// The motions tried: each free one, and with several the load's own direction among them (its
-// projection onto their span).
-std::vector<std::vector<double>> candidateMotions(const std::vector<std::vector<double>>& free,
-                                                  const std::vector<double>& force) {
-  std::vector<std::vector<double>> tried = free;
-  if (free.size() < 2) return tried;
-  std::vector<double> own(force.size(), 0.0);
-  for (const auto& v : free) {
-    double a = 0.0;
-    for (std::size_t j = 0; j < force.size(); ++j) a += v[j] * force[j];
-    for (std::size_t j = 0; j < force.size(); ++j) own[j] += a * v[j];
-  }
-  tried.push_back(std::move(own));
-  return tried;
-}
-
-}  // namespace
-
-std::optional<FrictionLoadLimit> frictionLoadLimit(
-    const ElasticContactSpec& spec, const ElasticContactProblem& p,
-    const std::vector<tfeti::InequalityRow>& others,
-    const std::vector<tfeti::InequalityRow>& friction, const tfeti::Comm& comm) {
-  Pieces pieces = joinSubdomains(p);
-  measurePieces(p, pieces);
-  const std::vector<double> force = loadOnModes(p, pieces, comm);
-  double found[3] = {0.0, 0.0, 0.0};  // load, capacity, a limit found (1)
-  std::vector<std::string> motion;
-  if (comm.getRank() == 0) {  // it holds the inequality and coupling rows
-    Gram gram = gramOfRows(p, pieces, others);
-    double scale = 0.0;
-    for (const double x : force) scale = std::max(scale, std::abs(x));
-    for (const auto& r : candidateMotions(nullSpace(gram), force)) {
-      double work = 0.0;
-      for (std::size_t j = 0; j < force.size(); ++j) work += r[j] * force[j];
-      if (!(std::abs(work) > 1e-12 * scale)) continue;  // the load does no work along r
-      const double capacity = frictionCapacity(p, pieces, friction, r);
-      if (found[2] == 0.0 || capacity * found[0] < found[1] * std::abs(work)) {
-        found[0] = std::abs(work);
-        found[1] = capacity;
-        found[2] = 1.0;
-        motion = describe(spec, p, pieces, {r});
-      }
-    }
-  }
-  Teuchos::broadcast(comm, 0, 3, found);
-  motion = broadcastLines(motion, comm);
-  if (found[2] == 0.0) return std::nullopt;
-  FrictionLoadLimit limit;
-  limit.motion = motion.empty() ? "" : motion.front();
-  limit.load = found[0];
-  limit.capacity = found[1];
-  limit.loadFactor = found[1] / found[0];
-  return limit;
-}
-
-std::string frictionLimitText(const FrictionLoadLimit& limit) {
-  std::ostringstream s;
-  s << "the friction rows' bounds can hold " << limit.motion << " only up to the load factor "
-    << limit.loadFactor << " (along it the load at factor 1 does " << limit.load
-    << ", the friction rows at most " << limit.capacity << "): no equilibrium exists beyond it";
-  return s.str();
 }
 
 void requireRigidMotionsHeld(const ElasticContactSpec& spec, const ElasticContactProblem& p,

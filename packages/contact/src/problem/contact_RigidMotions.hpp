@@ -26,31 +26,41 @@ std::vector<std::string> freeRigidMotions(const ElasticContactSpec& spec,
                                           const std::vector<tfeti::InequalityRow>& inequalities,
                                           const tfeti::Comm& comm);
 
-// A load beyond what friction holds. Where every row but the friction rows leaves a rigid motion
-// r free, equilibrium along r reads r^T f(t) = sum_i lambda_i (B_i r) over the friction rows
-// alone (the other rows do no work along r, nor the stiffness), and friction rows with fixed
-// bounds |lambda_i| <= g_i (Tresca's; a 3D node's disc pair: |(lambda_1, lambda_2)| <= g_i)
-// can do at most C(r) = sum_i g_i |B_i r| (pairs: g_i |(B_1 r, B_2 r)|). So no equilibrium exists
-// beyond the load factor C(r) / |r^T f| with proportional loads f(t) = t f. Tried along each free
-// motion and along the load's own direction within them (the reference geometry; a necessary
-// condition: with several free motions a combination may give out earlier, and the contact rows
-// count as holding both ways, so a motion that lifts nodes off, e.g. rolling, is not tried).
+// A load beyond what the contact and friction rows hold (contact_LoadLimit.cpp). Along a rigid
+// motion r that the supports and couplings leave free, equilibrium reads
+// r^T f(t) = sum_i lambda_i (B_i r) over the inequality rows (the stiffness and the other rows
+// do no work along r). A contact row pushes only (lambda_i >= 0): it does work only where r
+// presses into it (B_i r > 0), and none where r lifts its node off. A friction row with a fixed
+// bound (Tresca's: |lambda_i| <= g_i; a 3D node's disc pair: |(lambda_1, lambda_2)| <= g_i)
+// does at most g_i |B_i r| (pairs: g_i |(B_1 r, B_2 r)|). So along an r that presses into no
+// contact row, the rows do at most C(r) = sum g_i |B_i r|, and with proportional loads
+// f(t) = t f no equilibrium exists beyond the load factor C(r) / r^T f. The smallest such
+// factor over all those motions, with their combinations, is a linear program in the free
+// motions' coefficients (contact_BoundedSimplex.hpp); C(r) is evaluated exactly at the r it
+// gives. A necessary condition at the reference geometry: the bodies' deformation and the
+// contact rows' changes are not in it. 0: the load pulls the bodies off what holds them
+// (requireLoadHeld names the motion). Rows without a finite bound (a Coulomb row's multiplier
+// is only bounded by mu lambda_N: give it none) hold any force along the motions they see.
 struct FrictionLoadLimit {
-  std::string motion;       // as freeRigidMotions describes it
-  double load = 0.0;        // |r^T f| at load factor 1
+  std::string motion;       // as freeRigidMotions describes it, r of unit length
+  double load = 0.0;        // r^T f at load factor 1 (> 0)
   double capacity = 0.0;    // C(r)
   double loadFactor = 0.0;  // capacity / load
+  int liftedRows = 0;       // contact rows whose node r lifts off (B_i r < 0)
 };
-// "friction can hold <motion> only up to the load factor X (...)": the run's and the dry run's
-// line.
+// "the friction rows' bounds can hold <motion> only up to the load factor X (...)": the run's
+// and the dry run's line.
 std::string frictionLimitText(const FrictionLoadLimit& limit);
 // The smallest such load factor, if some free motion meets the load (rank 0's answer on every
-// rank). `others`: every inequality row but the friction rows; `friction`: those (rank 0's).
-// The loads are p.local's.
-std::optional<FrictionLoadLimit> frictionLoadLimit(
-    const ElasticContactSpec& spec, const ElasticContactProblem& p,
-    const std::vector<tfeti::InequalityRow>& others,
-    const std::vector<tfeti::InequalityRow>& friction, const tfeti::Comm& comm);
+// rank). `rows`: every inequality row with the bounds the limit takes (rank 0's; the other
+// ranks pass theirs, which are empty). The loads are p.local's (collective).
+std::optional<FrictionLoadLimit> frictionLoadLimit(const ElasticContactSpec& spec,
+                                                   const ElasticContactProblem& p,
+                                                   const std::vector<tfeti::InequalityRow>& rows,
+                                                   const tfeti::Comm& comm);
+// Throws std::invalid_argument where the limit is 0 (below 1e-9: rounding): no load step can
+// converge. The motion, the load's work along it and the contact rows it lifts off are named.
+void requireLoadHeld(const std::optional<FrictionLoadLimit>& limit);
 
 // Throws std::invalid_argument on every rank naming the free motions and what would hold them.
 void requireRigidMotionsHeld(const ElasticContactSpec& spec, const ElasticContactProblem& p,

@@ -1,0 +1,210 @@
+// The primal simplex method with bounds on a few equality rows (contact_BoundedSimplex.hpp).
+#include "contact_BoundedSimplex.hpp"
+
+#include <Teuchos_LAPACK.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace contact {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+const double* column(const BoundedLp& lp, int j) {
+  return &lp.matrix[static_cast<std::size_t>(j) * lp.rows];
+}
+
+double dot(const double* a, const double* b, int n) {
+  double s = 0.0;
+  for (int i = 0; i < n; ++i) s += a[i] * b[i];
+  return s;
+}
+
+void checkSizes(const BoundedLp& lp) {
+  const std::size_t n = lp.objective.size();
+  if (lp.rows < 0 || lp.lower.size() != n || lp.upper.size() != n ||
+      lp.matrix.size() != n * static_cast<std::size_t>(lp.rows))
+    throw std::invalid_argument(
+        "maximizeFromZero: the matrix, objective and bounds disagree in size");
+  for (std::size_t j = 0; j < n; ++j)
+    if (!(lp.lower[j] <= 0.0 && lp.upper[j] >= 0.0) || !std::isfinite(lp.objective[j]))
+      throw std::invalid_argument("maximizeFromZero: column " + std::to_string(j) +
+                                  " has bounds that leave out 0, or a non-finite cost");
+}
+
+// m linearly independent columns (the longest first) by Gram-Schmidt; fewer where M's columns
+// do not span R^m.
+std::vector<int> firstBasis(const BoundedLp& lp, const std::vector<double>& norm) {
+  const int m = lp.rows, n = lp.columns();
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return norm[a] > norm[b]; });
+  std::vector<std::vector<double>> q;
+  std::vector<int> basis;
+  for (const int j : order) {
+    if (static_cast<int>(basis.size()) == m || !(norm[j] > 0.0)) break;
+    std::vector<double> v(column(lp, j), column(lp, j) + m);
+    for (int pass = 0; pass < 2; ++pass)
+      for (const auto& e : q) {
+        const double a = dot(e.data(), v.data(), m);
+        for (int i = 0; i < m; ++i) v[i] -= a * e[i];
+      }
+    const double r = std::sqrt(dot(v.data(), v.data(), m));
+    if (!(r > 1e-9 * norm[j])) continue;
+    for (double& x : v) x /= r;
+    q.push_back(std::move(v));
+    basis.push_back(j);
+  }
+  return basis;
+}
+
+// The basis matrix's LU factors.
+class BasisFactors {
+ public:
+  BasisFactors(const BoundedLp& lp, const std::vector<int>& basis)
+      : m_(lp.rows), lu_(static_cast<std::size_t>(m_) * m_), pivots_(m_) {
+    for (int i = 0; i < m_; ++i)
+      std::copy(column(lp, basis[i]), column(lp, basis[i]) + m_, lu_.begin() + i * m_);
+    int info = 0;
+    lapack_.GETRF(m_, m_, lu_.data(), m_, pivots_.data(), &info);
+    ok_ = info == 0;
+  }
+  bool ok() const { return ok_; }
+  // B v = rhs ('N') or B^T v = rhs ('T'), in place.
+  void solve(char trans, std::vector<double>& v) const {
+    int info = 0;
+    lapack_.GETRS(trans, m_, 1, lu_.data(), m_, pivots_.data(), v.data(), m_, &info);
+  }
+
+ private:
+  int m_;
+  std::vector<double> lu_;
+  std::vector<int> pivots_;
+  bool ok_ = false;
+  Teuchos::LAPACK<int, double> lapack_;
+};
+
+}  // namespace
+
+BoundedLpSolution maximizeFromZero(const BoundedLp& lp) {
+  checkSizes(lp);
+  const int m = lp.rows, n = lp.columns();
+  BoundedLpSolution out;
+  out.x.assign(n, 0.0);
+  out.y.assign(m, 0.0);
+  std::vector<double> norm(n);
+  for (int j = 0; j < n; ++j) norm[j] = std::sqrt(dot(column(lp, j), column(lp, j), m));
+  std::vector<int> basis = firstBasis(lp, norm);
+  if (static_cast<int>(basis.size()) < m) return out;  // rankDeficient
+  std::vector<int> position(n, -1);                    // in the basis, or -1
+  for (int i = 0; i < m; ++i) position[basis[i]] = i;
+
+  std::vector<double>& x = out.x;
+  std::vector<double> w(m);
+  bool bland = false;
+  int degenerateRun = 0;
+  const int limit = 50 * (n + m) + 1000;
+  for (out.iterations = 0; out.iterations < limit; ++out.iterations) {
+    const BasisFactors factors(lp, basis);
+    if (!factors.ok()) {
+      out.status = BoundedLpSolution::Status::rankDeficient;
+      return out;
+    }
+    // The basic values from the nonbasic ones (M x = 0), afresh each step against drift.
+    std::vector<double> xb(m, 0.0);
+    for (int j = 0; j < n; ++j)
+      if (position[j] < 0 && x[j] != 0.0)
+        for (int i = 0; i < m; ++i) xb[i] -= column(lp, j)[i] * x[j];
+    factors.solve('N', xb);
+    for (int i = 0; i < m; ++i)
+      x[basis[i]] = std::clamp(xb[i], lp.lower[basis[i]], lp.upper[basis[i]]);
+
+    std::vector<double>& y = out.y;
+    for (int i = 0; i < m; ++i) y[i] = lp.objective[basis[i]];
+    factors.solve('T', y);
+    const double yNorm = std::sqrt(dot(y.data(), y.data(), m));
+
+    // Pricing: a nonbasic column whose reduced cost improves the objective in a direction its
+    // bounds leave open.
+    int entering = -1;
+    double enteringSign = 0.0, bestScore = 0.0;
+    for (int j = 0; j < n && !(bland && entering >= 0); ++j) {
+      if (position[j] >= 0) continue;
+      const double d = lp.objective[j] - dot(y.data(), column(lp, j), m);
+      const double tol = 1e-10 * (std::abs(lp.objective[j]) + yNorm * norm[j]);
+      const bool up = d > tol && x[j] < lp.upper[j], down = d < -tol && x[j] > lp.lower[j];
+      if (!up && !down) continue;
+      const double score = std::abs(d) / (norm[j] > 0.0 ? norm[j] : 1.0);
+      if (entering < 0 || score > bestScore) {
+        entering = j;
+        enteringSign = up ? 1.0 : -1.0;
+        bestScore = score;
+      }
+    }
+    if (entering < 0) {
+      out.status = BoundedLpSolution::Status::optimal;
+      out.value = dot(lp.objective.data(), x.data(), n);
+      return out;
+    }
+
+    // Ratio test: the entering column's own bound, or the first basic value to reach one.
+    std::copy(column(lp, entering), column(lp, entering) + m, w.begin());
+    factors.solve('N', w);
+    double wMax = 0.0;
+    for (const double v : w) wMax = std::max(wMax, std::abs(v));
+    const double wTol = 1e-11 * wMax;
+    double theta =
+        enteringSign > 0.0 ? lp.upper[entering] - x[entering] : x[entering] - lp.lower[entering];
+    int leaving = -1;
+    double leavingRate = 0.0;
+    for (int i = 0; i < m; ++i) {
+      const int k = basis[i];
+      const double rate = -enteringSign * w[i];  // d x_k / d theta
+      double room;
+      if (rate < -wTol)
+        room = (x[k] - lp.lower[k]) / -rate;
+      else if (rate > wTol)
+        room = (lp.upper[k] - x[k]) / rate;
+      else
+        continue;
+      room = std::max(room, 0.0);
+      const bool tie = leaving >= 0 && room == theta;
+      const bool better =
+          room < theta ||
+          (tie && (bland ? k < basis[leaving] : std::abs(rate) > std::abs(leavingRate)));
+      if (better) {
+        theta = room;
+        leaving = i;
+        leavingRate = rate;
+      }
+    }
+    if (theta == kInf) {
+      out.status = BoundedLpSolution::Status::unbounded;
+      return out;
+    }
+
+    x[entering] += enteringSign * theta;
+    for (int i = 0; i < m; ++i) x[basis[i]] -= enteringSign * theta * w[i];
+    if (leaving >= 0) {
+      const int k = basis[leaving];
+      x[k] = leavingRate < 0.0 ? lp.lower[k] : lp.upper[k];
+      position[k] = -1;
+      basis[leaving] = entering;
+      position[entering] = leaving;
+    }
+    // Degenerate steps (no progress) can cycle under Dantzig's pricing: after a run of them,
+    // Bland's rule for the rest of the solve.
+    degenerateRun = theta > 0.0 ? 0 : degenerateRun + 1;
+    if (degenerateRun > 50) bland = true;
+  }
+  out.status = BoundedLpSolution::Status::iterationLimit;
+  return out;
+}
+
+}  // namespace contact
