@@ -241,6 +241,9 @@ std::optional<FrictionLoadLimit> frictionLoadLimit(const ElasticContactSpec& spe
                                                    const ElasticContactProblem& p,
                                                    const std::vector<tfeti::InequalityRow>& rows,
                                                    const tfeti::Comm& comm) {
+  // Tied and bonded pairs hold their rows with equality (FETI "Inequality rows" = equalities),
+  // both ways: requireRigidMotionsHeld is all there is to check.
+  if (spec.tied) return std::nullopt;
   Pieces pieces = joinSubdomains(p);
   measurePieces(p, pieces);
   const std::vector<double> force = loadOnModes(p, pieces, comm);

@@ -40,7 +40,8 @@ std::vector<std::string> freeRigidMotions(const ElasticContactSpec& spec,
 // gives. A necessary condition at the reference geometry: the bodies' deformation and the
 // contact rows' changes are not in it. 0: the load pulls the bodies off what holds them
 // (requireLoadHeld names the motion). Rows without a finite bound (a Coulomb row's multiplier
-// is only bounded by mu lambda_N: give it none) hold any force along the motions they see.
+// is only bounded by mu lambda_N: give it none) hold any force along the motions they see. None
+// for tied and bonded pairs (their rows hold both ways).
 struct FrictionLoadLimit {
   std::string motion;       // as freeRigidMotions describes it, r of unit length
   double load = 0.0;        // r^T f at load factor 1 (> 0)
