@@ -6,6 +6,7 @@
 #include <Teuchos_UnitTestHarness.hpp>
 #include <Tpetra_Core.hpp>
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -93,13 +94,13 @@ TEUCHOS_UNIT_TEST(RigidMotions, ContactRowsPushOnly) {
   spec.symmetry = {{"upper_left", 0}};
   {
     const contact::ElasticContactProblem p = contact::buildElasticContactProblem(spec, *comm);
-    const auto limit = contact::frictionLoadLimit(spec, p, p.inequalities, *comm);
+    const auto limit = contact::frictionLoadLimit(spec, p, p.inequalities, {}, *comm);
     TEST_ASSERT(!limit.has_value());
     TEST_NOTHROW(contact::requireLoadHeld(limit));
   }
   spec.tractions = {{"upper_top", {0.0, 1.0e7}}};
   const contact::ElasticContactProblem p = contact::buildElasticContactProblem(spec, *comm);
-  const auto limit = contact::frictionLoadLimit(spec, p, p.inequalities, *comm);
+  const auto limit = contact::frictionLoadLimit(spec, p, p.inequalities, {}, *comm);
   TEST_ASSERT(limit.has_value());
   if (!limit) return;
   TEST_EQUALITY(limit->motion, "body \"upper\": translation along y");
@@ -147,7 +148,7 @@ TEUCHOS_UNIT_TEST(RigidMotions, SlidingAndTipping) {
       bounds += 1.0e5;
     }
     Teuchos::broadcast(*comm, 0, &bounds);
-    return std::make_pair(contact::frictionLoadLimit(spec, p, rows, *comm), bounds);
+    return std::make_pair(contact::frictionLoadLimit(spec, p, rows, {}, *comm), bounds);
   };
   const auto [sliding, bounds] = limitFor(3.0e5, -1.0e6);
   TEST_ASSERT(sliding.has_value());
@@ -165,6 +166,46 @@ TEUCHOS_UNIT_TEST(RigidMotions, SlidingAndTipping) {
     TEST_COMPARE(tipping->loadFactor, <=, 1e-12);
     TEST_COMPARE(tipping->liftedRows, >, 0);
   }
+}
+
+// Coulomb's cones on the same rows (each u_x row tied to its contact row, exact in 2D): pushed
+// along x by 0.3 of the normal load, mu = 0.5 holds it at every load factor (no limit) and
+// mu = 0.2 at none (0: a translation that slides and lifts by mu times the slip, every contact
+// row lifted).
+TEUCHOS_UNIT_TEST(RigidMotions, CoulombCones) {
+  const auto comm = Tpetra::getDefaultComm();
+  contact::ElasticContactSpec spec = patchSpec();
+  spec.fixed = {"lower_bottom"};
+  spec.tractions = {{"upper_top", {3.0e5, -1.0e6}}};
+  const contact::ElasticContactProblem p = contact::buildElasticContactProblem(spec, *comm);
+  const auto limitFor = [&](double mu) {
+    std::vector<tfeti::InequalityRow> rows = p.inequalities;
+    std::vector<contact::FrictionCone> cones;
+    for (std::size_t i = 0; i < p.inequalities.size(); ++i) {
+      tfeti::InequalityRow row;
+      for (const auto& e : p.inequalities[i].entries)
+        if (p.bodyOfSubdomain[e.subdomain] == 1 && e.dof % 2 == 1) {
+          row.entries.push_back({e.subdomain, e.dof - 1, 1.0});
+          break;
+        }
+      row.lowerBound = -std::numeric_limits<double>::infinity();
+      row.upperBound = std::numeric_limits<double>::infinity();
+      cones.push_back({static_cast<int>(i), {static_cast<int>(rows.size())}, mu});
+      rows.push_back(row);
+    }
+    return contact::frictionLoadLimit(spec, p, rows, cones, *comm);
+  };
+  TEST_ASSERT(!limitFor(0.5).has_value());
+  const auto sliding = limitFor(0.2);
+  TEST_ASSERT(sliding.has_value());
+  if (!sliding) return;
+  out << sliding->motion << ": " << sliding->loadFactor << "\n";
+  TEST_COMPARE(sliding->loadFactor, <=, 1e-12);
+  TEST_EQUALITY(sliding->motion.rfind("body \"upper\": translation along (", 0), 0u);
+  int contactRows = static_cast<int>(p.inequalities.size());
+  Teuchos::broadcast(*comm, 0, &contactRows);
+  TEST_EQUALITY(sliding->liftedRows, contactRows);
+  TEST_THROW(contact::requireLoadHeld(sliding), std::invalid_argument);
 }
 
 }  // namespace

@@ -263,6 +263,43 @@ SlipBounds stickingBounds(const ElasticContactSpec& spec, const ElasticContactPr
   return bounds;
 }
 
+namespace {
+
+// Coulomb's rows for the load limit: each Coulomb contact row's tangential rows, without bounds
+// of their own, appended to `rows`, and the cones that tie them to their contact rows (found in
+// `rows` by their entries; one not found keeps its tangential rows unbounded, without a cone).
+std::vector<FrictionCone> addCoulombCones(const ElasticContactProblem& p,
+                                          const ModelFriction& friction,
+                                          std::vector<tfeti::InequalityRow>& rows, int rank) {
+  std::vector<FrictionCone> cones;
+  if (!friction.coulomb() || rank != 0) return cones;
+  std::map<EntryKey, int> rowOf;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    rowOf.emplace(entryKey(rows[i]), static_cast<int>(i));
+  auto dofOf = [&](int n, int c) { return dofOfNode(p, n, c); };
+  const double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < p.contact.rows.size(); ++k) {
+    const FrictionSpec& f = friction.ofRow(p, k);
+    if (!f.active() || f.law != FrictionSpec::Law::Coulomb) continue;
+    FrictionCone cone;
+    cone.mu = f.coefficient;
+    const auto normal = rowOf.find(entryKey(toInequalityRow(p.contact.rows[k], dofOf)));
+    if (normal != rowOf.end()) cone.normal = normal->second;
+    const std::vector<ContactRow> tangents = frictionTangents(p, k);
+    for (std::size_t j = 0; j < tangents.size(); ++j) {
+      tfeti::InequalityRow row = toInequalityRow(tangents[j], dofOf);
+      row.lowerBound = -inf;
+      row.upperBound = inf;
+      cone.tangents.push_back(static_cast<int>(rows.size()));
+      rows.push_back(std::move(row));
+    }
+    if (cone.normal >= 0 && !cone.tangents.empty()) cones.push_back(std::move(cone));
+  }
+  return cones;
+}
+
+}  // namespace
+
 InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
                                        const ElasticContactProblem& p,
                                        const ModelFriction& friction, const SlipBounds& bounds,
@@ -279,12 +316,11 @@ InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,
   const auto withFriction = [&](const SlipBounds& b) { return withRows(frictionRowsWith(b)); };
   InitialFriction out{bounds, false, std::nullopt};
   // What the rows can hold along the free rigid motions is known before any solve where the
-  // loads are proportional: Tresca's bounds are the data's; a Coulomb row's, mu lambda_N, are
-  // not, so the limit counts them as holding any tangential force.
+  // loads are proportional: Tresca's bounds are the data's, Coulomb's cones mu's.
   if (p.rampedLoads.empty()) {
-    SlipBounds unbounded = stickingBounds(spec, p, friction);
-    for (auto& entry : unbounded) entry.second = std::numeric_limits<double>::infinity();
-    out.limit = frictionLoadLimit(spec, p, withFriction(unbounded), comm);
+    std::vector<tfeti::InequalityRow> limitRows = withFriction({});  // Coulomb's: no bound yet
+    const std::vector<FrictionCone> cones = addCoulombCones(p, friction, limitRows, comm.getRank());
+    out.limit = frictionLoadLimit(spec, p, limitRows, cones, comm);
   }
   // Does Coulomb friction hold a body? Free without its rows (Tresca's stay), held with them
   // sticking (docs/friction.md, "A body held by friction alone"). Where the sticking rows do

@@ -9,6 +9,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "contact_BoundedSimplex.hpp"
 #include "contact_RigidModes.hpp"
@@ -63,11 +64,14 @@ struct RowsOnMotions {
   std::vector<double> lower, upper;
   std::vector<int> partner;  // -1: a row of its own; the first of a pair: the second's index
   std::vector<bool> second;  // the second row of a disc pair (its first one carries it)
+  std::vector<FrictionCone> cones;
+  std::vector<bool> inCone;  // a cone's row: the cone, not its own bounds, says what it holds
 };
 
 RowsOnMotions rowsOnMotions(const ElasticContactProblem& p, const Pieces& pieces,
                             const std::vector<std::vector<double>>& free,
-                            const std::vector<tfeti::InequalityRow>& rows) {
+                            const std::vector<tfeti::InequalityRow>& rows,
+                            const std::vector<FrictionCone>& cones) {
   const int dim = p.dim(), nm = modesPerPiece(dim);
   RowsOnMotions out;
   std::vector<double> modes(static_cast<std::size_t>(pieces.count) * nm);
@@ -88,6 +92,21 @@ RowsOnMotions rowsOnMotions(const ElasticContactProblem& p, const Pieces& pieces
     out.partner.push_back(pair ? static_cast<int>(i + 1) : -1);
     out.second.push_back(row.disc == 2 && i > 0 && rows[i - 1].disc == 1);
   }
+  out.inCone.assign(rows.size(), false);
+  const auto mark = [&](int i) {
+    if (i < 0 || static_cast<std::size_t>(i) >= rows.size() || out.inCone[i])
+      throw std::logic_error("frictionLoadLimit: a friction cone's row " + std::to_string(i) +
+                             " is not one of the " + std::to_string(rows.size()) +
+                             " rows, or is another cone's");
+    out.inCone[i] = true;
+  };
+  for (const FrictionCone& c : cones) {
+    if (c.tangents.empty() || c.tangents.size() > 2 || !(c.mu >= 0.0))
+      throw std::logic_error("frictionLoadLimit: a friction cone needs 1 or 2 tangents, mu >= 0");
+    mark(c.normal);
+    for (const int t : c.tangents) mark(t);
+  }
+  out.cones = cones;
   return out;
 }
 
@@ -108,7 +127,7 @@ Evaluation evaluate(const RowsOnMotions& rows, const std::vector<double>& r) {
   };
   Evaluation e;
   for (std::size_t i = 0; i < rows.a.size(); ++i) {
-    if (rows.second[i]) continue;
+    if (rows.second[i] || rows.inCone[i]) continue;
     double tol = 0.0;
     const double s = along(i, tol);
     if (rows.partner[i] >= 0) {
@@ -126,6 +145,20 @@ Evaluation evaluate(const RowsOnMotions& rows, const std::vector<double>& r) {
     if (std::abs(bound) == kInf) e.admissible = false;
     e.capacity += bound * s;
     if (rows.lower[i] == 0.0 && rows.upper[i] == kInf && s < 0.0) ++e.lifted;
+  }
+  // Coulomb's cone does work only along a motion that presses into it (s_N + mu |s_T| > 0),
+  // and then without bound.
+  for (const FrictionCone& c : rows.cones) {
+    double tolN = 0.0, slip2 = 0.0, tolT = 0.0;
+    const double sN = along(static_cast<std::size_t>(c.normal), tolN);
+    for (const int t : c.tangents) {
+      double tol = 0.0;
+      const double sT = along(static_cast<std::size_t>(t), tol);
+      slip2 += sT * sT;
+      tolT = std::max(tolT, tol);
+    }
+    if (sN + c.mu * std::sqrt(slip2) > tolN + c.mu * tolT) e.admissible = false;
+    if (sN < -tolN) ++e.lifted;
   }
   return e;
 }
@@ -155,7 +188,7 @@ std::vector<double> limitMotion(const RowsOnMotions& rows, const std::vector<dou
   const double pi = std::acos(-1.0), half = std::tan(pi / (2 * kSpokes));
   std::vector<double> spoke(m);
   for (std::size_t i = 0; i < rows.a.size(); ++i) {
-    if (rows.second[i]) continue;
+    if (rows.second[i] || rows.inCone[i]) continue;
     if (rows.partner[i] < 0) {
       add(rows.a[i], rows.lower[i], rows.upper[i]);
       continue;
@@ -172,6 +205,25 @@ std::vector<double> limitMotion(const RowsOnMotions& rows, const std::vector<dou
       const double c = std::cos(theta), s = std::sin(theta);
       for (int k = 0; k < m; ++k) spoke[k] = c * rows.a[i][k] + s * b[k];
       add(spoke, -g * half, g * half);
+    }
+  }
+  // Coulomb's cone as the cone over a regular 2K-gon around its disc of radius mu (so, again,
+  // from above): its rays through the polygon's corners, a_N + mu / cos(pi / 2K)
+  // (cos theta_j a_T1 + sin theta_j a_T2), or a_N +- mu a_T with one tangent (exact); each a
+  // column with the bounds [0, inf).
+  for (const FrictionCone& c : rows.cones) {
+    const std::vector<double>& n = rows.a[static_cast<std::size_t>(c.normal)];
+    const std::vector<double>& t1 = rows.a[static_cast<std::size_t>(c.tangents[0])];
+    const int edges = c.tangents.size() == 1 ? 2 : 2 * kSpokes;
+    const double radius = c.tangents.size() == 1 ? c.mu : c.mu / std::cos(pi / edges);
+    for (int j = 0; j < edges; ++j) {
+      const double theta = angle[c.normal] + 2.0 * pi * j / edges;
+      const double ct = std::cos(theta), st = c.tangents.size() == 1 ? 0.0 : std::sin(theta);
+      for (int k = 0; k < m; ++k) {
+        spoke[k] = n[k] + radius * ct * t1[k];
+        if (c.tangents.size() == 2) spoke[k] += radius * st * rows.a[c.tangents[1]][k];
+      }
+      add(spoke, 0.0, kInf);
     }
   }
   for (int k = 0; k < m; ++k) lp.matrix.push_back(-phi[k]);
@@ -193,30 +245,6 @@ struct Found {
   Evaluation at;
 };
 
-// The smallest admissible load factor found, evaluated exactly: the program, then again with each
-// disc's polygon turned to the slip the motion found gives it (a vertex direction along it, where
-// the polygon's bound is the disc's).
-std::optional<Found> smallestLimit(const RowsOnMotions& rows, const std::vector<double>& phi) {
-  std::vector<double> angle(rows.a.size(), 0.0);
-  const bool discs =
-      std::any_of(rows.partner.begin(), rows.partner.end(), [](int k) { return k >= 0; });
-  std::optional<Found> best;
-  for (int round = 0; round < (discs ? 3 : 1); ++round) {
-    std::vector<double> r = limitMotion(rows, phi, angle);
-    if (r.empty()) break;
-    const Evaluation e = evaluate(rows, r);
-    if (e.admissible) {
-      if (best && !(e.capacity < best->at.capacity * (1.0 - 1e-12))) break;
-      best = Found{r, e};
-    }
-    for (std::size_t i = 0; i < rows.a.size(); ++i)
-      if (rows.partner[i] >= 0)
-        angle[i] = std::atan2(dot(rows.a[static_cast<std::size_t>(rows.partner[i])], r),
-                              dot(rows.a[i], r));
-  }
-  return best;
-}
-
 // The load's own direction among the free motions (the load's projection onto their span), on
 // them, with phi . r = 1: where it certifies the smallest factor as well (a pull straight off
 // the contact), it is the motion named, rather than the program's vertex (a turn about an edge).
@@ -235,11 +263,48 @@ std::vector<double> loadDirection(const std::vector<std::vector<double>>& free,
   return r;
 }
 
+// Each disc's and 3D cone's polygon turned to the slip that r gives its node: a corner along it,
+// where the polygon's bound is the disc's.
+void turnTo(const RowsOnMotions& rows, const std::vector<double>& r, std::vector<double>& angle) {
+  const auto slipAngle = [&](int t1, int t2) {
+    return std::atan2(dot(rows.a[static_cast<std::size_t>(t2)], r),
+                      dot(rows.a[static_cast<std::size_t>(t1)], r));
+  };
+  for (std::size_t i = 0; i < rows.a.size(); ++i)
+    if (rows.partner[i] >= 0) angle[i] = slipAngle(static_cast<int>(i), rows.partner[i]);
+  for (const FrictionCone& c : rows.cones)
+    if (c.tangents.size() == 2) angle[c.normal] = slipAngle(c.tangents[0], c.tangents[1]);
+}
+
+// The smallest admissible load factor found, evaluated exactly: the program with the polygons
+// turned to the load's own direction `own` (if given), then again turned to the slip of the
+// motion found, while that lowers it.
+std::optional<Found> smallestLimit(const RowsOnMotions& rows, const std::vector<double>& phi,
+                                   const std::vector<double>& own) {
+  std::vector<double> angle(rows.a.size(), 0.0);
+  if (!own.empty()) turnTo(rows, own, angle);
+  const bool polygons = !rows.cones.empty() || std::any_of(rows.partner.begin(), rows.partner.end(),
+                                                           [](int k) { return k >= 0; });
+  std::optional<Found> best;
+  for (int round = 0; round < (polygons ? 3 : 1); ++round) {
+    std::vector<double> r = limitMotion(rows, phi, angle);
+    if (r.empty()) break;
+    const Evaluation e = evaluate(rows, r);
+    if (e.admissible) {
+      if (best && !(e.capacity < best->at.capacity * (1.0 - 1e-12))) break;
+      best = Found{r, e};
+    }
+    turnTo(rows, r, angle);
+  }
+  return best;
+}
+
 }  // namespace
 
 std::optional<FrictionLoadLimit> frictionLoadLimit(const ElasticContactSpec& spec,
                                                    const ElasticContactProblem& p,
                                                    const std::vector<tfeti::InequalityRow>& rows,
+                                                   const std::vector<FrictionCone>& cones,
                                                    const tfeti::Comm& comm) {
   // Tied and bonded pairs hold their rows with equality (FETI "Inequality rows" = equalities),
   // both ways: requireRigidMotionsHeld is all there is to check.
@@ -257,9 +322,9 @@ std::optional<FrictionLoadLimit> frictionLoadLimit(const ElasticContactSpec& spe
     for (const double x : force) scale = std::max(scale, std::abs(x));
     for (const double x : phi) work = std::max(work, std::abs(x));
     if (!free.empty() && work > 1e-12 * scale) {
-      const RowsOnMotions onMotions = rowsOnMotions(p, pieces, free, rows);
-      std::optional<Found> limit = smallestLimit(onMotions, phi);
+      const RowsOnMotions onMotions = rowsOnMotions(p, pieces, free, rows, cones);
       const std::vector<double> own = loadDirection(free, phi);
+      std::optional<Found> limit = smallestLimit(onMotions, phi, own);
       if (limit && !own.empty()) {
         const Evaluation e = evaluate(onMotions, own);
         if (e.admissible && e.capacity <= limit->at.capacity * (1.0 + 1e-9)) limit = Found{own, e};

@@ -40,8 +40,11 @@ std::vector<std::string> freeRigidMotions(const ElasticContactSpec& spec,
 // gives. A necessary condition at the reference geometry: the bodies' deformation and the
 // contact rows' changes are not in it. 0: the load pulls the bodies off what holds them
 // (requireLoadHeld names the motion). Rows without a finite bound (a Coulomb row's multiplier
-// is only bounded by mu lambda_N: give it none) hold any force along the motions they see. None
-// for tied and bonded pairs (their rows hold both ways).
+// is only bounded by mu lambda_N) hold any force along the motions they see, unless a
+// FrictionCone ties them to their contact row: then the node's force lies in Coulomb's cone
+// |lambda_T| <= mu lambda_N, which does no work along a motion that lifts the node off by at
+// least mu times its slip, and no motion may press into it (so Coulomb alone gives the limit 0
+// or none). None for tied and bonded pairs (their rows hold both ways).
 struct FrictionLoadLimit {
   std::string motion;       // as freeRigidMotions describes it, r of unit length
   double load = 0.0;        // r^T f at load factor 1 (> 0)
@@ -52,12 +55,21 @@ struct FrictionLoadLimit {
 // "the friction rows' bounds can hold <motion> only up to the load factor X (...)": the run's
 // and the dry run's line.
 std::string frictionLimitText(const FrictionLoadLimit& limit);
+// A contact node's Coulomb cone: its contact row and its one or two tangential rows (indices
+// into the limit's rows, whose own bounds the cone replaces) and mu.
+struct FrictionCone {
+  int normal = -1;
+  std::vector<int> tangents;
+  double mu = 0.0;
+};
 // The smallest such load factor, if some free motion meets the load (rank 0's answer on every
-// rank). `rows`: every inequality row with the bounds the limit takes (rank 0's; the other
-// ranks pass theirs, which are empty). The loads are p.local's (collective).
+// rank). `rows`: every inequality row with the bounds the limit takes, `cones` Coulomb's
+// (rank 0's; the other ranks pass theirs, which are empty). The loads are p.local's
+// (collective).
 std::optional<FrictionLoadLimit> frictionLoadLimit(const ElasticContactSpec& spec,
                                                    const ElasticContactProblem& p,
                                                    const std::vector<tfeti::InequalityRow>& rows,
+                                                   const std::vector<FrictionCone>& cones,
                                                    const tfeti::Comm& comm);
 // Throws std::invalid_argument where the limit is 0 (below 1e-9: rounding): no load step can
 // converge. The motion, the load's work along it and the contact rows it lifts off are named.
