@@ -109,7 +109,7 @@ BoundedLpSolution maximizeFromZero(const BoundedLp& lp) {
   std::vector<double> w(m);
   bool bland = false;
   int degenerateRun = 0;
-  const int limit = 50 * (n + m) + 1000;
+  const int limit = 10 * (n + m) + 1000;
   for (out.iterations = 0; out.iterations < limit; ++out.iterations) {
     const BasisFactors factors(lp, basis);
     if (!factors.ok()) {
@@ -174,12 +174,14 @@ BoundedLpSolution maximizeFromZero(const BoundedLp& lp) {
       else
         continue;
       room = std::max(room, 0.0);
-      const bool tie = leaving >= 0 && room == theta;
+      // Ties (to rounding) go to Bland's smallest index, or else to the largest rate (the
+      // stabler pivot); the step is the smaller of the two, so that nothing overshoots.
+      const bool tie = leaving >= 0 && std::abs(room - theta) <= 1e-12 * (1.0 + theta);
       const bool better =
-          room < theta ||
-          (tie && (bland ? k < basis[leaving] : std::abs(rate) > std::abs(leavingRate)));
+          tie ? (bland ? k < basis[leaving] : std::abs(rate) > std::abs(leavingRate))
+              : room < theta;
       if (better) {
-        theta = room;
+        theta = tie ? std::min(theta, room) : room;
         leaving = i;
         leavingRate = rate;
       }
@@ -189,8 +191,11 @@ BoundedLpSolution maximizeFromZero(const BoundedLp& lp) {
       return out;
     }
 
+    const double start = x[entering];
     x[entering] += enteringSign * theta;
     for (int i = 0; i < m; ++i) x[basis[i]] -= enteringSign * theta * w[i];
+    if (leaving < 0)  // a bound flip: exactly onto the entering column's own bound
+      x[entering] = enteringSign > 0.0 ? lp.upper[entering] : lp.lower[entering];
     if (leaving >= 0) {
       const int k = basis[leaving];
       x[k] = leavingRate < 0.0 ? lp.lower[k] : lp.upper[k];
@@ -200,7 +205,7 @@ BoundedLpSolution maximizeFromZero(const BoundedLp& lp) {
     }
     // Degenerate steps (no progress) can cycle under Dantzig's pricing: after a run of them,
     // Bland's rule for the rest of the solve.
-    degenerateRun = theta > 0.0 ? 0 : degenerateRun + 1;
+    degenerateRun = theta > 1e-12 * (1.0 + std::abs(start)) ? 0 : degenerateRun + 1;
     if (degenerateRun > 50) bland = true;
   }
   out.status = BoundedLpSolution::Status::iterationLimit;

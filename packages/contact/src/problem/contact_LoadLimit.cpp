@@ -14,6 +14,7 @@
 #include "contact_BoundedSimplex.hpp"
 #include "contact_RigidModes.hpp"
 #include "contact_RigidMotions.hpp"
+#include "tfeti_CollectiveError.hpp"
 
 namespace contact {
 
@@ -66,6 +67,9 @@ struct RowsOnMotions {
   std::vector<bool> second;  // the second row of a disc pair (its first one carries it)
   std::vector<FrictionCone> cones;
   std::vector<bool> inCone;  // a cone's row: the cone, not its own bounds, says what it holds
+  // Functionals the motion must leave at 0 (free columns in the program): the pieces' rotations
+  // where only translations are asked for.
+  std::vector<std::vector<double>> held;
 };
 
 RowsOnMotions rowsOnMotions(const ElasticContactProblem& p, const Pieces& pieces,
@@ -217,7 +221,10 @@ std::vector<double> limitMotion(const RowsOnMotions& rows, const std::vector<dou
     const int edges = c.tangents.size() == 1 ? 2 : 2 * kSpokes;
     const double radius = c.tangents.size() == 1 ? c.mu : c.mu / std::cos(pi / edges);
     for (int j = 0; j < edges; ++j) {
-      const double theta = angle[c.normal] + 2.0 * pi * j / edges;
+      // With two tangents a side's middle, where the polygon is the disc, along angle[]: the
+      // slip turnTo found.
+      const double theta =
+          (c.tangents.size() == 2 ? angle[c.normal] + pi / edges : 0.0) + 2.0 * pi * j / edges;
       const double ct = std::cos(theta), st = c.tangents.size() == 1 ? 0.0 : std::sin(theta);
       for (int k = 0; k < m; ++k) {
         spoke[k] = n[k] + radius * ct * t1[k];
@@ -226,6 +233,7 @@ std::vector<double> limitMotion(const RowsOnMotions& rows, const std::vector<dou
       add(spoke, 0.0, kInf);
     }
   }
+  for (const std::vector<double>& h : rows.held) add(h, -kInf, kInf);
   for (int k = 0; k < m; ++k) lp.matrix.push_back(-phi[k]);
   lp.objective.push_back(1.0);
   lp.lower.push_back(0.0);
@@ -263,8 +271,8 @@ std::vector<double> loadDirection(const std::vector<std::vector<double>>& free,
   return r;
 }
 
-// Each disc's and 3D cone's polygon turned to the slip that r gives its node: a corner along it,
-// where the polygon's bound is the disc's.
+// Each disc's and 3D cone's polygon turned to the slip that r gives its node, so that along it
+// the polygon is the disc (a disc's segment lies along it, a cone's side has its middle there).
 void turnTo(const RowsOnMotions& rows, const std::vector<double>& r, std::vector<double>& angle) {
   const auto slipAngle = [&](int t1, int t2) {
     return std::atan2(dot(rows.a[static_cast<std::size_t>(t2)], r),
@@ -314,40 +322,58 @@ std::optional<FrictionLoadLimit> frictionLoadLimit(const ElasticContactSpec& spe
   const std::vector<double> force = loadOnModes(p, pieces, comm);
   double found[5] = {0.0, 0.0, 0.0, 0.0, 0.0};  // load, capacity, factor, lifted, found (1)
   std::vector<std::string> motion;
-  if (comm.getRank() == 0) {                // it holds the inequality and coupling rows
+  // Rank 0 holds the inequality and coupling rows; an error there is every rank's (the others
+  // would wait in the broadcast).
+  tfeti::collectively(comm, [&] {
+    if (comm.getRank() != 0) return;
     Gram gram = gramOfRows(p, pieces, {});  // the supports and couplings alone
     const std::vector<std::vector<double>> free = nullSpace(gram);
     const std::vector<double> phi = onFree(free, force);
     double scale = 0.0, work = 0.0;
     for (const double x : force) scale = std::max(scale, std::abs(x));
     for (const double x : phi) work = std::max(work, std::abs(x));
-    if (!free.empty() && work > 1e-12 * scale) {
-      const RowsOnMotions onMotions = rowsOnMotions(p, pieces, free, rows, cones);
-      const std::vector<double> own = loadDirection(free, phi);
-      std::optional<Found> limit = smallestLimit(onMotions, phi, own);
-      if (limit && !own.empty()) {
-        const Evaluation e = evaluate(onMotions, own);
-        if (e.admissible && e.capacity <= limit->at.capacity * (1.0 + 1e-9)) limit = Found{own, e};
-      }
-      if (limit) {
-        std::vector<double> r(force.size(), 0.0);  // on the pieces' modes, r . f = 1
-        for (std::size_t k = 0; k < free.size(); ++k)
-          for (std::size_t j = 0; j < r.size(); ++j) r[j] += limit->r[k] * free[k][j];
-        const double length = std::sqrt(dot(r, r));
-        for (double& x : r) x /= length;
-        found[0] = 1.0 / length;
-        found[1] = limit->at.capacity / length;
-        found[2] = limit->at.capacity;
-        found[3] = limit->at.lifted;
-        found[4] = 1.0;
-        // Rounding leaves traces of other modes (1e-12 of a turn in a translation): named
-        // without them, as nullSpace does.
-        for (double& x : r)
-          if (std::abs(x) < 1e-9) x = 0.0;
-        motion = describe(spec, p, pieces, {r});
-      }
+    if (free.empty() || !(work > 1e-12 * scale)) return;
+    RowsOnMotions onMotions = rowsOnMotions(p, pieces, free, rows, cones);
+    const std::vector<double> own = loadDirection(free, phi);
+    std::optional<Found> limit = smallestLimit(onMotions, phi, own);
+    // Where several motions certify 0 the program's choice may turn about a far axis; a
+    // translation that certifies 0 as well reads better (a block sliding off its cones).
+    if (limit && limit->at.capacity <= 1e-9) {
+      const int nm = modesPerPiece(p.dim());
+      for (int q = 0; q < pieces.count; ++q)
+        for (int i = p.dim(); i < nm; ++i) {
+          std::vector<double> rotation(free.size());
+          for (std::size_t k = 0; k < free.size(); ++k) rotation[k] = free[k][q * nm + i];
+          onMotions.held.push_back(std::move(rotation));
+        }
+      const std::optional<Found> sliding = smallestLimit(onMotions, phi, own);
+      if (sliding && sliding->at.capacity <= 1e-9) limit = sliding;
     }
-  }
+    // The load's own direction reads best of all where it certifies as small a factor.
+    if (limit && !own.empty()) {
+      const Evaluation e = evaluate(onMotions, own);
+      if (e.admissible && e.capacity <= limit->at.capacity * (1.0 + 1e-9)) limit = Found{own, e};
+    }
+    if (!limit) return;
+    std::vector<double> r(force.size(), 0.0);  // on the pieces' modes, r . f = 1
+    for (std::size_t k = 0; k < free.size(); ++k)
+      for (std::size_t j = 0; j < r.size(); ++j) r[j] += limit->r[k] * free[k][j];
+    const double length = std::sqrt(dot(r, r));
+    // A load of rounding's size along the motion (opposite pressures on a body that only
+    // push-only rows hold, say) certifies nothing: the solve would take it.
+    if (!(1.0 / length > 1e-10 * scale)) return;
+    for (double& x : r) x /= length;
+    found[0] = 1.0 / length;
+    found[1] = limit->at.capacity / length;
+    found[2] = limit->at.capacity;
+    found[3] = limit->at.lifted;
+    found[4] = 1.0;
+    // Rounding leaves traces of other modes (1e-12 of a turn in a translation): named without
+    // them, as nullSpace does.
+    for (double& x : r)
+      if (std::abs(x) < 1e-9) x = 0.0;
+    motion = describe(spec, p, pieces, {r});
+  });
   Teuchos::broadcast(comm, 0, 5, found);
   motion = broadcastLines(motion, comm);
   if (found[4] == 0.0) return std::nullopt;

@@ -3,6 +3,7 @@
 #include "contact_RigidMotions.hpp"
 
 #include "contact_RigidModes.hpp"
+#include "tfeti_CollectiveError.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_LAPACK.hpp>
@@ -300,12 +301,14 @@ std::vector<std::string> freeRigidMotions(const ElasticContactSpec& spec,
                                           const std::vector<tfeti::InequalityRow>& inequalities,
                                           const tfeti::Comm& comm) {
   std::vector<std::string> motions;
-  if (comm.getRank() == 0) {  // it holds the inequality and coupling rows
+  // Rank 0 holds the inequality and coupling rows; an error there is every rank's.
+  tfeti::collectively(comm, [&] {
+    if (comm.getRank() != 0) return;
     Pieces pieces = joinSubdomains(p);
     measurePieces(p, pieces);
     Gram gram = gramOfRows(p, pieces, inequalities);
     motions = describe(spec, p, pieces, nullSpace(gram));
-  }
+  });
   return broadcastLines(motions, comm);
 }
 
