@@ -647,6 +647,17 @@ std::vector<double> flatSolution(const tfeti::FetiSolver& s) {
   return u;
 }
 
+// max |u - reference| / max |reference| over every rank.
+double relativeMaxDifference(const tfeti::Comm& comm, const std::vector<double>& u,
+                             const std::vector<double>& reference) {
+  double e = 0.0, scale = 0.0;
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    e = std::max(e, std::abs(u[k] - reference[k]));
+    scale = std::max(scale, std::abs(reference[k]));
+  }
+  return tfeti_test::globalMax(comm, e) / tfeti_test::globalMax(comm, scale);
+}
+
 // An inexact Newton QP (setToleranceFactor > 1) stops its face CG at "Inexact face relative
 // tolerance" times its loosened tolerance, not two digits beyond it: the box on a rigid floor
 // (a row for each node of its bottom at x >= 6, on the first subdomain that holds it), its load
@@ -679,13 +690,8 @@ TEUCHOS_UNIT_TEST(FetiSolver, InexactQpStopsTheFaceCgAtItsOwnTolerance) {
   const int exactOld = solve(1.0, 0.01, exact);
   const int exactNew = solve(1.0, 0.5, u);
   TEST_EQUALITY(exactOld, exactNew);
-  double scale = 0.0;
-  for (const double v : exact) scale = std::max(scale, std::abs(v));
-  scale = tfeti_test::globalMax(*comm, scale);
   const auto error = [&](const std::vector<double>& v) {
-    double e = 0.0;
-    for (std::size_t k = 0; k < v.size(); ++k) e = std::max(e, std::abs(v[k] - exact[k]));
-    return tfeti_test::globalMax(*comm, e) / scale;
+    return relativeMaxDifference(*comm, v, exact);
   };
   const int inexactOld = solve(1e4, 0.01, u);
   const double errorOld = error(u);
@@ -738,14 +744,7 @@ TEUCHOS_UNIT_TEST(FetiSolver, ToleranceFactorBelowOneSolvesTighter) {
     };
     std::vector<double> reference, u;
     solve(1e-11, 1.0, reference);
-    double scale = 0.0;
-    for (const double v : reference) scale = std::max(scale, std::abs(v));
-    scale = tfeti_test::globalMax(*comm, scale);
-    const auto error = [&] {
-      double e = 0.0;
-      for (std::size_t k = 0; k < u.size(); ++k) e = std::max(e, std::abs(u[k] - reference[k]));
-      return tfeti_test::globalMax(*comm, e) / scale;
-    };
+    const auto error = [&] { return relativeMaxDifference(*comm, u, reference); };
     const int configured = solve(1e-5, 1.0, u);
     const double configuredError = error();
     const int tighter = solve(1e-5, 0.01, u);

@@ -45,7 +45,8 @@ struct ContactRun {
   // Coulomb friction alone holds a body along the surface: every load step starts sticking
   // (stickingBounds), as the previous step's bounds may not hold the new load.
   bool frictionSticks = false;
-  // Tresca alone: the load factor beyond which friction cannot hold the load (InitialFriction).
+  // The load factor beyond which the contact and friction rows cannot hold the load
+  // (InitialFriction): with Tresca rows, where it is finite.
   std::optional<FrictionLoadLimit> frictionLimit;
   // The final state, once the policy has evaluated it: its stresses and contact nodes.
   bool evaluated = false;

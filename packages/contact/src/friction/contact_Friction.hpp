@@ -113,8 +113,10 @@ struct InitialFriction {
   bool sticks = false;
   // Proportional loads: the load factor beyond which the contact and friction rows cannot hold
   // a rigid motion the supports leave free (contact_RigidMotions.hpp, frictionLoadLimit), where
-  // the load meets one. Finite only with Tresca rows (Coulomb's count as unbounded); 0 where the
-  // load pulls a body off (the caller's requireLoadHeld says so, a restart's state aside).
+  // the load meets one. Finite and positive only with Tresca rows (Coulomb's cones and the
+  // push-only contact rows give none or 0); 0 where the load pulls a body off, tips it over or
+  // asks more of the cones than mu allows (the caller's requireLoadHeld says so, a restart's
+  // state aside).
   std::optional<FrictionLoadLimit> limit;
 };
 InitialFriction addInitialFrictionRows(const ElasticContactSpec& spec,

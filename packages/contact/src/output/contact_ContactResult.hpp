@@ -143,7 +143,8 @@ struct ContactResult {
   // converged step; the per-node friction results are in contactNodes.
   ModelFriction friction;
   std::vector<FixedPointStep> fixedPoint;
-  // Tresca alone: the load factor beyond which friction cannot hold the load (friction_limit).
+  // The load factor beyond which the contact and friction rows cannot hold the load
+  // (friction_limit): with Tresca rows, where it is finite.
   std::optional<FrictionLoadLimit> frictionLimit;
 
   tfeti::FetiTimings timings;

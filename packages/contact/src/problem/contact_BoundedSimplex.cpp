@@ -90,6 +90,105 @@ class BasisFactors {
   Teuchos::LAPACK<int, double> lapack_;
 };
 
+// The basic values from the nonbasic ones (M x = 0), afresh each step against drift, kept within
+// their bounds.
+void setBasicValues(const BoundedLp& lp, const std::vector<int>& basis,
+                    const std::vector<int>& position, const BasisFactors& factors,
+                    std::vector<double>& x) {
+  const int m = lp.rows;
+  std::vector<double> xb(m, 0.0);
+  for (int j = 0; j < lp.columns(); ++j)
+    if (position[j] < 0 && x[j] != 0.0)
+      for (int i = 0; i < m; ++i) xb[i] -= column(lp, j)[i] * x[j];
+  factors.solve('N', xb);
+  for (int i = 0; i < m; ++i)
+    x[basis[i]] = std::clamp(xb[i], lp.lower[basis[i]], lp.upper[basis[i]]);
+}
+
+struct Entering {
+  int column = -1;    // -1: none, x is optimal
+  double sign = 0.0;  // +1: it increases, -1: it decreases
+};
+
+// Pricing: a nonbasic column whose reduced cost c_j - y^T M_j improves the objective in a
+// direction its bounds leave open; the largest scaled one (Dantzig), or the first (Bland).
+Entering price(const BoundedLp& lp, const std::vector<int>& position, const std::vector<double>& x,
+               const std::vector<double>& y, const std::vector<double>& norm, bool bland) {
+  const int m = lp.rows;
+  const double yNorm = std::sqrt(dot(y.data(), y.data(), m));
+  Entering best;
+  double bestScore = 0.0;
+  for (int j = 0; j < lp.columns(); ++j) {
+    if (position[j] >= 0) continue;
+    const double d = lp.objective[j] - dot(y.data(), column(lp, j), m);
+    const double tol = 1e-10 * (std::abs(lp.objective[j]) + yNorm * norm[j]);
+    const bool up = d > tol && x[j] < lp.upper[j], down = d < -tol && x[j] > lp.lower[j];
+    if (!up && !down) continue;
+    const double score = std::abs(d) / (norm[j] > 0.0 ? norm[j] : 1.0);
+    if (best.column < 0 || score > bestScore) {
+      best = {j, up ? 1.0 : -1.0};
+      bestScore = score;
+      if (bland) break;
+    }
+  }
+  return best;
+}
+
+struct Step {
+  double theta = kInf;  // how far the entering column moves
+  int leaving = -1;     // the basis position that leaves, or -1: a bound flip
+  double rate = 0.0;    // the leaving value's rate of change
+};
+
+// Ratio test: the entering column's own bound, or the first basic value to reach one; `w` is
+// B^-1 M_entering.
+Step ratioTest(const BoundedLp& lp, const std::vector<int>& basis, const std::vector<double>& x,
+               const std::vector<double>& w, const Entering& in, bool bland) {
+  double wMax = 0.0;
+  for (const double v : w) wMax = std::max(wMax, std::abs(v));
+  const double wTol = 1e-11 * wMax;
+  Step step;
+  step.theta =
+      in.sign > 0.0 ? lp.upper[in.column] - x[in.column] : x[in.column] - lp.lower[in.column];
+  for (int i = 0; i < lp.rows; ++i) {
+    const int k = basis[i];
+    const double rate = -in.sign * w[i];  // d x_k / d theta
+    double room;
+    if (rate < -wTol)
+      room = (x[k] - lp.lower[k]) / -rate;
+    else if (rate > wTol)
+      room = (lp.upper[k] - x[k]) / rate;
+    else
+      continue;
+    room = std::max(room, 0.0);
+    // Ties (to rounding) go to Bland's smallest index, or else to the largest rate (the stabler
+    // pivot); the step is the smaller of the two, so that nothing overshoots.
+    const bool tie = step.leaving >= 0 && std::abs(room - step.theta) <= 1e-12 * (1.0 + step.theta);
+    const bool better =
+        tie ? (bland ? k < basis[step.leaving] : std::abs(rate) > std::abs(step.rate))
+            : room < step.theta;
+    if (better) step = {tie ? std::min(step.theta, room) : room, i, rate};
+  }
+  return step;
+}
+
+// Moves x by the step and, unless it is a bound flip, swaps the leaving column out of the basis
+// (onto the bound it reached) and the entering one in.
+void pivot(const BoundedLp& lp, const Entering& in, const Step& step, const std::vector<double>& w,
+           std::vector<int>& basis, std::vector<int>& position, std::vector<double>& x) {
+  x[in.column] += in.sign * step.theta;
+  for (int i = 0; i < lp.rows; ++i) x[basis[i]] -= in.sign * step.theta * w[i];
+  if (step.leaving < 0) {  // a bound flip: exactly onto the entering column's own bound
+    x[in.column] = in.sign > 0.0 ? lp.upper[in.column] : lp.lower[in.column];
+    return;
+  }
+  const int k = basis[step.leaving];
+  x[k] = step.rate < 0.0 ? lp.lower[k] : lp.upper[k];
+  position[k] = -1;
+  basis[step.leaving] = in.column;
+  position[in.column] = step.leaving;
+}
+
 }  // namespace
 
 BoundedLpSolution maximizeFromZero(const BoundedLp& lp) {
@@ -106,6 +205,7 @@ BoundedLpSolution maximizeFromZero(const BoundedLp& lp) {
   for (int i = 0; i < m; ++i) position[basis[i]] = i;
 
   std::vector<double>& x = out.x;
+  std::vector<double>& y = out.y;
   std::vector<double> w(m);
   bool bland = false;
   int degenerateRun = 0;
@@ -116,96 +216,27 @@ BoundedLpSolution maximizeFromZero(const BoundedLp& lp) {
       out.status = BoundedLpSolution::Status::rankDeficient;
       return out;
     }
-    // The basic values from the nonbasic ones (M x = 0), afresh each step against drift.
-    std::vector<double> xb(m, 0.0);
-    for (int j = 0; j < n; ++j)
-      if (position[j] < 0 && x[j] != 0.0)
-        for (int i = 0; i < m; ++i) xb[i] -= column(lp, j)[i] * x[j];
-    factors.solve('N', xb);
-    for (int i = 0; i < m; ++i)
-      x[basis[i]] = std::clamp(xb[i], lp.lower[basis[i]], lp.upper[basis[i]]);
-
-    std::vector<double>& y = out.y;
+    setBasicValues(lp, basis, position, factors, x);
     for (int i = 0; i < m; ++i) y[i] = lp.objective[basis[i]];
     factors.solve('T', y);
-    const double yNorm = std::sqrt(dot(y.data(), y.data(), m));
-
-    // Pricing: a nonbasic column whose reduced cost improves the objective in a direction its
-    // bounds leave open.
-    int entering = -1;
-    double enteringSign = 0.0, bestScore = 0.0;
-    for (int j = 0; j < n && !(bland && entering >= 0); ++j) {
-      if (position[j] >= 0) continue;
-      const double d = lp.objective[j] - dot(y.data(), column(lp, j), m);
-      const double tol = 1e-10 * (std::abs(lp.objective[j]) + yNorm * norm[j]);
-      const bool up = d > tol && x[j] < lp.upper[j], down = d < -tol && x[j] > lp.lower[j];
-      if (!up && !down) continue;
-      const double score = std::abs(d) / (norm[j] > 0.0 ? norm[j] : 1.0);
-      if (entering < 0 || score > bestScore) {
-        entering = j;
-        enteringSign = up ? 1.0 : -1.0;
-        bestScore = score;
-      }
-    }
-    if (entering < 0) {
+    const Entering in = price(lp, position, x, y, norm, bland);
+    if (in.column < 0) {
       out.status = BoundedLpSolution::Status::optimal;
       out.value = dot(lp.objective.data(), x.data(), n);
       return out;
     }
-
-    // Ratio test: the entering column's own bound, or the first basic value to reach one.
-    std::copy(column(lp, entering), column(lp, entering) + m, w.begin());
+    std::copy(column(lp, in.column), column(lp, in.column) + m, w.begin());
     factors.solve('N', w);
-    double wMax = 0.0;
-    for (const double v : w) wMax = std::max(wMax, std::abs(v));
-    const double wTol = 1e-11 * wMax;
-    double theta =
-        enteringSign > 0.0 ? lp.upper[entering] - x[entering] : x[entering] - lp.lower[entering];
-    int leaving = -1;
-    double leavingRate = 0.0;
-    for (int i = 0; i < m; ++i) {
-      const int k = basis[i];
-      const double rate = -enteringSign * w[i];  // d x_k / d theta
-      double room;
-      if (rate < -wTol)
-        room = (x[k] - lp.lower[k]) / -rate;
-      else if (rate > wTol)
-        room = (lp.upper[k] - x[k]) / rate;
-      else
-        continue;
-      room = std::max(room, 0.0);
-      // Ties (to rounding) go to Bland's smallest index, or else to the largest rate (the
-      // stabler pivot); the step is the smaller of the two, so that nothing overshoots.
-      const bool tie = leaving >= 0 && std::abs(room - theta) <= 1e-12 * (1.0 + theta);
-      const bool better =
-          tie ? (bland ? k < basis[leaving] : std::abs(rate) > std::abs(leavingRate))
-              : room < theta;
-      if (better) {
-        theta = tie ? std::min(theta, room) : room;
-        leaving = i;
-        leavingRate = rate;
-      }
-    }
-    if (theta == kInf) {
+    const Step step = ratioTest(lp, basis, x, w, in, bland);
+    if (step.theta == kInf) {
       out.status = BoundedLpSolution::Status::unbounded;
       return out;
     }
-
-    const double start = x[entering];
-    x[entering] += enteringSign * theta;
-    for (int i = 0; i < m; ++i) x[basis[i]] -= enteringSign * theta * w[i];
-    if (leaving < 0)  // a bound flip: exactly onto the entering column's own bound
-      x[entering] = enteringSign > 0.0 ? lp.upper[entering] : lp.lower[entering];
-    if (leaving >= 0) {
-      const int k = basis[leaving];
-      x[k] = leavingRate < 0.0 ? lp.lower[k] : lp.upper[k];
-      position[k] = -1;
-      basis[leaving] = entering;
-      position[entering] = leaving;
-    }
+    const double start = x[in.column];
+    pivot(lp, in, step, w, basis, position, x);
     // Degenerate steps (no progress) can cycle under Dantzig's pricing: after a run of them,
     // Bland's rule for the rest of the solve.
-    degenerateRun = theta > 1e-12 * (1.0 + std::abs(start)) ? 0 : degenerateRun + 1;
+    degenerateRun = step.theta > 1e-12 * (1.0 + std::abs(start)) ? 0 : degenerateRun + 1;
     if (degenerateRun > 50) bland = true;
   }
   out.status = BoundedLpSolution::Status::iterationLimit;

@@ -41,9 +41,8 @@ std::vector<double> loadOnModes(const ElasticContactProblem& p, const Pieces& pi
     const std::vector<double>& x = p.subdomains[id].coords;
     for (std::size_t d = 0; d < sd.f.size(); ++d) {
       if (sd.f[d] == 0.0) continue;
-      double m[6];
-      modeValues(pieces, q, dim, &x[dim * (d / dim)], static_cast<int>(d % dim), m);
-      for (int i = 0; i < nm; ++i) mine[static_cast<std::size_t>(q) * nm + i] += sd.f[d] * m[i];
+      addModeValues(pieces, q, dim, &x[dim * (d / dim)], static_cast<int>(d % dim), sd.f[d],
+                    &mine[static_cast<std::size_t>(q) * nm]);
     }
   }
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, n, mine.data(), force.data());
@@ -84,10 +83,8 @@ RowsOnMotions rowsOnMotions(const ElasticContactProblem& p, const Pieces& pieces
     std::fill(modes.begin(), modes.end(), 0.0);
     for (const auto& e : row.entries) {
       const int q = pieces.ofSubdomain[e.subdomain];
-      double m[6];
-      modeValues(pieces, q, dim, &p.subdomains[e.subdomain].coords[dim * (e.dof / dim)],
-                 e.dof % dim, m);
-      for (int k = 0; k < nm; ++k) modes[static_cast<std::size_t>(q) * nm + k] += e.coef * m[k];
+      addModeValues(pieces, q, dim, &p.subdomains[e.subdomain].coords[dim * (e.dof / dim)],
+                    e.dof % dim, e.coef, &modes[static_cast<std::size_t>(q) * nm]);
     }
     out.a.push_back(onFree(free, modes));
     out.lower.push_back(row.lowerBound);
@@ -307,6 +304,31 @@ std::optional<Found> smallestLimit(const RowsOnMotions& rows, const std::vector<
   return best;
 }
 
+// Where several motions certify 0 the program's choice may turn about a far axis: a
+// translation that certifies 0 as well reads better (a block sliding off its cones), and the
+// load's own direction best of all where it certifies as small a factor.
+Found readableMotion(Found limit, RowsOnMotions& rows, const std::vector<double>& phi,
+                     const std::vector<double>& own, const std::vector<std::vector<double>>& free,
+                     const Pieces& pieces, int dim) {
+  if (limit.at.capacity <= 1e-9) {
+    const int nm = modesPerPiece(dim);
+    for (int q = 0; q < pieces.count; ++q)
+      for (int i = dim; i < nm; ++i) {  // the rotations held at 0
+        std::vector<double> rotation(free.size());
+        for (std::size_t k = 0; k < free.size(); ++k) rotation[k] = free[k][q * nm + i];
+        rows.held.push_back(std::move(rotation));
+      }
+    const std::optional<Found> sliding = smallestLimit(rows, phi, own);
+    rows.held.clear();
+    if (sliding && sliding->at.capacity <= 1e-9) limit = *sliding;
+  }
+  if (!own.empty()) {
+    const Evaluation e = evaluate(rows, own);
+    if (e.admissible && e.capacity <= limit.at.capacity * (1.0 + 1e-9)) limit = Found{own, e};
+  }
+  return limit;
+}
+
 }  // namespace
 
 std::optional<FrictionLoadLimit> frictionLoadLimit(const ElasticContactSpec& spec,
@@ -336,25 +358,8 @@ std::optional<FrictionLoadLimit> frictionLoadLimit(const ElasticContactSpec& spe
     RowsOnMotions onMotions = rowsOnMotions(p, pieces, free, rows, cones);
     const std::vector<double> own = loadDirection(free, phi);
     std::optional<Found> limit = smallestLimit(onMotions, phi, own);
-    // Where several motions certify 0 the program's choice may turn about a far axis; a
-    // translation that certifies 0 as well reads better (a block sliding off its cones).
-    if (limit && limit->at.capacity <= 1e-9) {
-      const int nm = modesPerPiece(p.dim());
-      for (int q = 0; q < pieces.count; ++q)
-        for (int i = p.dim(); i < nm; ++i) {
-          std::vector<double> rotation(free.size());
-          for (std::size_t k = 0; k < free.size(); ++k) rotation[k] = free[k][q * nm + i];
-          onMotions.held.push_back(std::move(rotation));
-        }
-      const std::optional<Found> sliding = smallestLimit(onMotions, phi, own);
-      if (sliding && sliding->at.capacity <= 1e-9) limit = sliding;
-    }
-    // The load's own direction reads best of all where it certifies as small a factor.
-    if (limit && !own.empty()) {
-      const Evaluation e = evaluate(onMotions, own);
-      if (e.admissible && e.capacity <= limit->at.capacity * (1.0 + 1e-9)) limit = Found{own, e};
-    }
     if (!limit) return;
+    limit = readableMotion(*limit, onMotions, phi, own, free, pieces, p.dim());
     std::vector<double> r(force.size(), 0.0);  // on the pieces' modes, r . f = 1
     for (std::size_t k = 0; k < free.size(); ++k)
       for (std::size_t j = 0; j < r.size(); ++j) r[j] += limit->r[k] * free[k][j];
@@ -408,8 +413,8 @@ void requireLoadHeld(const std::optional<FrictionLoadLimit>& limit) {
       << " off (a contact row pushes, never pulls) ";
   else
     s << "no contact row pushes against it ";
-  s << "and the friction rows do " << limit->capacity
-    << " along it: no equilibrium exists at any load factor, so no load step can converge (the "
+  s << "and no friction row resists it: no equilibrium exists at any load factor, so no load "
+       "step can converge (the "
        "supports, couplings, contact and friction rows of the first solve, at the reference "
        "geometry)";
   throw std::invalid_argument(s.str());

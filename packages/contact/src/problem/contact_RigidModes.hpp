@@ -30,6 +30,10 @@ int modesPerPiece(int dim);
 // Component c at x of the piece's rigid modes: the translations, then the rotations about the
 // axes through its centre, scaled by its size so that all modes are of one magnitude.
 void modeValues(const Pieces& pieces, int q, int dim, const double* x, int c, double* out);
+// out[i] += coef * (mode i at x, component c), over the piece's modes: a dof's coefficient (a row's
+// entry, a load) on them.
+void addModeValues(const Pieces& pieces, int q, int dim, const double* x, int c, double coef,
+                   double* out);
 
 // The Gram matrix sum_rows (R^T b)(R^T b)^T over the pieces' modes, a row given as (piece,
 // position, component, coefficient) entries.
@@ -46,9 +50,7 @@ class Gram {
   void add(int piece, const double* x, int component, double coef) {
     std::vector<double>& v = row_[piece];
     v.resize(nm_, 0.0);
-    double m[6];
-    modeValues(pieces_, piece, dim_, x, component, m);
-    for (int i = 0; i < nm_; ++i) v[i] += coef * m[i];
+    addModeValues(pieces_, piece, dim_, x, component, coef, v.data());
   }
   void endRow() {
     for (const auto& [a, va] : row_)

@@ -100,6 +100,13 @@ void modeValues(const Pieces& pieces, int q, int dim, const double* x, int c, do
   for (int a = 0; a < 3; ++a) out[3 + a] = rot[a][c];
 }
 
+void addModeValues(const Pieces& pieces, int q, int dim, const double* x, int c, double coef,
+                   double* out) {
+  double m[6];
+  modeValues(pieces, q, dim, x, c, m);
+  for (int i = 0; i < modesPerPiece(dim); ++i) out[i] += coef * m[i];
+}
+
 // The rows' entries on subdomain dofs: the node's coordinates are the subdomain's copy's.
 template <class Row>
 void addRows(Gram& gram, const ElasticContactProblem& p, const Pieces& pieces,
