@@ -1481,7 +1481,8 @@ def friction_held(d, tol):
              f"{k['max_penetration']:.2e} (max |u| {u:.2e})")
     if c["stick_nodes"] < 1:
         fail(f"{d}: no node sticks")
-    # Tresca's limit, known from the data, lies beyond load factor 1 (Coulomb's is not computed).
+    # Tresca's limit, known from the data, lies beyond load factor 1 (Coulomb's cones give none,
+    # or 0, which is an error before the run).
     limit = s["nonlinear"].get("friction_limit")
     if c["friction_law"] == "Tresca" and (limit is None or not limit["load_factor"] > 1.0):
         fail(f"{d}: nonlinear.friction_limit {limit}: a Tresca body held to load factor 1")
